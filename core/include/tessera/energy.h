@@ -1,0 +1,88 @@
+// Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
+//
+// Vertex-model energy of the Voronoi cells and its exact gradient with respect
+// to the cell centres (chain rule through the circumcentres), plus the virial.
+#pragma once
+
+#include "tessera/tessellation.h"
+
+#include <vector>
+
+namespace tessera {
+
+// How the junction tension enters the energy (SPEC section 7).
+//   Edge: sum over junctions of Lambda_IJ * l_ij, each junction once
+//         (Farhadifar 2007; consistent with p0 = -Lambda_bar / (2 Gamma_bar)).
+//   Cell: sum over cells of sum over the cell's junctions Lambda_IJ * l_ij, so
+//         each junction counts twice (Lambda * P_i for uniform Lambda); this is
+//         what the thesis's own code computes, with preferred perimeter -Lambda/Gamma.
+enum class Tension { Edge, Cell };
+
+struct CellType {
+  double K = 1.0;      // area modulus
+  double A0 = 1.0;     // preferred area
+  double Gamma = 0.0;  // perimeter (contractility) modulus
+};
+
+// Parameters of the energy for n types (0-based type indices).
+//   E = sum_i [ K_i/2 (A_i - A0_i)^2 + Gamma_i/2 P_i^2 ] + tension term
+struct Model {
+  std::vector<CellType> types;
+  std::vector<double> lambda;  // ntypes * ntypes, symmetric, Lambda_IJ
+  Tension tension = Tension::Edge;
+
+  explicit Model(int ntypes = 1);
+  int ntypes() const { return static_cast<int>(types.size()); }
+  double lambda_of(int ti, int tj) const { return lambda[ti * ntypes() + tj]; }
+  void set_lambda(int ti, int tj, double value);
+  // Weight of a junction's Lambda * l in one adjacent cell's energy: 1/2 for
+  // Edge (so the two cells add up to one junction), 1 for Cell.
+  double tension_weight() const { return tension == Tension::Edge ? 0.5 : 1.0; }
+  // Throws Error naming the type and the value if K <= 0, A0 <= 0 or anything
+  // is non-finite.  Gamma may be zero; Lambda may have either sign.
+  void validate() const;
+};
+
+// Quadratic form E = sum K_A (A - A0)^2 + K_P (P - P0)^2 (Bi et al.) for one
+// type: K = 2 K_A, Gamma = 2 K_P, and Lambda such that the preferred
+// perimeter is P0 under the given tension convention:
+//   Edge: Lambda = -2 Gamma P0;  Cell: Lambda = -Gamma P0.
+struct QuadraticParams {
+  double KA, A0, KP, P0;
+};
+CellType cell_type_from_quadratic(const QuadraticParams &q);
+double lambda_from_quadratic(const QuadraticParams &q, Tension tension);
+
+struct ForceOutput {
+  double energy = 0.0;  // sum over owned cells
+  // Virial W_ab = sum over all n_points of r_a F_b, computed with the positions
+  // the triangulation used (ghosts at their image positions) and with forces on
+  // ghosts not yet folded; then dE/d(strain_ab) = -W_ab.  Order: xx, yy, xy, yx.
+  double virial[4] = {0.0, 0.0, 0.0, 0.0};
+};
+
+// Energy of the owned cells and forces on all n_points points (owned and
+// ghost) from it.  Forces are *added* to f (stride f_stride, n_points rows);
+// cell_energy (optional, n_owned entries) receives each owned cell's energy,
+// with its junction terms weighted by tension_weight().  type holds 0-based
+// types for all n_points.  pts must be the points that were tessellated (for
+// tessellate_periodic pass positions_of(t)).
+ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *type,
+                           const Model &model, double *f, int f_stride,
+                           double *cell_energy = nullptr);
+
+// Energy only (no gradient); used by tests and finite differences.
+double compute_energy(const Tessellation &t, const int *type, const Model &model,
+                      double *cell_energy = nullptr);
+
+// The positions a periodic tessellation triangulated (owned then images), as
+// a flat stride-2 array, for compute_forces.
+std::vector<double> positions_of(const Tessellation &t);
+
+// Periodic convenience: tessellate, compute forces, fold image forces onto
+// their owners.  f receives n forces (stride 2, overwritten).
+ForceOutput periodic_forces(const Box &box, const Points &pts, const int *type,
+                            const Model &model, std::vector<double> &f,
+                            std::vector<double> *cell_energy = nullptr);
+
+}  // namespace tessera

@@ -1,0 +1,36 @@
+// Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
+//
+// Polarity dynamics (SPEC section 4) and velocity observables (section 5).
+#pragma once
+
+#include "tessera/tessellation.h"
+
+namespace tessera {
+
+struct PolarityParams {
+  double J_S = 0.0;    // alignment with Voronoi neighbours
+  double J_G = 0.0;    // nematic alignment with a groove direction
+  double phi_G = 0.0;  // groove direction (radians from x)
+  double J_V = 0.0;    // alignment with the cell's own velocity
+};
+
+// Deterministic torque on each owned cell's polarity angle:
+//   tau_i = J_S sum_j sin(th_j - th_i) - J_G sin(th_i - phi) cos(th_i - phi)
+//           - J_V sin(th_i - psi_i)
+// Sum over Voronoi neighbours with non-zero edge length.  theta holds an angle
+// for every point of t (owned and ghost); psi (optional, n_owned entries) is
+// the direction of each owned cell's velocity, with has_psi[i] == 0 where the
+// velocity is zero (no velocity torque then).  tau gets n_owned values.
+void polarity_torque(const Tessellation &t, const double *theta, const PolarityParams &p,
+                     const double *psi, const unsigned char *has_psi, double *tau);
+
+// Coordination C_i = mean over Voronoi neighbours j (non-zero edges) of
+// v_i/|v_i| . v_j/|v_j| (in [-1, 1]), and orientation O_i = arccos(v_i/|v_i| . x)
+// in [0, pi].  vel: stride-2 velocities of all points of t.  Cells with zero
+// velocity get coordination 0 and orientation -1 (a value outside [0, pi], so
+// dumps show it and averages are not poisoned by NaN); neighbours with zero
+// velocity are left out of the mean.
+void velocity_observables(const Tessellation &t, const double *vel, int vel_stride,
+                          double *coordination, double *orientation);
+
+}  // namespace tessera

@@ -1,0 +1,129 @@
+// Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
+//
+// Voronoi tessellation of 2D cell centres, as the dual of their Delaunay
+// triangulation.  This header is free of CGAL and of LAMMPS on purpose: CGAL
+// lives only in the core's .cpp files, so LAMMPS-side code (whose pointers.h
+// defines MIN/MAX macros) can include it and builds stay fast.
+#pragma once
+
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace tessera {
+
+// Every error the core raises on bad input.  The message names what is wrong
+// and, where points are involved, which points (by their index in the input,
+// or by the ids the caller supplied).
+class Error : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+struct Vec2 {
+  double x = 0.0, y = 0.0;
+};
+
+// A view of n points stored with a fixed stride (LAMMPS keeps x[i][0..2]
+// contiguous, so stride 3 lets us read it without a copy).
+struct Points {
+  const double *data = nullptr;
+  int n = 0;
+  int stride = 2;
+  double x(int i) const { return data[static_cast<long>(i) * stride]; }
+  double y(int i) const { return data[static_cast<long>(i) * stride + 1]; }
+};
+
+// Periodic simulation box.  Only rectangular boxes are supported now; the tilt
+// is carried so that triclinic boxes can be added without changing callers.
+struct Box {
+  double lo[2] = {0.0, 0.0};
+  double hi[2] = {1.0, 1.0};
+  double xy = 0.0;  // tilt factor; must be 0 for now
+
+  static Box rect(double xlo, double xhi, double ylo, double yhi) {
+    Box b;
+    b.lo[0] = xlo;
+    b.hi[0] = xhi;
+    b.lo[1] = ylo;
+    b.hi[1] = yhi;
+    return b;
+  }
+  double length(int d) const { return hi[d] - lo[d]; }
+  double area() const { return length(0) * length(1); }
+  // Throws Error if a length is not positive or not finite, or xy != 0.
+  void validate() const;
+};
+
+// The tessellation of n_points points, of which the first n_owned are the
+// cells we want; the rest are ghosts (periodic images or other ranks' atoms)
+// that only complete the owned cells.
+//
+// Voronoi vertex v of owned cell c is the circumcentre of Delaunay triangle
+// cell_vertex[k] (k = cell_offset[c] + v), listed counter-clockwise.  The edge
+// from vertex v to vertex v+1 (cyclically) separates c from point
+// cell_neighbor[k] and has length edge_length[k].  Co-circular points give
+// several triangles with one circumcentre: those edges have length 0 and are
+// kept, so the polygon's topology always matches the triangulation.
+struct Tessellation {
+  int n_points = 0;
+  int n_owned = 0;
+
+  std::vector<std::array<int, 3>> triangles;  // counter-clockwise point indices
+  std::vector<Vec2> vertices;                 // circumcentre of each triangle
+  std::vector<double> radius;                 // circumradius of each triangle
+
+  std::vector<int> cell_offset;  // n_owned + 1 entries
+  std::vector<int> cell_vertex;
+  std::vector<int> cell_neighbor;
+  std::vector<double> edge_length;
+
+  std::vector<double> area;       // per owned cell
+  std::vector<double> perimeter;  // per owned cell
+
+  // For tessellate_periodic: the owned point each of the n_points is an image
+  // of, and the position it was triangulated at (owned points first, then
+  // images).  Empty for tessellate_local.
+  std::vector<int> origin;
+  std::vector<Vec2> position;
+
+  int cell_size(int c) const { return cell_offset[c + 1] - cell_offset[c]; }
+  // Number of Voronoi neighbours counted over edges longer than tol times the
+  // cell's mean edge length (zero-length edges of multifold vertices excluded).
+  int coordination_number(int c, double rel_tol = 1e-9) const;
+  // Number of distinct Voronoi vertices shared by four or more cells among the
+  // owned cells' vertices (each counted once, by position, relative tol).
+  int count_multifold_vertices(double rel_tol = 1e-9) const;
+};
+
+// Triangulate points (owned first, then ghosts) without periodicity and build
+// the owned cells.  ids (optional, n entries) are used in error messages.
+// Throws Error on non-finite coordinates, coincident points, or fewer than 3
+// non-collinear points; and if an owned cell touches the convex hull (its
+// region is unbounded: the ghost shell is missing or far too thin).
+Tessellation tessellate_local(const Points &pts, int n_owned, const long *ids = nullptr);
+
+// Whether the owned cells of t can be trusted when the given points are all
+// the points inside the rectangle [lo, hi] (the region they cover): every
+// Delaunay triangle used by an owned cell must have its circumdisk inside it,
+// otherwise an unseen point could lie in that disk.  needed_margin is how far
+// the rectangle would have to grow on its worst side for the check to pass
+// (0 when ok); the caller adds it to its ghost cutoff.
+struct Coverage {
+  bool ok = true;
+  double needed_margin = 0.0;
+  int worst_cell = -1;  // an owned cell using the worst triangle, or -1
+};
+Coverage check_coverage(const Tessellation &t, const double lo[2], const double hi[2]);
+
+// Tessellate n points in a periodic box.  Builds periodic images within a
+// margin of the box, and grows the margin until check_coverage passes, so the
+// result is exact for any configuration.  All points must lie in the box
+// (wrap them first; wrap_into_box helps).
+Tessellation tessellate_periodic(const Box &box, const Points &pts, const long *ids = nullptr);
+
+// Wrap coordinates (stride 2) into [lo, hi) of the box.
+void wrap_into_box(const Box &box, std::vector<double> &xy);
+
+}  // namespace tessera

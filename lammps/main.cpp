@@ -1,0 +1,160 @@
+// Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
+//
+// tessera-lmp: LAMMPS's `lmp` driver plus Tessera's styles.  It takes every
+// lmp command-line flag and runs input scripts the same way; the styles are
+// inserted into the instance right after it is constructed.
+//
+// -h/-help is handled here: LAMMPS prints its help from inside its
+// constructor and exits, before any style could be added.  We build a quiet
+// instance instead, register, and print LAMMPS-style help that lists all
+// styles of this executable, Tessera's included.
+
+#include "tessera_styles.h"
+
+#include "exceptions.h"
+#include "info.h"
+#include "input.h"
+#include "lammps.h"
+
+#include <mpi.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+using namespace LAMMPS_NS;
+
+namespace {
+
+bool wants_help(int argc, char **argv)
+{
+  for (int i = 1; i < argc; i++)
+    if (strcmp(argv[i], "-h") == 0 || strcmp(argv[i], "-help") == 0) return true;
+  return false;
+}
+
+// Names in columns of 16 characters within 80, as LAMMPS's own help does.
+void print_columns(FILE *out, const std::vector<std::string> &names)
+{
+  const std::size_t width = 16, line_max = 80;
+  std::size_t pos = 0;
+  for (const std::string &name : names) {
+    const std::size_t cols = name.size() / width + 1;
+    const std::size_t len = cols * width;
+    if (pos > 0 && pos + len > line_max) {
+      fputc('\n', out);
+      pos = 0;
+    }
+    fprintf(out, "%-*s", static_cast<int>(len), name.c_str());
+    pos += len;
+  }
+  if (pos > 0) fputc('\n', out);
+}
+
+// The flags LAMMPS's constructor understands (LAMMPS(argc, argv, comm)).
+const char *const option_help =
+    "-in none|file (-i)            input script (default: standard input)\n"
+    "-var name value ... (-v)      define an index-style variable\n"
+    "-log none|file (-l)           log file (default: log.lammps)\n"
+    "-screen none|file (-sc)       screen output (default: the terminal)\n"
+    "-echo none|screen|log|both (-e)  echo input commands\n"
+    "-help (-h)                    this message\n"
+    "-nocite (-nc), -cite style|file (-c)  citation reminder\n"
+    "-partition MxN ... (-p), -plog name (-pl), -pscreen name (-ps)  multi-partition runs\n"
+    "-mpicolor color (-m)          colour of this executable in an MPMD mpirun\n"
+    "-reorder style ... (-r)       MPI rank reordering\n"
+    "-suffix style (-sf), -package style ... (-pk)  accelerator styles and settings\n"
+    "-kokkos on|off ... (-k)       KOKKOS (not in the packaged LAMMPS)\n"
+    "-mdi flags                    MolSSI Driver Interface\n"
+    "-skiprun (-sr)                skip run and minimize loops\n"
+    "-restart2data, -restart2dump (-r2data, -r2dump)  convert a restart file; these run\n"
+    "                              before Tessera's styles exist, so for restarts that use\n"
+    "                              them write an input script with read_restart instead\n";
+
+void print_help(const char *exe)
+{
+  // A silent instance: no banner, no log.lammps.
+  std::vector<std::string> words = {exe, "-log", "none", "-screen", "none", "-nocite"};
+  std::vector<char *> args;
+  for (std::string &word : words) args.push_back(&word[0]);
+  args.push_back(nullptr);
+  auto lmp = new LAMMPS(static_cast<int>(words.size()), args.data(), MPI_COMM_WORLD);
+  const std::vector<TesseraStyle> styles = tessera_register_styles(lmp);
+
+  int me = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &me);
+  if (me == 0) {
+    FILE *out = stdout;
+    fprintf(out,
+            "\nTessera %s: the active Voronoi vertex model in LAMMPS %s\n\n"
+            "Usage example: tessera-lmp -var t 300 -echo screen -in in.tissue\n\n"
+            "List of command line options supported by this executable (those of lmp):\n\n%s\n",
+            tessera_version(), lmp->version, option_help);
+
+    fprintf(out, "Tessera's styles:\n\n");
+    for (const TesseraStyle &style : styles) {
+      const std::string label = style.command + " " + style.name;
+      fprintf(out, "  %-30s %s\n", label.c_str(),
+              style.provided ? "Tessera" : "the host LAMMPS's own (kept)");
+    }
+    fputc('\n', out);
+
+    lmp->print_config(out);
+
+    fprintf(out, "\nList of individual style options included in this executable\n");
+    const std::vector<std::pair<const char *, const char *>> categories = {
+        {"atom", "Atom styles"},         {"integrate", "Integrate styles"},
+        {"minimize", "Minimize styles"}, {"pair", "Pair styles"},
+        {"bond", "Bond styles"},         {"angle", "Angle styles"},
+        {"dihedral", "Dihedral styles"}, {"improper", "Improper styles"},
+        {"kspace", "KSpace styles"},     {"fix", "Fix styles"},
+        {"compute", "Compute styles"},   {"region", "Region styles"},
+        {"dump", "Dump styles"},         {"command", "Command styles"}};
+    Info info(lmp);
+    for (const auto &category : categories) {
+      fprintf(out, "\n* %s:\n\n", category.second);
+      print_columns(out, info.get_available_styles(category.first));
+    }
+    fputc('\n', out);
+    fflush(out);
+  }
+  delete lmp;
+}
+
+}    // namespace
+
+/* ---------------------------------------------------------------------- */
+
+int main(int argc, char **argv)
+{
+  MPI_Init(&argc, &argv);
+
+  try {
+    if (wants_help(argc, argv)) {
+      print_help(argv[0]);
+    } else {
+      auto lmp = new LAMMPS(argc, argv, MPI_COMM_WORLD);
+      tessera_register_styles(lmp);
+      lmp->input->file();
+      delete lmp;
+    }
+  } catch (LAMMPSAbortException &abort) {
+    // Only thrown by a liblammps.so built with LAMMPS_EXCEPTIONS.
+    MPI_Abort(abort.universe, 1);
+  } catch (LAMMPSException &) {
+    MPI_Barrier(MPI_COMM_WORLD);
+    MPI_Finalize();
+    exit(1);
+  } catch (std::exception &e) {
+    int me = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &me);
+    fprintf(stderr, "ERROR on rank %d: %s\n", me, e.what());
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  }
+
+  MPI_Barrier(MPI_COMM_WORLD);
+  MPI_Finalize();
+  return 0;
+}

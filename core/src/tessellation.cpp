@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 #include <unordered_map>
@@ -233,10 +234,12 @@ int Tessellation::count_multifold_vertices(double rel_tol) const {
   return count;
 }
 
-Tessellation tessellate_local(const Points &pts, int n_owned, const long *ids) {
+Tessellation tessellate_local(const Points &pts, int n_owned, const long *ids,
+                              bool throw_if_unbounded) {
   check_finite(pts, ids);
   Built b = build(pts, n_owned, ids, [](int i) { return i; });
-  if (b.unbounded_cell >= 0) {
+  b.t.unbounded_cell = b.unbounded_cell;
+  if (b.unbounded_cell >= 0 && throw_if_unbounded) {
     std::ostringstream s;
     s << "tessera: the cell of " << point_name(b.unbounded_cell, ids)
       << " is unbounded (it lies on the convex hull of the points given): the ghost shell "
@@ -248,6 +251,12 @@ Tessellation tessellate_local(const Points &pts, int n_owned, const long *ids) {
 
 Coverage check_coverage(const Tessellation &t, const double lo[2], const double hi[2]) {
   Coverage cov;
+  if (t.unbounded_cell >= 0) {
+    cov.ok = false;
+    cov.needed_margin = std::numeric_limits<double>::infinity();
+    cov.worst_cell = t.unbounded_cell;
+    return cov;
+  }
   for (int c = 0; c < t.n_owned; ++c) {
     for (int k = t.cell_offset[c]; k < t.cell_offset[c + 1]; ++k) {
       const int tri = t.cell_vertex[k];

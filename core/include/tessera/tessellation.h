@@ -82,6 +82,12 @@ struct Tessellation {
   std::vector<double> area;       // per owned cell
   std::vector<double> perimeter;  // per owned cell
 
+  // An owned cell that touches the convex hull of the points (its region is
+  // unbounded, so the ghost shell is missing), or -1.  Only set when
+  // tessellate_local was asked not to throw; such cells are left empty and
+  // check_coverage reports an infinite needed margin.
+  int unbounded_cell = -1;
+
   // For tessellate_periodic: the owned point each of the n_points is an image
   // of, and the position it was triangulated at (owned points first, then
   // images).  Empty for tessellate_local.
@@ -102,14 +108,16 @@ struct Tessellation {
 // Throws Error on non-finite coordinates, coincident points, or fewer than 3
 // non-collinear points; and if an owned cell touches the convex hull (its
 // region is unbounded: the ghost shell is missing or far too thin).
-Tessellation tessellate_local(const Points &pts, int n_owned, const long *ids = nullptr);
+Tessellation tessellate_local(const Points &pts, int n_owned, const long *ids = nullptr,
+                              bool throw_if_unbounded = true);
 
 // Whether the owned cells of t can be trusted when the given points are all
 // the points inside the rectangle [lo, hi] (the region they cover): every
 // Delaunay triangle used by an owned cell must have its circumdisk inside it,
 // otherwise an unseen point could lie in that disk.  needed_margin is how far
 // the rectangle would have to grow on its worst side for the check to pass
-// (0 when ok); the caller adds it to its ghost cutoff.
+// (0 when ok; +infinity if an owned cell is unbounded); the caller adds it to
+// its ghost cutoff.
 struct Coverage {
   bool ok = true;
   double needed_margin = 0.0;

@@ -13,6 +13,8 @@
 
 // One include per style in the table below.
 #include "fix_brownian.h"
+#include "fix_polarity.h"
+#include "pair_vertex_voronoi.h"
 
 #include <string>
 #include <vector>
@@ -77,6 +79,8 @@ template <class T> Entry compute_style(const char *name, Policy policy = Policy:
 const std::vector<Entry> &style_table()
 {
   static const std::vector<Entry> table = {
+      pair_style<PairVertexVoronoi>("vertex/voronoi"),
+      fix_style<FixPolarity>("polarity"),
       fix_style<FixBrownianTessera>("brownian", Policy::IF_MISSING),
   };
   return table;

@@ -1,0 +1,281 @@
+/* ----------------------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   fix polarity: active force f_a n_i along each cell's polarity and the
+   overdamped dynamics of the polarity angle (neighbour, groove and velocity
+   alignment, rotational noise).  The polarity is the direction of the dipole
+   moment mu, so it migrates with atoms, goes to ghosts and into restarts.
+------------------------------------------------------------------------- */
+
+#include "fix_polarity.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "math_const.h"
+#include "pair_vertex_voronoi.h"
+#include "update.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+namespace {
+
+// Counter-based random numbers: a value depends only on (seed, atom ID,
+// timestep, stream), so runs are identical on any number of ranks and
+// continue exactly from a restart.
+inline uint64_t mix(uint64_t z)
+{
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+inline double uniform01(uint64_t seed, uint64_t tag, uint64_t step, uint64_t stream)
+{
+  const uint64_t h = mix(mix(mix(mix(seed) ^ tag) ^ step) ^ stream);
+  return ((h >> 11) + 0.5) * (1.0 / 9007199254740992.0);    // in (0, 1)
+}
+
+inline double gaussian(uint64_t seed, uint64_t tag, uint64_t step)
+{
+  const double u1 = uniform01(seed, tag, step, 1), u2 = uniform01(seed, tag, step, 2);
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(MathConst::MY_2PI * u2);
+}
+
+}    // namespace
+
+/* ----------------------------------------------------------------------
+   fix ID group polarity f_a gamma_R [neighbor J_S] [groove J_G phi]
+                                     [velocity J_V] [noise D_r seed] [seed S]
+------------------------------------------------------------------------- */
+
+FixPolarity::FixPolarity(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), groove_deg(0.0), d_rot(0.0), seed(0), pair(nullptr)
+{
+  if (narg < 5)
+    error->all(FLERR,
+               "Illegal fix polarity command: expected 'fix ID group polarity f_a gamma_R "
+               "[neighbor J_S] [groove J_G phi] [velocity J_V] [noise D_r seed] [seed S]'");
+  f_active = utils::numeric(FLERR, arg[3], false, lmp);
+  gamma_r = utils::numeric(FLERR, arg[4], false, lmp);
+  if (!std::isfinite(f_active))
+    error->all(FLERR, "fix polarity: active force f_a must be finite, got {}", arg[3]);
+  if (!(gamma_r > 0.0) || !std::isfinite(gamma_r))
+    error->all(FLERR, "fix polarity: rotational friction gamma_R must be > 0, got {}", arg[4]);
+
+  int seed_given = 0;
+  int iarg = 5;
+  // Keyword at arg[iarg] takes n values.
+  auto need = [&](int n, const char *usage) {
+    if (iarg + n + 1 > narg) error->all(FLERR, "fix polarity: keyword {}", usage);
+  };
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "neighbor") == 0) {
+      need(1, "'neighbor' needs a value: neighbor J_S");
+      params.J_S = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "groove") == 0) {
+      need(2, "'groove' needs two values: groove J_G phi (phi in degrees from the x axis)");
+      params.J_G = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      groove_deg = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
+      params.phi_G = groove_deg * MathConst::MY_PI / 180.0;
+      iarg += 3;
+    } else if (strcmp(arg[iarg], "velocity") == 0) {
+      need(1, "'velocity' needs a value: velocity J_V");
+      params.J_V = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "noise") == 0) {
+      need(2, "'noise' needs two values: noise D_r seed");
+      d_rot = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      seed = utils::inumeric(FLERR, arg[iarg + 2], false, lmp);
+      if (d_rot < 0.0)
+        error->all(FLERR, "fix polarity: rotational diffusion D_r must be >= 0, got {}",
+                   arg[iarg + 1]);
+      if (seed <= 0) error->all(FLERR, "fix polarity: noise seed must be > 0, got {}", arg[iarg + 2]);
+      seed_given = 1;
+      iarg += 3;
+    } else if (strcmp(arg[iarg], "seed") == 0) {
+      need(1, "'seed' needs a value: seed S (for the initial random angles)");
+      seed = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (seed <= 0) error->all(FLERR, "fix polarity: seed must be > 0, got {}", arg[iarg + 1]);
+      seed_given = 1;
+      iarg += 2;
+    } else {
+      error->all(FLERR,
+                 "fix polarity: unknown keyword '{}' (known: neighbor, groove, velocity, noise, "
+                 "seed)",
+                 arg[iarg]);
+    }
+  }
+  for (double v : {params.J_S, params.J_G, params.J_V, params.phi_G})
+    if (!std::isfinite(v)) error->all(FLERR, "fix polarity: alignment moduli must be finite");
+  if (!seed_given) seed = 12345;
+
+  if (!atom->mu_flag)
+    error->all(FLERR,
+               "fix polarity: the polarity is stored in the dipole moment mu, which this atom "
+               "style lacks; use 'atom_style dipole' or 'atom_style hybrid sphere dipole'");
+
+  vector_flag = 1;
+  size_vector = 2;
+  global_freq = 1;
+  extvector = 0;
+  dynamic_group_allow = 1;
+}
+
+int FixPolarity::setmask()
+{
+  int mask = 0;
+  mask |= POST_FORCE;
+  mask |= END_OF_STEP;
+  return mask;
+}
+
+void FixPolarity::init()
+{
+  if (domain->dimension != 2) error->all(FLERR, "fix polarity requires a 2d simulation (dimension 2)");
+  pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  if (!pair && params.J_S != 0.0)
+    error->all(FLERR,
+               "fix polarity: 'neighbor' alignment needs pair_style vertex/voronoi, whose "
+               "tessellation gives the Voronoi neighbours");
+  init_angles();
+}
+
+/* Atoms with mu = 0 get a uniformly random polarity angle (thesis 4.1.4: a
+   biased start biases the streams).  The angle depends only on the seed and
+   the atom ID, not on the number of ranks. */
+
+void FixPolarity::init_angles()
+{
+  double **mu = atom->mu;
+  const tagint *tag = atom->tag;
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    if (mu[i][3] > 0.0) {
+      // Keep the direction, but polarity lives in the plane.
+      const double s = std::hypot(mu[i][0], mu[i][1]);
+      if (s > 0.0) {
+        mu[i][0] *= mu[i][3] / s;
+        mu[i][1] *= mu[i][3] / s;
+        mu[i][2] = 0.0;
+        continue;
+      }
+    }
+    const double th = MathConst::MY_2PI * uniform01(seed, tag[i], 0, 3);
+    mu[i][0] = std::cos(th);
+    mu[i][1] = std::sin(th);
+    mu[i][2] = 0.0;
+    mu[i][3] = 1.0;
+  }
+}
+
+void FixPolarity::setup(int vflag)
+{
+  post_force(vflag);
+}
+
+void FixPolarity::post_force(int /*vflag*/)
+{
+  double **mu = atom->mu;
+  double **f = atom->f;
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit) || !(mu[i][3] > 0.0)) continue;
+    f[i][0] += f_active * mu[i][0] / mu[i][3];
+    f[i][1] += f_active * mu[i][1] / mu[i][3];
+  }
+}
+
+/* Forward Euler (Euler-Maruyama with noise) step of the angle, from the
+   positions and angles of this step, after the active force has used them. */
+
+void FixPolarity::end_of_step()
+{
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  double **mu = atom->mu;
+  double **v = atom->v;
+  const int *mask = atom->mask;
+  const tagint *tag = atom->tag;
+
+  theta.resize(nall);
+  for (int i = 0; i < nall; i++) theta[i] = std::atan2(mu[i][1], mu[i][0]);
+  tau.assign(nlocal, 0.0);
+  psi.resize(nlocal);
+  has_psi.resize(nlocal);
+  for (int i = 0; i < nlocal; i++) {
+    has_psi[i] = (v[i][0] != 0.0 || v[i][1] != 0.0);
+    psi[i] = has_psi[i] ? std::atan2(v[i][1], v[i][0]) : 0.0;
+  }
+
+  if (params.J_S != 0.0) {
+    if (!pair->tessellation_current())
+      error->one(FLERR, "fix polarity: the tessellation of pair vertex/voronoi is not current");
+    tessera::polarity_torque(pair->tessellation(), theta.data(), params, psi.data(),
+                             has_psi.data(), tau.data());
+  } else {
+    // Without neighbour alignment no tessellation is needed: the torque of
+    // each cell depends on its own angle only.
+    tessera::Tessellation none;
+    none.n_owned = nlocal;
+    none.cell_offset.assign(nlocal + 1, 0);
+    none.edge_length.clear();
+    tessera::polarity_torque(none, theta.data(), params, psi.data(), has_psi.data(), tau.data());
+  }
+
+  const double dt = update->dt;
+  const double noise = std::sqrt(2.0 * d_rot * dt);
+  const bigint step = update->ntimestep;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    double th = theta[i] + dt * tau[i] / gamma_r;
+    if (d_rot > 0.0) th += noise * gaussian(seed, tag[i], step);
+    const double m = mu[i][3] > 0.0 ? mu[i][3] : 1.0;
+    mu[i][0] = m * std::cos(th);
+    mu[i][1] = m * std::sin(th);
+    mu[i][2] = 0.0;
+    mu[i][3] = m;
+  }
+}
+
+/* Polar order |<n>| and nematic order <cos 2(theta - phi_G)> over the group. */
+
+void FixPolarity::polar_orders(double &polar, double &nematic)
+{
+  double **mu = atom->mu;
+  const int *mask = atom->mask;
+  double local[4] = {0.0, 0.0, 0.0, 0.0}, all[4];
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit) || !(mu[i][3] > 0.0)) continue;
+    const double cx = mu[i][0] / mu[i][3], cy = mu[i][1] / mu[i][3];
+    local[0] += cx;
+    local[1] += cy;
+    const double th = std::atan2(cy, cx) - params.phi_G;
+    local[2] += std::cos(2.0 * th);
+    local[3] += 1.0;
+  }
+  MPI_Allreduce(local, all, 4, MPI_DOUBLE, MPI_SUM, world);
+  if (all[3] > 0.0) {
+    polar = std::hypot(all[0], all[1]) / all[3];
+    nematic = all[2] / all[3];
+  } else {
+    polar = nematic = 0.0;
+  }
+}
+
+double FixPolarity::compute_vector(int n)
+{
+  double polar, nematic;
+  polar_orders(polar, nematic);
+  return n == 0 ? polar : nematic;
+}

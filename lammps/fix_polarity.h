@@ -1,0 +1,51 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(polarity,FixPolarity);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_POLARITY_H
+#define LMP_FIX_POLARITY_H
+
+#include "fix.h"
+
+#include "tessera/polarity.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixPolarity : public Fix {
+ public:
+  FixPolarity(class LAMMPS *, int, char **);
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void post_force(int) override;
+  void end_of_step() override;
+  double compute_vector(int) override;
+
+ protected:
+  double f_active, gamma_r;
+  tessera::PolarityParams params;
+  double groove_deg;
+  double d_rot;
+  int seed;
+  class PairVertexVoronoi *pair;
+  std::vector<double> theta, tau, psi;
+  std::vector<unsigned char> has_psi;
+
+  void init_angles();
+  void polar_orders(double &polar, double &nematic);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,439 @@
+/* ----------------------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   pair_style vertex/voronoi: the vertex-model energy of the Voronoi cells of
+   the atoms, with exact forces on the atoms and the virial.  Each rank
+   triangulates its owned and ghost atoms; the ghost shell (pair cutoff) must
+   cover every circumcircle of an owned cell, which is checked every step.
+------------------------------------------------------------------------- */
+
+#include "pair_vertex_voronoi.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "memory.h"
+#include "neighbor.h"
+#include "update.h"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+
+using namespace LAMMPS_NS;
+
+PairVertexVoronoi::PairVertexVoronoi(LAMMPS *lmp) : Pair(lmp)
+{
+  single_enable = 0;
+  restartinfo = 1;
+  one_coeff = 0;
+  manybody_flag = 1;
+  centroidstressflag = CENTROID_NOTAVAIL;
+
+  cut_global = 0.0;
+  tension = tessera::Tension::Edge;
+  kappa = area0 = gamma = nullptr;
+  lambda = nullptr;
+  lambda_set = nullptr;
+  type_set = nullptr;
+  tess_step = -1;
+}
+
+PairVertexVoronoi::~PairVertexVoronoi()
+{
+  if (allocated) {
+    memory->destroy(setflag);
+    memory->destroy(cutsq);
+    memory->destroy(kappa);
+    memory->destroy(area0);
+    memory->destroy(gamma);
+    memory->destroy(lambda);
+    memory->destroy(lambda_set);
+    memory->destroy(type_set);
+  }
+}
+
+void PairVertexVoronoi::allocate()
+{
+  allocated = 1;
+  const int n = atom->ntypes;
+  memory->create(setflag, n + 1, n + 1, "pair:setflag");
+  memory->create(cutsq, n + 1, n + 1, "pair:cutsq");
+  memory->create(kappa, n + 1, "pair:kappa");
+  memory->create(area0, n + 1, "pair:area0");
+  memory->create(gamma, n + 1, "pair:gamma");
+  memory->create(lambda, n + 1, n + 1, "pair:lambda");
+  memory->create(lambda_set, n + 1, n + 1, "pair:lambda_set");
+  memory->create(type_set, n + 1, "pair:type_set");
+  for (int i = 0; i <= n; i++) {
+    kappa[i] = area0[i] = gamma[i] = 0.0;
+    type_set[i] = 0;
+    for (int j = 0; j <= n; j++) {
+      setflag[i][j] = 0;
+      lambda[i][j] = 0.0;
+      lambda_set[i][j] = 0;
+      cutsq[i][j] = 0.0;
+    }
+  }
+}
+
+/* ----------------------------------------------------------------------
+   pair_style vertex/voronoi cutoff [tension edge|cell]
+------------------------------------------------------------------------- */
+
+void PairVertexVoronoi::settings(int narg, char **arg)
+{
+  if (narg < 1)
+    error->all(FLERR,
+               "Illegal pair_style vertex/voronoi command: expected 'pair_style vertex/voronoi "
+               "cutoff [tension edge|cell]'");
+  cut_global = utils::numeric(FLERR, arg[0], false, lmp);
+  if (!(cut_global > 0.0))
+    error->all(FLERR,
+               "pair_style vertex/voronoi: cutoff must be > 0, got {}; use about 2.5 to 3 "
+               "cell diameters",
+               arg[0]);
+  int iarg = 1;
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "tension") == 0) {
+      if (iarg + 2 > narg)
+        error->all(FLERR, "pair_style vertex/voronoi: keyword 'tension' needs a value (edge or cell)");
+      if (strcmp(arg[iarg + 1], "edge") == 0)
+        tension = tessera::Tension::Edge;
+      else if (strcmp(arg[iarg + 1], "cell") == 0)
+        tension = tessera::Tension::Cell;
+      else
+        error->all(FLERR,
+                   "pair_style vertex/voronoi: tension must be 'edge' (each junction once, "
+                   "default) or 'cell' (Lambda*P per cell, as the thesis code), got '{}'",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else {
+      error->all(FLERR, "pair_style vertex/voronoi: unknown keyword '{}' (known: tension)",
+                 arg[iarg]);
+    }
+  }
+  // Allocating now lets a missing pair_coeff be reported by type in init_style
+  // rather than by LAMMPS's generic "All pair coeffs are not set".
+  if (!allocated && atom->ntypes > 0) {
+    allocate();
+    for (int i = 1; i <= atom->ntypes; i++) setflag[i][i] = 1;
+  }
+}
+
+/* ----------------------------------------------------------------------
+   pair_coeff I I K A0 Gamma Lambda
+   pair_coeff I I quadratic KA A0 KP P0
+   pair_coeff I J Lambda           (I != J: junction tension between types)
+------------------------------------------------------------------------- */
+
+void PairVertexVoronoi::coeff(int narg, char **arg)
+{
+  if (!allocated) {
+    allocate();
+    for (int i = 1; i <= atom->ntypes; i++) setflag[i][i] = 1;
+  }
+  if (narg < 3)
+    error->all(FLERR,
+               "pair_coeff for vertex/voronoi: expected 'pair_coeff I I K A0 Gamma Lambda', "
+               "'pair_coeff I I quadratic KA A0 KP P0' or 'pair_coeff I J Lambda'");
+
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+  const bool same = (ilo == jlo && ihi == jhi);
+  const std::string where = fmt::format("pair_coeff {} {}", arg[0], arg[1]);
+
+  if (narg == 3) {
+    const double lam = utils::numeric(FLERR, arg[2], false, lmp);
+    if (!std::isfinite(lam)) error->all(FLERR, "{}: Lambda must be finite, got {}", where, arg[2]);
+    int count = 0;
+    for (int i = ilo; i <= ihi; i++)
+      for (int j = MAX(jlo, i + 1); j <= jhi; j++) {
+        lambda[i][j] = lambda[j][i] = lam;
+        lambda_set[i][j] = lambda_set[j][i] = 1;
+        count++;
+      }
+    for (int i = jlo; i <= jhi; i++)
+      for (int j = MAX(ilo, i + 1); j <= ihi; j++) {
+        lambda[i][j] = lambda[j][i] = lam;
+        lambda_set[i][j] = lambda_set[j][i] = 1;
+        count++;
+      }
+    if (count == 0)
+      error->all(FLERR,
+                 "{}: a single value sets Lambda between two different types; for type I's own "
+                 "cells use 'pair_coeff I I K A0 Gamma Lambda'",
+                 where);
+    return;
+  }
+
+  if (!same)
+    error->all(FLERR,
+               "{}: cell parameters need the same type twice (pair_coeff I I K A0 Gamma "
+               "Lambda); between different types give only Lambda (pair_coeff I J Lambda)",
+               where);
+
+  double K, A0, G, lam;
+  if (strcmp(arg[2], "quadratic") == 0) {
+    if (narg != 7)
+      error->all(FLERR, "{}: expected 'pair_coeff I I quadratic KA A0 KP P0'", where);
+    tessera::QuadraticParams q;
+    q.KA = utils::numeric(FLERR, arg[3], false, lmp);
+    q.A0 = utils::numeric(FLERR, arg[4], false, lmp);
+    q.KP = utils::numeric(FLERR, arg[5], false, lmp);
+    q.P0 = utils::numeric(FLERR, arg[6], false, lmp);
+    if (!(q.KA > 0.0)) error->all(FLERR, "{}: KA must be > 0, got {}", where, arg[3]);
+    if (!(q.KP >= 0.0)) error->all(FLERR, "{}: KP must be >= 0, got {}", where, arg[5]);
+    const tessera::CellType ct = tessera::cell_type_from_quadratic(q);
+    K = ct.K;
+    A0 = ct.A0;
+    G = ct.Gamma;
+    lam = tessera::lambda_from_quadratic(q, tension);
+  } else {
+    if (narg != 6)
+      error->all(FLERR,
+                 "{}: expected 4 values K A0 Gamma Lambda (the thesis's order kappa, A0, Gamma, "
+                 "Lambda), got {}",
+                 where, narg - 2);
+    K = utils::numeric(FLERR, arg[2], false, lmp);
+    A0 = utils::numeric(FLERR, arg[3], false, lmp);
+    G = utils::numeric(FLERR, arg[4], false, lmp);
+    lam = utils::numeric(FLERR, arg[5], false, lmp);
+    if (!(K > 0.0) || !std::isfinite(K))
+      error->all(FLERR, "{}: area modulus K must be > 0, got {}", where, arg[2]);
+    if (!std::isfinite(G)) error->all(FLERR, "{}: Gamma must be finite, got {}", where, arg[4]);
+    if (!std::isfinite(lam)) error->all(FLERR, "{}: Lambda must be finite, got {}", where, arg[5]);
+  }
+  if (!(A0 > 0.0) || !std::isfinite(A0))
+    error->all(FLERR, "{}: preferred area A0 must be > 0, got {}", where, A0);
+
+  for (int i = ilo; i <= ihi; i++) {
+    kappa[i] = K;
+    area0[i] = A0;
+    gamma[i] = G;
+    lambda[i][i] = lam;
+    lambda_set[i][i] = 1;
+    type_set[i] = 1;
+    setflag[i][i] = 1;
+  }
+}
+
+void PairVertexVoronoi::init_style()
+{
+  if (domain->dimension != 2)
+    error->all(FLERR,
+               "pair_style vertex/voronoi requires a 2d simulation; add 'dimension 2' before "
+               "the box is created");
+  if (!domain->xperiodic || !domain->yperiodic)
+    error->all(FLERR,
+               "pair_style vertex/voronoi requires periodic x and y boundaries ('boundary p p "
+               "p'); a confluent tissue has no free edge in this model");
+  if (domain->triclinic)
+    error->all(FLERR, "pair_style vertex/voronoi does not support triclinic boxes yet");
+  if (force->newton_pair == 0)
+    error->all(FLERR, "pair_style vertex/voronoi requires 'newton on' (forces go to ghost atoms)");
+  if (atom->tag_enable == 0) error->all(FLERR, "pair_style vertex/voronoi requires atom IDs");
+
+  for (int i = 1; i <= atom->ntypes; i++)
+    if (!type_set[i])
+      error->all(FLERR,
+                 "pair_style vertex/voronoi: no cell parameters for atom type {}; add "
+                 "'pair_coeff {} {} K A0 Gamma Lambda'",
+                 i, i, i);
+
+  // The ghost shell is complete only if atoms have moved less than half the
+  // skin since the last rebuild, which needs a distance check every step.
+  if (neighbor->every != 1 || neighbor->delay != 0 || neighbor->dist_check == 0) {
+    if (comm->me == 0)
+      error->warning(FLERR,
+                     "pair_style vertex/voronoi: setting 'neigh_modify every 1 delay 0 check "
+                     "yes' so that the ghost shell stays complete");
+    neighbor->every = 1;
+    neighbor->delay = 0;
+    neighbor->dist_check = 1;
+  }
+
+  const int n = atom->ntypes;
+  model = tessera::Model(n);
+  model.tension = tension;
+  for (int i = 1; i <= n; i++) model.types[i - 1] = tessera::CellType{kappa[i], area0[i], gamma[i]};
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++) {
+      const double lam = lambda_set[i][j] ? lambda[i][j] : 0.5 * (lambda[i][i] + lambda[j][j]);
+      model.set_lambda(i - 1, j - 1, lam);
+    }
+  // No neighbor list is requested: the tessellation needs only the ghost atoms.
+}
+
+double PairVertexVoronoi::init_one(int i, int j)
+{
+  if (setflag[i][j] == 0) setflag[i][j] = 1;
+  return cut_global;
+}
+
+/* Width of the region around this rank's sub-domain in which every atom is
+   known: the ghost cutoff less half the skin that atoms may have moved since
+   the last neighbor list build. */
+
+double PairVertexVoronoi::ghost_width() const
+{
+  return MAX(neighbor->cutneighmax, comm->cutghostuser) - 0.5 * neighbor->skin;
+}
+
+bool PairVertexVoronoi::tessellation_current() const
+{
+  return tess_step == update->ntimestep && tess.n_owned == atom->nlocal;
+}
+
+void PairVertexVoronoi::tessellate()
+{
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  tessera::Points pts{&atom->x[0][0], nall, 3};
+  try {
+    tess = tessera::tessellate_local(pts, nlocal, nullptr, false);
+  } catch (tessera::Error &) {
+    // Redo with atom IDs so that the message names them.
+    std::vector<long> ids(nall);
+    for (int i = 0; i < nall; i++) ids[i] = atom->tag[i];
+    try {
+      tessera::tessellate_local(pts, nlocal, ids.data(), false);
+    } catch (tessera::Error &e) {
+      error->one(FLERR, "pair_style vertex/voronoi: {}", e.what());
+    }
+    error->one(FLERR, "pair_style vertex/voronoi: tessellation failed");
+  }
+
+  const double w = ghost_width();
+  const double lo[2] = {domain->sublo[0] - w, domain->sublo[1] - w};
+  const double hi[2] = {domain->subhi[0] + w, domain->subhi[1] + w};
+  const tessera::Coverage cov = tessera::check_coverage(tess, lo, hi);
+  double need = cov.needed_margin, need_all;
+  MPI_Allreduce(&need, &need_all, 1, MPI_DOUBLE, MPI_MAX, world);
+  if (need_all > 0.0) {
+    if (std::isinf(need_all))
+      error->all(FLERR,
+                 "pair_style vertex/voronoi: cutoff {} is far too small: some cells have no "
+                 "complete ring of neighbours; use a cutoff of at least 2.5 cell diameters",
+                 cut_global);
+    const double needed = cut_global + need_all;
+    error->all(FLERR,
+               "pair_style vertex/voronoi: cutoff {:.6g} is too small for this configuration "
+               "(a Voronoi vertex's circumcircle reaches past the ghost atoms); use "
+               "'pair_style vertex/voronoi {:.3g}' or larger",
+               cut_global, 1.1 * needed);
+  }
+  tess_step = update->ntimestep;
+}
+
+void PairVertexVoronoi::compute(int eflag, int vflag)
+{
+  ev_init(eflag, vflag);
+
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  tessellate();
+
+  type0.resize(nall);
+  const int *type = atom->type;
+  for (int i = 0; i < nall; i++) type0[i] = type[i] - 1;
+  cell_e.resize(nlocal);
+
+  tessera::Points pts{&atom->x[0][0], nall, 3};
+  const tessera::ForceOutput out =
+      tessera::compute_forces(tess, pts, type0.data(), model, &atom->f[0][0], 3, cell_e.data());
+
+  if (eflag_global) eng_vdwl += out.energy;
+  if (eflag_atom)
+    for (int i = 0; i < nlocal; i++) eatom[i] += cell_e[i];
+  if (vflag_fdotr) virial_fdotr_compute();
+}
+
+void PairVertexVoronoi::write_restart(FILE *fp)
+{
+  write_restart_settings(fp);
+  const int n = atom->ntypes;
+  for (int i = 1; i <= n; i++) {
+    fwrite(&type_set[i], sizeof(int), 1, fp);
+    fwrite(&kappa[i], sizeof(double), 1, fp);
+    fwrite(&area0[i], sizeof(double), 1, fp);
+    fwrite(&gamma[i], sizeof(double), 1, fp);
+    for (int j = 1; j <= n; j++) {
+      fwrite(&lambda_set[i][j], sizeof(int), 1, fp);
+      fwrite(&lambda[i][j], sizeof(double), 1, fp);
+    }
+  }
+}
+
+void PairVertexVoronoi::read_restart(FILE *fp)
+{
+  read_restart_settings(fp);
+  allocate();
+  const int n = atom->ntypes;
+  const int me = comm->me;
+  for (int i = 1; i <= n; i++) {
+    if (me == 0) {
+      utils::sfread(FLERR, &type_set[i], sizeof(int), 1, fp, nullptr, error);
+      utils::sfread(FLERR, &kappa[i], sizeof(double), 1, fp, nullptr, error);
+      utils::sfread(FLERR, &area0[i], sizeof(double), 1, fp, nullptr, error);
+      utils::sfread(FLERR, &gamma[i], sizeof(double), 1, fp, nullptr, error);
+    }
+    MPI_Bcast(&type_set[i], 1, MPI_INT, 0, world);
+    MPI_Bcast(&kappa[i], 1, MPI_DOUBLE, 0, world);
+    MPI_Bcast(&area0[i], 1, MPI_DOUBLE, 0, world);
+    MPI_Bcast(&gamma[i], 1, MPI_DOUBLE, 0, world);
+    setflag[i][i] = 1;
+    for (int j = 1; j <= n; j++) {
+      if (me == 0) {
+        utils::sfread(FLERR, &lambda_set[i][j], sizeof(int), 1, fp, nullptr, error);
+        utils::sfread(FLERR, &lambda[i][j], sizeof(double), 1, fp, nullptr, error);
+      }
+      MPI_Bcast(&lambda_set[i][j], 1, MPI_INT, 0, world);
+      MPI_Bcast(&lambda[i][j], 1, MPI_DOUBLE, 0, world);
+    }
+  }
+}
+
+void PairVertexVoronoi::write_restart_settings(FILE *fp)
+{
+  int t = tension == tessera::Tension::Edge ? 0 : 1;
+  fwrite(&cut_global, sizeof(double), 1, fp);
+  fwrite(&t, sizeof(int), 1, fp);
+}
+
+void PairVertexVoronoi::read_restart_settings(FILE *fp)
+{
+  int t = 0;
+  if (comm->me == 0) {
+    utils::sfread(FLERR, &cut_global, sizeof(double), 1, fp, nullptr, error);
+    utils::sfread(FLERR, &t, sizeof(int), 1, fp, nullptr, error);
+  }
+  MPI_Bcast(&cut_global, 1, MPI_DOUBLE, 0, world);
+  MPI_Bcast(&t, 1, MPI_INT, 0, world);
+  tension = t == 0 ? tessera::Tension::Edge : tessera::Tension::Cell;
+}
+
+void *PairVertexVoronoi::extract(const char *str, int &dim)
+{
+  dim = 1;
+  if (strcmp(str, "kappa") == 0) return kappa;
+  if (strcmp(str, "area0") == 0) return area0;
+  if (strcmp(str, "gamma") == 0) return gamma;
+  dim = 2;
+  if (strcmp(str, "lambda") == 0) return lambda;
+  return nullptr;
+}
+
+double PairVertexVoronoi::memory_usage()
+{
+  double bytes = Pair::memory_usage();
+  bytes += (double) tess.triangles.capacity() * (3 * sizeof(int) + sizeof(tessera::Vec2) + sizeof(double));
+  bytes += (double) tess.cell_vertex.capacity() * (2 * sizeof(int) + sizeof(double));
+  bytes += (double) type0.capacity() * sizeof(int) + cell_e.capacity() * sizeof(double);
+  return bytes;
+}

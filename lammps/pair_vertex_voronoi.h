@@ -1,0 +1,72 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+------------------------------------------------------------------------- */
+
+#ifdef PAIR_CLASS
+// clang-format off
+PairStyle(vertex/voronoi,PairVertexVoronoi);
+// clang-format on
+#else
+
+#ifndef LMP_PAIR_VERTEX_VORONOI_H
+#define LMP_PAIR_VERTEX_VORONOI_H
+
+#include "pair.h"
+
+#include "tessera/energy.h"
+#include "tessera/tessellation.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class PairVertexVoronoi : public Pair {
+ public:
+  PairVertexVoronoi(class LAMMPS *);
+  ~PairVertexVoronoi() override;
+  void compute(int, int) override;
+  void settings(int, char **) override;
+  void coeff(int, char **) override;
+  void init_style() override;
+  double init_one(int, int) override;
+  void write_restart(FILE *) override;
+  void read_restart(FILE *) override;
+  void write_restart_settings(FILE *) override;
+  void read_restart_settings(FILE *) override;
+  void *extract(const char *, int &) override;
+  double memory_usage() override;
+
+  // The tessellation of the last force computation: owned cells are the local
+  // atoms 0..nlocal-1, cell_neighbor entries are local atom indices (owned or
+  // ghost).  Valid for the timestep tessellation_step() until atoms are
+  // exchanged or sorted.  Used by fix polarity and compute vertex/atom.
+  const tessera::Tessellation &tessellation() const { return tess; }
+  bigint tessellation_step() const { return tess_step; }
+  const std::vector<double> &cell_energy() const { return cell_e; }
+  // Whether the tessellation was computed at the current timestep.
+  bool tessellation_current() const;
+
+ protected:
+  double cut_global;
+  tessera::Tension tension;
+  double *kappa, *area0, *gamma;  // per type, 1-based
+  double **lambda;                // per type pair
+  int **lambda_set;               // 1 if pair_coeff I J gave Lambda_IJ explicitly
+  int *type_set;                  // 1 if pair_coeff I I gave the cell parameters
+  tessera::Model model;
+
+  tessera::Tessellation tess;
+  bigint tess_step;
+  std::vector<int> type0;
+  std::vector<double> cell_e;
+
+  void allocate();
+  void tessellate();
+  double ghost_width() const;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

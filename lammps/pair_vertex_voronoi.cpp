@@ -248,15 +248,17 @@ void PairVertexVoronoi::init_style()
 
   // The ghost shell is complete only if atoms have moved less than half the
   // skin since the last rebuild, which needs a distance check every step.
-  if (neighbor->every != 1 || neighbor->delay != 0 || neighbor->dist_check == 0) {
+  // LAMMPS's default delay of 10 steps is lifted silently; settings that skip
+  // the check altogether are overridden with a warning.
+  if (neighbor->every != 1 || neighbor->dist_check == 0) {
     if (comm->me == 0)
       error->warning(FLERR,
                      "pair_style vertex/voronoi: setting 'neigh_modify every 1 delay 0 check "
                      "yes' so that the ghost shell stays complete");
     neighbor->every = 1;
-    neighbor->delay = 0;
     neighbor->dist_check = 1;
   }
+  neighbor->delay = 0;
 
   const int n = atom->ntypes;
   model = tessera::Model(n);
@@ -334,6 +336,10 @@ void PairVertexVoronoi::tessellate()
 void PairVertexVoronoi::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
+  if (vflag_atom)
+    error->all(FLERR,
+               "pair_style vertex/voronoi does not compute a per-atom virial yet (compute "
+               "stress/atom, centroid/stress/atom); use the global pressure");
 
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;

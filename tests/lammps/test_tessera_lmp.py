@@ -1,0 +1,106 @@
+#!/usr/bin/python3
+# Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
+"""The tessera-lmp driver: lmp's command-line flags, our styles in -h, MPI."""
+
+import os
+import re
+
+import lmptest
+from lmptest import LammpsTestCase, nprocs
+
+# Prints its variable and moves one atom by a known amount with fix brownian.
+SCRIPT = """
+units lj
+dimension 2
+atom_style atomic
+atom_modify map yes
+region box block 0 10 0 10 -0.5 0.5
+create_box 1 box
+create_atoms 1 single 1.0 2.0 0.0
+mass 1 1.0
+fix f all addforce 3.0 0.0 0.0
+fix 1 all brownian 1.0 5 gamma_t 2.0 rng none
+timestep 0.1
+run 10
+variable x equal x[1]
+print "VALUE of greeting: ${greeting}"
+print "POSITION x = $(v_x:%.12f)"
+"""
+
+
+class Driver(LammpsTestCase):
+
+    def position(self, text):
+        match = re.search(r"^POSITION x = (\S+)$", text, re.M)
+        self.assertIsNotNone(match, text[-2000:])
+        return float(match.group(1))
+
+    def test_help_lists_our_styles(self):
+        run = self.run_lmp(None, args=["-h"])
+        out = run.stdout
+        ours = out.split("Tessera's styles:")[1].split("OS:")[0]
+        self.assertRegex(ours, r"(?m)^  fix brownian +Tessera$")
+        fixes = out.split("* Fix styles:")[1].split("* Compute styles:")[0]
+        self.assertIn("brownian", fixes.split())
+        self.assertIn("addforce", fixes.split())    # LAMMPS's own are still listed
+        self.assertIn("-var name value", out)
+        self.assertIn("Installed packages:", out)
+        self.assertFalse(os.path.exists(run.path("log.lammps")))    # -h writes no log
+
+    @nprocs(2)
+    def test_help_on_two_ranks_prints_once(self):
+        run = self.run_lmp(None, args=["-help"], nprocs=2)
+        self.assertEqual(run.stdout.count("Tessera's styles:"), 1)
+
+    def test_in_var_and_default_log(self):
+        run = self.run_lmp(SCRIPT, variables={"greeting": "hello"})
+        self.assertIn("VALUE of greeting: hello", run.stdout)
+        self.assertAlmostEqual(self.position(run.stdout), 1.0 + 10 * 0.1 * 3.0 / 2.0, places=10)
+        log = run.text("log.lammps")
+        self.assertRegex(log, r"(?m)^Tessera \S+ styles: .*fix brownian")
+        self.assertIn("VALUE of greeting: hello", log)
+
+    def test_log_file(self):
+        run = self.run_lmp(SCRIPT, variables={"greeting": "x"}, args=["-log", "my.log"])
+        self.assertFalse(os.path.exists(run.path("log.lammps")))
+        self.assertIn("VALUE of greeting: x", run.text("my.log"))
+
+    def test_log_none(self):
+        run = self.run_lmp(SCRIPT, variables={"greeting": "x"}, args=["-log", "none"])
+        self.assertEqual([f for f in os.listdir(run.dir) if f.startswith("log")], [])
+
+    def test_screen_file(self):
+        run = self.run_lmp(SCRIPT, variables={"greeting": "x"}, args=["-screen", "out.txt"])
+        self.assertNotIn("VALUE of greeting", run.stdout)
+        self.assertIn("VALUE of greeting: x", run.text("out.txt"))
+
+    def test_echo_screen(self):
+        run = self.run_lmp(SCRIPT, variables={"greeting": "x"}, args=["-echo", "screen"])
+        self.assertIn("fix 1 all brownian 1.0 5 gamma_t 2.0 rng none", run.stdout)
+        quiet = self.run_lmp(SCRIPT, variables={"greeting": "x"})
+        self.assertNotIn("fix 1 all brownian 1.0 5 gamma_t 2.0 rng none", quiet.stdout)
+
+    def test_short_flags(self):
+        run = self.run_lmp(None, args=["-i", "in.test", "-v", "greeting", "short", "-l", "s.log"],
+                           files={"in.test": SCRIPT})
+        self.assertIn("VALUE of greeting: short", run.text("s.log"))
+
+    def test_input_from_stdin(self):
+        run = self.run_lmp(None, variables={"greeting": "stdin"}, stdin=SCRIPT)
+        self.assertIn("VALUE of greeting: stdin", run.stdout)
+
+    def test_error_exit_status(self):
+        run = self.run_lmp("region b block 0 1 0 1 0 1\ncreate_box 1 b\nfix 1 all nosuchstyle\n",
+                           ok=False)
+        self.assertLammpsError(run, "Unrecognized fix style 'nosuchstyle'")
+
+    @nprocs(2)
+    def test_two_ranks(self):
+        run = self.run_lmp(SCRIPT, variables={"greeting": "mpi"}, nprocs=2)
+        self.assertIn("on 2 procs", run.stdout)
+        self.assertEqual(run.stdout.count("VALUE of greeting: mpi"), 1)
+        self.assertAlmostEqual(self.position(run.stdout), 2.5, places=10)
+
+
+if __name__ == "__main__":
+    lmptest.main()

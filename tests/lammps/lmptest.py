@@ -156,15 +156,18 @@ class LammpsTestCase(unittest.TestCase):
                       % (run.returncode, " ".join(cmd), run.output[-4000:]))
         return run
 
-    def run_python(self, code, nprocs=1, timeout=240, ok=True):
-        """Runs Python code under Debian's /usr/bin/python3 (the interpreter
-        running these tests) in a fresh directory, on nprocs ranks.  The code
-        finds libtessera_lammps.so in the environment as TESSERA_LAMMPS_LIB."""
+    def run_python(self, code=None, nprocs=1, script=None, args=(), timeout=240, ok=True):
+        """Runs Python `code` (or the file `script` with `args`) under the
+        interpreter running these tests (Debian's /usr/bin/python3) in a fresh
+        directory, on nprocs ranks.  libtessera_lammps.so is in the
+        environment as TESSERA_LAMMPS_LIB."""
         d = self.new_dir()
-        with open(os.path.join(d, "script.py"), "w") as f:
-            f.write(code)
+        if script is None:
+            script = os.path.join(d, "script.py")
+            with open(script, "w") as f:
+                f.write(code)
         env = dict(os.environ, TESSERA_LAMMPS_LIB=Config.lib, PYTHONDONTWRITEBYTECODE="1")
-        cmd = mpiexec_command(nprocs) + [sys.executable, "script.py"]
+        cmd = mpiexec_command(nprocs) + [sys.executable, script] + list(args)
         proc = subprocess.run(cmd, cwd=d, capture_output=True, text=True, env=env,
                               timeout=timeout)
         run = Run(d, proc)

@@ -1,0 +1,12 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""Post-processing for Tessera (active Voronoi vertex model in LAMMPS).
+
+Modules:
+  dump          read LAMMPS ``dump custom`` text files (frames, box, columns)
+  voronoi       periodic Voronoi tessellation of a frame (areas, perimeters, neighbours)
+  render        pictures of the tessellation coloured by a per-cell field
+  trajectories  trajectories coloured by coordination / orientation, angle histograms
+  logplot       thermo blocks of LAMMPS log files, quantities against time
+"""
+
+__version__ = "0.1.0"

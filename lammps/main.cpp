@@ -4,13 +4,15 @@
 // lmp command-line flag and runs input scripts the same way; the styles are
 // inserted into the instance right after it is constructed.
 //
-// -h/-help is handled here: LAMMPS prints its help from inside its
-// constructor and exits, before any style could be added.  We build a quiet
-// instance instead, register, and print LAMMPS-style help that lists all
-// styles of this executable, Tessera's included.
+// Two flags act inside LAMMPS's constructor, before any style could be
+// added, so they are handled here: -h/-help (we build a quiet instance,
+// register, and print LAMMPS-style help listing all styles, Tessera's
+// included) and -restart2data/-restart2dump (a restart file can name our
+// pair style; we convert after registering).
 
 #include "tessera_styles.h"
 
+#include "error.h"
 #include "exceptions.h"
 #include "info.h"
 #include "input.h"
@@ -69,9 +71,55 @@ const char *const option_help =
     "-kokkos on|off ... (-k)       KOKKOS (not in the packaged LAMMPS)\n"
     "-mdi flags                    MolSSI Driver Interface\n"
     "-skiprun (-sr)                skip run and minimize loops\n"
-    "-restart2data, -restart2dump (-r2data, -r2dump)  convert a restart file; these run\n"
-    "                              before Tessera's styles exist, so for restarts that use\n"
-    "                              them write an input script with read_restart instead\n";
+    "-restart2data rfile [remap] dfile ... (-r2data)  restart file to data file\n"
+    "-restart2dump rfile [remap] group style dfile ... (-r2dump)  restart file to dump file\n";
+
+// -restart2data/-restart2dump (-r2data/-r2dump) convert inside LAMMPS's
+// constructor, before our styles exist, and a restart file names its pair
+// style.  We take the flag out of the arguments and run the equivalent
+// read_restart + write_data/write_dump after registering.
+struct RestartConversion {
+  bool wanted = false;
+  bool to_data = true;
+  std::vector<std::string> words;    // the flag's arguments
+};
+
+RestartConversion take_restart_conversion(std::vector<char *> &args)
+{
+  RestartConversion conversion;
+  for (std::size_t i = 1; i < args.size(); i++) {
+    const std::string flag = args[i];
+    const bool data = flag == "-restart2data" || flag == "-r2data";
+    const bool dump = flag == "-restart2dump" || flag == "-r2dump";
+    if (!data && !dump) continue;
+    std::size_t end = i + 1;
+    while (end < args.size() && args[end][0] != '-') end++;    // as LAMMPS delimits them
+    conversion.wanted = true;
+    conversion.to_data = data;
+    conversion.words.assign(args.begin() + i + 1, args.begin() + end);
+    args.erase(args.begin() + i, args.begin() + end);
+    break;
+  }
+  return conversion;
+}
+
+void convert_restart(LAMMPS *lmp, const RestartConversion &conversion)
+{
+  const std::vector<std::string> &words = conversion.words;
+  const char *flag = conversion.to_data ? "-restart2data" : "-restart2dump";
+  std::size_t k = 0;
+  if (words.empty()) lmp->error->all(FLERR, "Command-line flag {} needs a restart file", flag);
+  std::string read = "read_restart " + words[k++];
+  if (k < words.size() && words[k] == "remap") read += " " + words[k++];
+  if (k == words.size())
+    lmp->error->all(FLERR, "Command-line flag {} needs the {} after the restart file", flag,
+                    conversion.to_data ? "data file" : "dump group, style and file");
+  std::string write = conversion.to_data ? "write_data" : "write_dump";
+  for (; k < words.size(); k++)
+    write += words[k].find(' ') == std::string::npos ? " " + words[k] : " \"" + words[k] + "\"";
+  lmp->input->one(read);
+  lmp->input->one(write);
+}
 
 void print_help(const char *exe)
 {
@@ -135,9 +183,16 @@ int main(int argc, char **argv)
     if (wants_help(argc, argv)) {
       print_help(argv[0]);
     } else {
-      auto lmp = new LAMMPS(argc, argv, MPI_COMM_WORLD);
+      std::vector<char *> args(argv, argv + argc);
+      const RestartConversion conversion = take_restart_conversion(args);
+      const int nargs = static_cast<int>(args.size());
+      args.push_back(nullptr);
+      auto lmp = new LAMMPS(nargs, args.data(), MPI_COMM_WORLD);
       tessera_register_styles(lmp);
-      lmp->input->file();
+      if (conversion.wanted)
+        convert_restart(lmp, conversion);
+      else
+        lmp->input->file();
       delete lmp;
     }
   } catch (LAMMPSAbortException &abort) {

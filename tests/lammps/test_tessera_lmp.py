@@ -89,6 +89,44 @@ class Driver(LammpsTestCase):
         run = self.run_lmp(None, variables={"greeting": "stdin"}, stdin=SCRIPT)
         self.assertIn("VALUE of greeting: stdin", run.stdout)
 
+    # A restart file that names Tessera's pair style: plain lmp cannot read it.
+    RESTART = """
+dimension 2
+units lj
+atom_style dipole
+lattice hex 1.0
+region box block 0 6 0 3 -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+mass 1 1.0
+pair_style vertex/voronoi 6.0
+pair_coeff * * 1.0 1.0 0.1 -1.5
+fix move all brownian 1.0 12908410 gamma_t 1.0 rng none
+timestep 0.01
+run 5
+write_restart rs.restart
+"""
+
+    def test_restart2data(self):
+        made = self.run_lmp(self.RESTART)
+        run = self.run_lmp(None, args=["-r2data", made.path("rs.restart"), "out.data"])
+        self.assertIn("restoring pair style vertex/voronoi", run.stdout)
+        data = run.text("out.data")
+        self.assertIn("timestep = 5", data)
+        self.assertRegex(data, r"(?m)^36 atoms$")
+
+    def test_restart2dump(self):
+        made = self.run_lmp(self.RESTART)
+        run = self.run_lmp(None, args=["-restart2dump", made.path("rs.restart"), "remap", "all",
+                                       "custom", "out.dump", "id", "x", "y"])
+        (frame,) = run.dump("out.dump")
+        self.assertEqual(frame["step"], 5)
+        self.assertEqual(sorted(frame["id"]), list(range(1, 37)))
+
+    def test_restart2data_missing_file(self):
+        run = self.run_lmp(None, args=["-r2data", "rs.restart"], ok=False)
+        self.assertLammpsError(run, "-restart2data needs the data file")
+
     def test_error_exit_status(self):
         run = self.run_lmp("region b block 0 1 0 1 0 1\ncreate_box 1 b\nfix 1 all nosuchstyle\n",
                            ok=False)

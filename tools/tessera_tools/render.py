@@ -1,0 +1,270 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""Pictures of the Voronoi tessellation of a frame, cells coloured by a per-cell field.
+
+Fields computed on the fly (see :func:`cell_field`): area, perimeter, shape
+(index P/sqrt(A)), sides, polarity (angle of mu), orientation and coordination
+(from velocities), speed, axis (long-axis angle), elongation; or any dump
+column by its name (``c_v[1]``, ``type``, ...); or ``none``.
+
+Two views: ``box`` tiles the periodic cells and clips them to the box (what
+the periodic tissue looks like); ``cells`` draws each whole cell around its
+wrapped centre, so boundary cells stick out of the drawn box.
+"""
+
+import math
+
+import numpy as np
+
+from .trajectories import ORIENTATION_TICKS, attach_colorbar, coordination, orientation
+from .voronoi import tessellate_frame
+
+FIELDS = {
+    # name: (label, colormap, vmin, vmax); None = from the data
+    "area": ("cell area $A$", "viridis", None, None),
+    "perimeter": ("perimeter $P$", "viridis", None, None),
+    "shape": (r"shape index $q = P/\sqrt{A}$", "plasma", None, None),
+    "sides": ("number of sides $z$", "coolwarm", 3, 9),
+    "polarity": (r"polarity angle $\theta = $ atan2($\mu_y, \mu_x$)", "twilight", -math.pi, math.pi),
+    "orientation": (r"orientation $O = \arccos(\hat v \cdot \hat x)$", "jet", 0.0, math.pi),
+    "coordination": ("coordination $C$", "jet", -1.0, 1.0),
+    "speed": ("speed $|v|$", "viridis", None, None),
+    "axis": ("long-axis angle", "twilight", 0.0, math.pi),
+    "elongation": ("elongation (aspect ratio)", "viridis", 1.0, None),
+    "none": ("", None, None, None),
+}
+ALIASES = {"q": "shape", "shape_index": "shape", "z": "sides", "A": "area", "P": "perimeter",
+           "theta": "polarity", "angle": "polarity"}
+ANGLE_FIELDS = {"polarity": ([-math.pi, -math.pi / 2, 0, math.pi / 2, math.pi], ["-π", "-π/2", "0", "π/2", "π"]),
+                "orientation": ORIENTATION_TICKS,
+                "axis": ([0, math.pi / 2, math.pi], ["0", "π/2", "π"])}
+
+
+def _need(frame, names, field):
+    missing = [n for n in names if n not in frame]
+    if missing:
+        raise KeyError(f"field '{field}' needs dump columns {' '.join(names)} "
+                       f"(missing {' '.join(missing)}; the dump has {' '.join(frame.names)})")
+    return frame.vector(*names)
+
+
+def cell_field(frame, tess, field):
+    """Values of ``field`` for every cell and its (label, cmap, vmin, vmax)."""
+    name = ALIASES.get(field, field)
+    if name in FIELDS:
+        meta = FIELDS[name]
+        if name == "area":
+            values = tess.area
+        elif name == "perimeter":
+            values = tess.perimeter
+        elif name == "shape":
+            values = tess.shape_index
+        elif name == "sides":
+            values = tess.sides.astype(float)
+        elif name == "polarity":
+            mu = _need(frame, ("mux", "muy"), field)
+            values = np.arctan2(mu[:, 1], mu[:, 0])
+            values[np.linalg.norm(mu, axis=1) == 0] = np.nan
+        elif name == "orientation":
+            values = orientation(_need(frame, ("vx", "vy"), field))
+        elif name == "coordination":
+            values = coordination(tess.neighbours, _need(frame, ("vx", "vy"), field))
+        elif name == "speed":
+            values = np.linalg.norm(_need(frame, ("vx", "vy"), field), axis=1)
+        elif name == "axis":
+            values = tess.long_axis_angle()
+        elif name == "elongation":
+            values = tess.elongation()
+        else:
+            values = None
+        return values, meta
+    if field in frame:
+        values = np.asarray(frame[field])
+        if values.dtype.kind not in "iuf":
+            raise ValueError(f"column '{field}' is not numeric")
+        return values.astype(float), (field, "viridis", None, None)
+    raise KeyError(f"unknown field '{field}': use one of {', '.join(sorted(FIELDS))} "
+                   f"or a dump column ({' '.join(frame.names)})")
+
+
+def _tiles(tess, view):
+    """Polygons to draw and, for each, the index of its cell."""
+    if view == "cells":
+        return list(tess.polygons), np.arange(len(tess))
+    if view != "box":
+        raise ValueError(f"view must be 'box' or 'cells', not '{view}'")
+    box = tess.box
+    matrix = box.matrix
+    polys, owner = [], []
+    for i, poly in enumerate(tess.polygons):
+        s = box.to_fractional(poly)
+        smin, smax = s.min(axis=0), s.max(axis=0)
+        for a in (-1, 0, 1):
+            if smin[0] + a >= 1 or smax[0] + a <= 0:
+                continue
+            for b in (-1, 0, 1):
+                if smin[1] + b >= 1 or smax[1] + b <= 0:
+                    continue
+                polys.append(poly + matrix @ np.array([a, b], dtype=float))
+                owner.append(i)
+    return polys, np.array(owner, dtype=int)
+
+
+def draw_tessellation(ax, frame, tess, field="area", view="box", cmap=None, vmin=None, vmax=None,
+                      centres=False, arrows=None, highlight=(), edgecolor="k", linewidth=None,
+                      colorbar=True, label=None, norm_from=None):
+    """Draw one frame's cells on ``ax``; returns the PolyCollection.
+
+    ``arrows``: None, or a pair of column names (e.g. ("mux", "muy")) drawn as unit arrows.
+    ``norm_from``: values fixing the colour range (for series with a common scale).
+    """
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import PolyCollection
+    from matplotlib.patches import Polygon
+
+    values, (default_label, default_cmap, lo, hi) = cell_field(frame, tess, field)
+    n = len(tess)
+    if linewidth is None:
+        linewidth = float(np.clip(8.0 / math.sqrt(n), 0.15, 1.0))
+    polys, owner = _tiles(tess, view)
+    coll = PolyCollection(polys, edgecolors=edgecolor, linewidths=linewidth)
+    if values is None:
+        coll.set_facecolor("#cfe3f2")
+    else:
+        cm = plt.get_cmap(cmap or default_cmap).copy()
+        cm.set_bad("0.75")
+        coll.set_cmap(cm)
+        coll.set_array(np.ma.masked_invalid(values[owner]))
+        ref = values if norm_from is None else norm_from
+        finite = np.asarray(ref, dtype=float)
+        finite = finite[np.isfinite(finite)]
+        lo = vmin if vmin is not None else (lo if lo is not None else (finite.min() if len(finite) else 0.0))
+        hi = vmax if vmax is not None else (hi if hi is not None else (finite.max() if len(finite) else 1.0))
+        if hi - lo <= 1e-9 * max(abs(lo), abs(hi), 1e-300):
+            # a uniform field (a perfect lattice) gets a readable scale around its value
+            mid = 0.5 * (lo + hi)
+            pad = 0.05 * abs(mid) if mid != 0 else 1.0
+            lo, hi = mid - pad, mid + pad
+        coll.set_clim(lo, hi)
+    boxpatch = Polygon(tess.box.corners(), closed=True, fill=False, edgecolor="0.2", linewidth=1.0)
+    ax.add_patch(boxpatch)
+    ax.add_collection(coll)
+    if view == "box":
+        coll.set_clip_path(boxpatch)
+    pts = tess.points
+    if highlight:
+        chosen = set(np.nonzero(np.isin(frame.ids, list(highlight)))[0].tolist())
+        sel = [p for p, o in zip(polys, owner) if o in chosen]
+        hcoll = PolyCollection(sel, facecolors="none", edgecolors="red", linewidths=2.0 * linewidth + 0.8)
+        ax.add_collection(hcoll)
+        if view == "box":
+            hcoll.set_clip_path(boxpatch)
+    if centres:
+        ax.plot(pts[:, 0], pts[:, 1], ".", color="k", ms=max(1.0, 12.0 / math.sqrt(n)))
+    if arrows:
+        vec = _need(frame, arrows, "arrows")
+        unit = np.zeros_like(vec)
+        length = np.linalg.norm(vec, axis=1)
+        moving = length > 0
+        unit[moving] = vec[moving] / length[moving, None]
+        scale = 0.45 * math.sqrt(tess.box.area / n)
+        ax.quiver(pts[:, 0], pts[:, 1], unit[:, 0] * scale, unit[:, 1] * scale, angles="xy",
+                  scale_units="xy", scale=1.0, width=0.004, color="k", pivot="middle")
+    allpts = np.vstack([tess.box.corners()] + ([np.vstack(polys)] if view == "cells" else []))
+    lo_xy, hi_xy = allpts.min(axis=0), allpts.max(axis=0)
+    pad = 0.01 * (hi_xy - lo_xy).max()
+    ax.set_xlim(lo_xy[0] - pad, hi_xy[0] + pad)
+    ax.set_ylim(lo_xy[1] - pad, hi_xy[1] + pad)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
+    if colorbar and values is not None:
+        attach_colorbar(ax, coll, label or default_label, ANGLE_FIELDS.get(ALIASES.get(field, field)))
+    return coll
+
+
+def _figure(box, view):
+    import matplotlib.pyplot as plt
+
+    width = box.lx + abs(box.xy)
+    aspect = box.ly / width
+    # about 1.7 in of the width go to the colour bar and labels
+    fig, ax = plt.subplots(figsize=(7.0, max(2.5, min(5.3 * aspect + 1.1, 12.0))))
+    return fig, ax
+
+
+def _title(frame, field, title):
+    if title is not None:
+        return title.format(timestep=frame.timestep, time=frame.time, field=field, n=frame.natoms)
+    when = f"timestep {frame.timestep}" + (f", t = {frame.time:g}" if frame.time is not None else "")
+    return f"{frame.natoms} cells, {when}"
+
+
+def render_frame(frame, out, field="area", view="box", dpi=150, title=None, **kwargs):
+    """Write one PNG (or any format matplotlib knows from the extension) of ``frame``."""
+    import matplotlib.pyplot as plt
+
+    tess = tessellate_frame(frame)
+    fig, ax = _figure(frame.box, view)
+    draw_tessellation(ax, frame, tess, field=field, view=view, **kwargs)
+    ax.set_title(_title(frame, field, title))
+    fig.tight_layout()
+    fig.savefig(out, dpi=dpi)
+    plt.close(fig)
+    return tess
+
+
+def animation_writer(out, fps):
+    """A matplotlib writer for ``.gif`` (Pillow) or ``.mp4`` (ffmpeg), or a RuntimeError saying what is missing."""
+    from matplotlib import animation
+
+    ext = out.rsplit(".", 1)[-1].lower()
+    if ext == "gif":
+        if animation.writers.is_available("pillow"):
+            return animation.PillowWriter(fps=fps)
+        if animation.writers.is_available("imagemagick"):
+            return animation.ImageMagickWriter(fps=fps)
+        raise RuntimeError("writing a GIF needs Pillow (Debian package python3-pil) or ImageMagick; "
+                           "neither is installed. Write one PNG per frame instead, e.g. -o 'frame_{index:04d}.png'")
+    if ext in ("mp4", "m4v", "mkv", "webm"):
+        if animation.writers.is_available("ffmpeg"):
+            return animation.FFMpegWriter(fps=fps)
+        raise RuntimeError(f"writing .{ext} needs ffmpeg (Debian package ffmpeg), which is not installed. "
+                           "Use a .gif output (needs python3-pil) or one PNG per frame, e.g. -o 'frame_{index:04d}.png'")
+    raise RuntimeError(f"unknown animation format '.{ext}': use .gif or .mp4")
+
+
+def render_series(frames, out, field="area", view="box", dpi=100, fps=5, title=None, common_scale=True, **kwargs):
+    """An animation (.gif/.mp4) of several frames, or one file per frame when ``out``
+    contains a ``{timestep}`` / ``{index}`` pattern."""
+    import matplotlib.pyplot as plt
+
+    tessellations = [tessellate_frame(f) for f in frames]
+    norm_from = None
+    if common_scale and ALIASES.get(field, field) != "none":
+        norm_from = np.concatenate([cell_field(f, t, field)[0] for f, t in zip(frames, tessellations)])
+    if "{" in out:
+        written = []
+        for k, (frame, tess) in enumerate(zip(frames, tessellations)):
+            path = out.format(index=k, timestep=frame.timestep)
+            fig, ax = _figure(frame.box, view)
+            draw_tessellation(ax, frame, tess, field=field, view=view, norm_from=norm_from, **kwargs)
+            ax.set_title(_title(frame, field, title))
+            fig.tight_layout()
+            fig.savefig(path, dpi=dpi)
+            plt.close(fig)
+            written.append(path)
+        return written
+    writer = animation_writer(out, fps)
+    fig, ax = _figure(frames[0].box, view)
+    # the colour bar is drawn once, from the first frame, on a fixed scale
+    draw_tessellation(ax, frames[0], tessellations[0], field=field, view=view, norm_from=norm_from, **kwargs)
+    fig.tight_layout()
+    kwargs_nobar = dict(kwargs, colorbar=False)
+    with writer.saving(fig, out, dpi):
+        for frame, tess in zip(frames, tessellations):
+            ax.clear()
+            draw_tessellation(ax, frame, tess, field=field, view=view, norm_from=norm_from, **kwargs_nobar)
+            ax.set_title(_title(frame, field, title))
+            writer.grab_frame()
+    plt.close(fig)
+    return [out]

@@ -12,6 +12,7 @@
 #include "utils.h"
 
 // One include per style in the table below.
+#include "compute_vertex_atom.h"
 #include "fix_brownian.h"
 #include "fix_polarity.h"
 #include "pair_vertex_voronoi.h"
@@ -82,6 +83,7 @@ const std::vector<Entry> &style_table()
       pair_style<PairVertexVoronoi>("vertex/voronoi"),
       fix_style<FixPolarity>("polarity"),
       fix_style<FixBrownianTessera>("brownian", Policy::IF_MISSING),
+      compute_style<ComputeVertexAtom>("vertex/atom"),
   };
   return table;
 }

@@ -1,0 +1,417 @@
+/* ----------------------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   compute vertex/atom: per-cell observables of the Voronoi tessellation that
+   pair_style vertex/voronoi computed (area, perimeter, shape index, number of
+   neighbours, cell energy, velocity coordination and orientation), and
+   global ones for thermo (mean shape index, multifold vertices, neighbour
+   exchanges since the previous call).
+------------------------------------------------------------------------- */
+
+#include "compute_vertex_atom.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "fix_store.h"
+#include "force.h"
+#include "group.h"
+#include "memory.h"
+#include "modify.h"
+#include "pair_vertex_voronoi.h"
+#include "update.h"
+
+#include "tessera/polarity.h"
+#include "tessera/tessellation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+using namespace LAMMPS_NS;
+
+namespace {
+
+constexpr int NCOLS = 7;
+
+// Same criterion as Tessellation::coordination_number: an edge counts as a
+// neighbour relation if it is longer than this fraction of the cell's mean
+// edge length, so zero-length edges of multifold vertices do not.
+constexpr double REL_TOL = 1e-9;
+
+double edge_floor(const tessera::Tessellation &t, int c)
+{
+  const int o = t.cell_offset[c], m = t.cell_size(c);
+  if (m == 0) return 0.0;
+  double mean = 0.0;
+  for (int k = 0; k < m; k++) mean += t.edge_length[o + k];
+  return REL_TOL * mean / m;
+}
+
+// Uniform bins over a set of points, to find the points on a circumcircle.
+class PointBins {
+ public:
+  PointBins(double **x, int n) : x(x)
+  {
+    lo[0] = lo[1] = 0.0;
+    double hi[2] = {0.0, 0.0};
+    for (int i = 0; i < n; i++)
+      for (int d = 0; d < 2; d++) {
+        if (i == 0 || x[i][d] < lo[d]) lo[d] = x[i][d];
+        if (i == 0 || x[i][d] > hi[d]) hi[d] = x[i][d];
+      }
+    const double lx = MAX(hi[0] - lo[0], 1e-300), ly = MAX(hi[1] - lo[1], 1e-300);
+    // About two points per bin.
+    size = std::sqrt(2.0 * lx * ly / MAX(n, 1));
+    if (!(size > 0.0)) size = MAX(lx, ly);
+    nb[0] = static_cast<int>(MAX(1.0, MIN(lx / size + 1.0, 4.0 * n + 1.0)));
+    nb[1] = static_cast<int>(MAX(1.0, MIN(ly / size + 1.0, 4.0 * n + 1.0)));
+    head.assign(static_cast<size_t>(nb[0]) * nb[1], -1);
+    next.assign(n, -1);
+    for (int i = 0; i < n; i++) {
+      const size_t b = static_cast<size_t>(bin(x[i][1], 1)) * nb[0] + bin(x[i][0], 0);
+      next[i] = head[b];
+      head[b] = i;
+    }
+  }
+
+  // Indices of the points at distance r from h within rel_tol * r.
+  void on_circle(double hx, double hy, double r, double rel_tol, std::vector<int> &out) const
+  {
+    out.clear();
+    const double reach = r * (1.0 + rel_tol);
+    const int x0 = bin(hx - reach, 0), x1 = bin(hx + reach, 0);
+    const int y0 = bin(hy - reach, 1), y1 = bin(hy + reach, 1);
+    for (int by = y0; by <= y1; by++)
+      for (int bx = x0; bx <= x1; bx++)
+        for (int i = head[static_cast<size_t>(by) * nb[0] + bx]; i >= 0; i = next[i]) {
+          const double d = std::hypot(x[i][0] - hx, x[i][1] - hy);
+          if (std::fabs(d - r) <= rel_tol * r) out.push_back(i);
+        }
+  }
+
+ private:
+  double **x;
+  double lo[2], size;
+  int nb[2];
+  std::vector<int> head, next;
+
+  int bin(double v, int d) const
+  {
+    const double b = std::floor((v - lo[d]) / size);
+    return static_cast<int>(MAX(0.0, MIN(b, nb[d] - 1.0)));
+  }
+};
+
+}    // namespace
+
+/* ----------------------------------------------------------------------
+   compute ID group vertex/atom
+------------------------------------------------------------------------- */
+
+ComputeVertexAtom::ComputeVertexAtom(LAMMPS *lmp, int narg, char **arg) :
+    Compute(lmp, narg, arg), nmax(0), values(nullptr), id_fix(nullptr), fix(nullptr), pair(nullptr),
+    warned_overflow(0)
+{
+  if (narg > 3)
+    error->all(FLERR,
+               "Illegal compute vertex/atom command: it takes no arguments after the style "
+               "name ('compute ID group vertex/atom'), got '{}'",
+               arg[3]);
+  if (atom->tag_enable == 0)
+    error->all(FLERR, "compute vertex/atom requires atom IDs (atom_modify id yes)");
+
+  peratom_flag = 1;
+  size_peratom_cols = NCOLS;
+  vector_flag = 1;
+  size_vector = 3;
+  extvector = 0;
+  comm_forward = 2;
+  create_attribute = 1;
+  // The neighbour memory is for the members of a fixed group.
+  dynamic_group_allow = 0;
+
+  vector = new double[size_vector];
+  for (int k = 0; k < size_vector; k++) vector[k] = 0.0;
+
+  // Voronoi neighbours of each atom at the previous compute_vector(), which
+  // must migrate with the atoms: column 0 is how many tags follow (-1: none
+  // yet, so nothing is counted for that atom), then up to MAXNEIGH tags of
+  // neighbours with larger IDs, ascending.  Not written to restart files: a
+  // restarted run starts counting afresh.
+  id_fix = utils::strdup(std::string(id) + "_COMPUTE_STORE");
+  fix = static_cast<FixStore *>(modify->add_fix(
+      fmt::format("{} {} STORE peratom 0 {}", id_fix, group->names[igroup], MAXNEIGH + 1)));
+  for (int i = 0; i < atom->nlocal; i++) fix->astore[i][0] = -1.0;
+}
+
+ComputeVertexAtom::~ComputeVertexAtom()
+{
+  // Modify deletes all fixes before the computes at the end of a run.
+  if (modify->nfix && modify->find_fix(id_fix) >= 0) modify->delete_fix(id_fix);
+  delete[] id_fix;
+  delete[] vector;
+  memory->destroy(values);
+}
+
+void ComputeVertexAtom::init()
+{
+  pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  if (!pair)
+    error->all(FLERR,
+               "compute vertex/atom {} reads the tessellation of pair_style vertex/voronoi, "
+               "but the pair style is '{}'; define 'pair_style vertex/voronoi' (alone or as "
+               "one sub-style of hybrid)",
+               id, force->pair_style ? force->pair_style : "none");
+  const int ifix = modify->find_fix(id_fix);
+  if (ifix < 0)
+    error->all(FLERR,
+               "compute vertex/atom: its internal fix {} was deleted; re-create the compute "
+               "(uncompute, then compute)",
+               id_fix);
+  fix = static_cast<FixStore *>(modify->fix[ifix]);
+}
+
+/* New atoms (create_atoms, fix deposit) have no neighbour memory yet. */
+
+void ComputeVertexAtom::set_arrays(int i)
+{
+  fix->astore[i][0] = -1.0;
+}
+
+void ComputeVertexAtom::check_tessellation()
+{
+  int stale = pair->tessellation_current() ? 0 : 1, any;
+  MPI_Allreduce(&stale, &any, 1, MPI_INT, MPI_MAX, world);
+  if (any)
+    error->all(FLERR,
+               "compute vertex/atom {} must be invoked on a timestep when pair vertex/voronoi "
+               "computed forces (e.g. by thermo, dump or fix ave/* during a run, not between "
+               "runs); step {} has no current tessellation",
+               id, update->ntimestep);
+}
+
+/* LAMMPS does not send velocities to ghost atoms unless 'comm_modify vel
+   yes'; coordination needs those of the ghost neighbours, so send them here
+   from a buffer of our own. */
+
+void ComputeVertexAtom::communicate_velocities()
+{
+  const int nlocal = atom->nlocal;
+  vel.resize(2 * static_cast<size_t>(atom->nmax));
+  double **v = atom->v;
+  for (int i = 0; i < nlocal; i++) {
+    vel[2 * i] = v[i][0];
+    vel[2 * i + 1] = v[i][1];
+  }
+  comm->forward_comm_compute(this);
+}
+
+int ComputeVertexAtom::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
+                                         int * /*pbc*/)
+{
+  int m = 0;
+  for (int k = 0; k < n; k++) {
+    const int j = list[k];
+    buf[m++] = vel[2 * j];
+    buf[m++] = vel[2 * j + 1];
+  }
+  return m;
+}
+
+void ComputeVertexAtom::unpack_forward_comm(int n, int first, double *buf)
+{
+  int m = 0;
+  for (int i = first; i < first + n; i++) {
+    vel[2 * i] = buf[m++];
+    vel[2 * i + 1] = buf[m++];
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void ComputeVertexAtom::compute_peratom()
+{
+  invoked_peratom = update->ntimestep;
+  check_tessellation();
+
+  if (atom->nmax > nmax) {
+    memory->destroy(values);
+    nmax = atom->nmax;
+    memory->create(values, nmax, NCOLS, "vertex/atom:values");
+    array_atom = values;
+  }
+
+  communicate_velocities();
+  const tessera::Tessellation &t = pair->tessellation();
+  const std::vector<double> &energy = pair->cell_energy();
+  const int nlocal = atom->nlocal;
+  coordination.resize(nlocal);
+  orientation.resize(nlocal);
+  tessera::velocity_observables(t, vel.data(), 2, coordination.data(), orientation.data());
+
+  const int *mask = atom->mask;
+  for (int i = 0; i < nlocal; i++) {
+    double *row = values[i];
+    if (!(mask[i] & groupbit)) {
+      for (int k = 0; k < NCOLS; k++) row[k] = 0.0;
+      continue;
+    }
+    const double a = t.area[i], p = t.perimeter[i];
+    row[0] = a;
+    row[1] = p;
+    row[2] = a > 0.0 ? p / std::sqrt(a) : 0.0;
+    row[3] = t.coordination_number(i, REL_TOL);
+    row[4] = energy[i];
+    row[5] = coordination[i];
+    row[6] = orientation[i];
+  }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void ComputeVertexAtom::compute_vector()
+{
+  invoked_vector = update->ntimestep;
+  check_tessellation();
+
+  const tessera::Tessellation &t = pair->tessellation();
+  const int *mask = atom->mask;
+  double local[2] = {0.0, 0.0}, all[2];
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit) || !(t.area[i] > 0.0)) continue;
+    local[0] += t.perimeter[i] / std::sqrt(t.area[i]);
+    local[1] += 1.0;
+  }
+  MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_SUM, world);
+  vector[0] = all[1] > 0.0 ? all[0] / all[1] : 0.0;
+  vector[1] = count_multifold();
+  vector[2] = count_new_neighbors();
+}
+
+/* Voronoi vertices where four or more cells of the group meet.  Each is
+   counted once over all ranks and periodic images: by the owned cell with the
+   lowest atom ID among the group's cells around it.  The cells around a
+   vertex are the points on its circumcircle, looked up among owned and ghost
+   atoms: the pair style's coverage check guarantees that every circumcircle
+   of an owned cell lies inside the ghost shell, so none is missed even when
+   the owner sees only one of the vertex's Delaunay triangles. */
+
+double ComputeVertexAtom::count_multifold()
+{
+  const tessera::Tessellation &t = pair->tessellation();
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  const tagint *tag = atom->tag;
+  const PointBins bins(atom->x, t.n_points);
+
+  std::vector<int> on_circle;
+  bigint count = 0;
+  for (int c = 0; c < nlocal; c++) {
+    if (!(mask[c] & groupbit)) continue;
+    const int o = t.cell_offset[c], m = t.cell_size(c);
+    const double zero_len = edge_floor(t, c);
+    for (int k = 0; k < m; k++) {
+      // Vertex k is the same Voronoi vertex as vertex k-1 if the edge between
+      // them has zero length: look at each vertex once, at its first copy.
+      if (m > 1 && t.edge_length[o + (k + m - 1) % m] <= zero_len) continue;
+      const int tri = t.cell_vertex[o + k];
+      const tessera::Vec2 &h = t.vertices[tri];
+      bins.on_circle(h.x, h.y, t.radius[tri], REL_TOL, on_circle);
+      if (on_circle.size() < 4) continue;
+      tagint lowest = tag[c];
+      int members = 0;
+      for (int j : on_circle) {
+        if (!(mask[j] & groupbit)) continue;
+        members++;
+        lowest = MIN(lowest, tag[j]);
+      }
+      if (members >= 4 && lowest == tag[c]) count++;
+    }
+  }
+  bigint total;
+  MPI_Allreduce(&count, &total, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  return static_cast<double>(total);
+}
+
+/* Tags of the group's Voronoi neighbours of owned cell c (non-zero edges)
+   with IDs larger than c's, ascending and without repeats. */
+
+void ComputeVertexAtom::neighbor_tags(int c, std::vector<tagint> &out)
+{
+  const tessera::Tessellation &t = pair->tessellation();
+  const int *mask = atom->mask;
+  const tagint *tag = atom->tag;
+  out.clear();
+  const double zero_len = edge_floor(t, c);
+  for (int k = t.cell_offset[c]; k < t.cell_offset[c + 1]; k++) {
+    if (t.edge_length[k] <= zero_len) continue;
+    const int j = t.cell_neighbor[k];
+    if ((mask[j] & groupbit) && tag[j] > tag[c]) out.push_back(tag[j]);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+/* Neighbour exchanges (T1 transitions) since the previous call: the number
+   of pairs of group cells that share a non-zero edge now but did not then.
+   Each pair is counted by the cell with the lower atom ID.  Every T1 makes
+   one new pair (and breaks one), so this counts T1 transitions. */
+
+double ComputeVertexAtom::count_new_neighbors()
+{
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  double **memo = fix->astore;
+
+  std::vector<tagint> now;
+  bigint count = 0;
+  int most = 0;
+  for (int i = 0; i < nlocal; i++) {
+    double *old = memo[i];
+    if (!(mask[i] & groupbit)) {
+      old[0] = -1.0;
+      continue;
+    }
+    neighbor_tags(i, now);
+    const int nold = static_cast<int>(old[0]);
+    if (nold >= 0) {
+      const int kept = MIN(nold, MAXNEIGH);
+      for (tagint j : now) {
+        const double *begin = old + 1, *end = old + 1 + kept;
+        const bool known = std::binary_search(begin, end, static_cast<double>(j));
+        // Beyond the remembered tags we cannot tell: do not count.
+        const bool unknown = nold > MAXNEIGH && static_cast<double>(j) > old[kept];
+        if (!known && !unknown) count++;
+      }
+    }
+    const int n = static_cast<int>(now.size());
+    most = MAX(most, n);
+    old[0] = n;
+    for (int k = 0; k < MIN(n, MAXNEIGH); k++) old[1 + k] = static_cast<double>(now[k]);
+  }
+
+  int most_all;
+  MPI_Allreduce(&most, &most_all, 1, MPI_INT, MPI_MAX, world);
+  if (most_all > MAXNEIGH && !warned_overflow && comm->me == 0)
+    error->warning(FLERR,
+                   "compute vertex/atom {}: a cell has {} Voronoi neighbours with larger IDs, "
+                   "more than the {} it remembers; neighbour exchanges may be under-counted",
+                   id, most_all, MAXNEIGH);
+  if (most_all > MAXNEIGH) warned_overflow = 1;
+
+  bigint total;
+  MPI_Allreduce(&count, &total, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  return static_cast<double>(total);
+}
+
+/* ---------------------------------------------------------------------- */
+
+double ComputeVertexAtom::memory_usage()
+{
+  double bytes = (double) nmax * NCOLS * sizeof(double);
+  bytes += (double) vel.capacity() * sizeof(double);
+  bytes += (double) (coordination.capacity() + orientation.capacity()) * sizeof(double);
+  return bytes;
+}

@@ -1,0 +1,56 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+------------------------------------------------------------------------- */
+
+#ifdef COMPUTE_CLASS
+// clang-format off
+ComputeStyle(vertex/atom,ComputeVertexAtom);
+// clang-format on
+#else
+
+#ifndef LMP_COMPUTE_VERTEX_ATOM_H
+#define LMP_COMPUTE_VERTEX_ATOM_H
+
+#include "compute.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class ComputeVertexAtom : public Compute {
+ public:
+  ComputeVertexAtom(class LAMMPS *, int, char **);
+  ~ComputeVertexAtom() override;
+  void init() override;
+  void compute_peratom() override;
+  void compute_vector() override;
+  void set_arrays(int) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  double memory_usage() override;
+
+  // Neighbour tags remembered per atom for counting neighbour exchanges.
+  static constexpr int MAXNEIGH = 24;
+
+ protected:
+  int nmax;
+  double **values;            // per-atom output, nmax x 7
+  std::vector<double> vel;    // stride-2 velocities of owned and ghost atoms
+  std::vector<double> coordination, orientation;
+  char *id_fix;
+  class FixStore *fix;
+  class PairVertexVoronoi *pair;
+  int warned_overflow;
+
+  void check_tessellation();
+  void communicate_velocities();
+  double count_multifold();
+  double count_new_neighbors();
+  void neighbor_tags(int, std::vector<tagint> &);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -139,8 +139,9 @@ def draw_tessellation(ax, frame, tess, field="area", view="box", cmap=None, vmin
         finite = finite[np.isfinite(finite)]
         lo = vmin if vmin is not None else (lo if lo is not None else (finite.min() if len(finite) else 0.0))
         hi = vmax if vmax is not None else (hi if hi is not None else (finite.max() if len(finite) else 1.0))
-        if hi - lo <= 1e-9 * max(abs(lo), abs(hi), 1e-300):
-            # a uniform field (a perfect lattice) gets a readable scale around its value
+        if hi - lo <= 1e-3 * max(abs(lo), abs(hi), 1e-300):
+            # a field uniform to 0.1% (a relaxed lattice; dumps print 6 digits) gets a
+            # +-5% scale, so it looks uniform instead of showing amplified round-off
             mid = 0.5 * (lo + hi)
             pad = 0.05 * abs(mid) if mid != 0 else 1.0
             lo, hi = mid - pad, mid + pad

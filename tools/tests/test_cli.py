@@ -133,6 +133,28 @@ class Commands(unittest.TestCase):
         self.assertTrue(is_png(png))
         np.testing.assert_allclose(tess.shape_index, math.sqrt(8 * math.sqrt(3)), rtol=1e-9)
 
+    def test_colour_scale_of_a_relaxed_lattice(self):
+        """Round-off-level spread is not stretched over the whole colormap; real spread is."""
+        import matplotlib.pyplot as plt
+
+        from tessera_tools.render import draw_tessellation
+        from tessera_tools.voronoi import tessellate_frame
+
+        pts, box = hex_lattice(6, 4)
+        rng = np.random.default_rng(1)
+        for noise, uniform in ((1e-7, True), (0.05, False)):
+            frame = frame_from(pts + rng.normal(0, noise, pts.shape), box)
+            tess = tessellate_frame(frame)
+            fig, ax = plt.subplots()
+            lo, hi = draw_tessellation(ax, frame, tess, field="area").get_clim()
+            plt.close(fig)
+            if uniform:
+                self.assertAlmostEqual(lo, 0.95 * math.sqrt(3) / 2, places=5)
+                self.assertAlmostEqual(hi, 1.05 * math.sqrt(3) / 2, places=5)
+            else:
+                self.assertAlmostEqual(lo, tess.area.min())
+                self.assertAlmostEqual(hi, tess.area.max())
+
 
 if __name__ == "__main__":
     unittest.main()

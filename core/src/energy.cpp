@@ -84,52 +84,9 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
   std::vector<Vec2> grad(nt);  // dE/dh per Voronoi vertex
   const double w = model.tension_weight();
 
-  for (int c = 0; c < t.n_owned; ++c) {
-    const double ec = cell_energy_of(t, c, type, model);
-    if (cell_energy) cell_energy[c] = ec;
-    out.energy += ec;
-
-    const CellType &ct = model.types[type[c]];
-    const double dEdA = ct.K * (t.area[c] - ct.A0);
-    const double dEdP = ct.Gamma * t.perimeter[c];
-    const int o = t.cell_offset[c], m = t.cell_size(c);
-    if (m == 0) continue;
-
-    // Unit vector and tension coefficient of each edge k (vertex k -> k+1).
-    auto edge = [&](int k, double &ux, double &uy, double &lam) {
-      const int a = t.cell_vertex[o + k], b = t.cell_vertex[o + (k + 1) % m];
-      const double l = t.edge_length[o + k];
-      if (l > 0.0) {
-        ux = (t.vertices[b].x - t.vertices[a].x) / l;
-        uy = (t.vertices[b].y - t.vertices[a].y) / l;
-      } else {
-        ux = uy = 0.0;  // a zero-length edge has no direction and contributes nothing
-      }
-      lam = w * model.lambda_of(type[c], type[t.cell_neighbor[o + k]]);
-    };
-
-    double in_x, in_y, in_lam;
-    edge(m - 1, in_x, in_y, in_lam);
-    for (int k = 0; k < m; ++k) {
-      double out_x, out_y, out_lam;
-      edge(k, out_x, out_y, out_lam);
-      const Vec2 &hp = t.vertices[t.cell_vertex[o + (k + m - 1) % m]];
-      const Vec2 &hn = t.vertices[t.cell_vertex[o + (k + 1) % m]];
-      // dA/dh_k = 1/2 (h_{k+1} - h_{k-1}) x z ; dP/dh_k = u_in - u_out.
-      Vec2 &g = grad[t.cell_vertex[o + k]];
-      g.x += 0.5 * dEdA * (hn.y - hp.y) + (dEdP + in_lam) * in_x - (dEdP + out_lam) * out_x;
-      g.y += 0.5 * dEdA * (hp.x - hn.x) + (dEdP + in_lam) * in_y - (dEdP + out_lam) * out_y;
-      in_x = out_x;
-      in_y = out_y;
-      in_lam = out_lam;
-    }
-  }
-
-  // Push dE/dh onto the triangle corners: F_p = -(dh/dr_p)^T dE/dh.
-  for (int tri = 0; tri < nt; ++tri) {
-    const Vec2 g = grad[tri];
-    if (g.x == 0.0 && g.y == 0.0) continue;
-    const int ia = t.triangles[tri][0], ib = t.triangles[tri][1], ic = t.triangles[tri][2];
+  // F_p = -(dh/dr_p)^T g for the three corners of a triangle whose
+  // circumcentre h has energy gradient g, and the virial of those forces.
+  auto push = [&](int ia, int ib, int ic, double gx, double gy) {
     const double ax = pts.x(ia), ay = pts.y(ia);
     const double bx = pts.x(ib) - ax, by = pts.y(ib) - ay;
     const double cx = pts.x(ic) - ax, cy = pts.y(ic) - ay;
@@ -147,9 +104,9 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
     const double Jc_yx = (2.0 * bx * cx - b2 + uy * 2.0 * by) / D;
     const double Jc_yy = (2.0 * bx * cy - uy * 2.0 * bx) / D;
     // F = -J^T g for b and c; a takes the rest (the three Jacobians sum to I).
-    const double fbx = -(Jb_xx * g.x + Jb_yx * g.y), fby = -(Jb_xy * g.x + Jb_yy * g.y);
-    const double fcx = -(Jc_xx * g.x + Jc_yx * g.y), fcy = -(Jc_xy * g.x + Jc_yy * g.y);
-    const double fax = -g.x - fbx - fcx, fay = -g.y - fby - fcy;
+    const double fbx = -(Jb_xx * gx + Jb_yx * gy), fby = -(Jb_xy * gx + Jb_yy * gy);
+    const double fcx = -(Jc_xx * gx + Jc_yx * gy), fcy = -(Jc_xy * gx + Jc_yy * gy);
+    const double fax = -gx - fbx - fcx, fay = -gy - fby - fcy;
     f[static_cast<long>(ia) * f_stride] += fax;
     f[static_cast<long>(ia) * f_stride + 1] += fay;
     f[static_cast<long>(ib) * f_stride] += fbx;
@@ -158,10 +115,118 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
     f[static_cast<long>(ic) * f_stride + 1] += fcy;
     // Virial sum r (x) F over the corners, written relative to a plus a's
     // share: sum_p r_p F_p = sum_p (r_p - a) F_p + a (sum_p F_p), sum_p F_p = -g.
-    out.virial[0] += bx * fbx + cx * fcx - ax * g.x;
-    out.virial[1] += by * fby + cy * fcy - ay * g.y;
-    out.virial[2] += bx * fby + cx * fcy - ax * g.y;
-    out.virial[3] += by * fbx + cy * fcx - ay * g.x;
+    out.virial[0] += bx * fbx + cx * fcx - ax * gx;
+    out.virial[1] += by * fby + cy * fcy - ay * gy;
+    out.virial[2] += bx * fby + cx * fcy - ax * gy;
+    out.virial[3] += by * fbx + cy * fcx - ay * gx;
+  };
+
+  std::vector<int> spokes;
+  for (int c = 0; c < t.n_owned; ++c) {
+    const double ec = cell_energy_of(t, c, type, model);
+    if (cell_energy) cell_energy[c] = ec;
+    out.energy += ec;
+
+    const CellType &ct = model.types[type[c]];
+    const double dEdA = ct.K * (t.area[c] - ct.A0);
+    const double dEdP = ct.Gamma * t.perimeter[c];
+    const int o = t.cell_offset[c], m = t.cell_size(c);
+    if (m == 0) continue;
+    auto group_at = [&](int k) { return t.triangle_group[t.cell_vertex[o + ((k % m) + m) % m]]; };
+
+    // Unit vector and tension coefficient of each edge k (vertex k -> k+1).
+    auto edge = [&](int k, double &ux, double &uy, double &lam) {
+      const int a = t.cell_vertex[o + k], b = t.cell_vertex[o + (k + 1) % m];
+      const double l = t.edge_length[o + k];
+      if (l > 0.0) {
+        ux = (t.vertices[b].x - t.vertices[a].x) / l;
+        uy = (t.vertices[b].y - t.vertices[a].y) / l;
+      } else {
+        ux = uy = 0.0;  // only inside a multifold vertex, which is handled below
+      }
+      lam = w * model.lambda_of(type[c], type[t.cell_neighbor[o + k]]);
+    };
+
+    double in_x, in_y, in_lam;
+    edge(m - 1, in_x, in_y, in_lam);
+    for (int k = 0; k < m; ++k) {
+      double out_x, out_y, out_lam;
+      edge(k, out_x, out_y, out_lam);
+      const int g = group_at(k);
+      if (g < 0) {
+        const Vec2 &hp = t.vertices[t.cell_vertex[o + (k + m - 1) % m]];
+        const Vec2 &hn = t.vertices[t.cell_vertex[o + (k + 1) % m]];
+        // dA/dh_k = 1/2 (h_{k+1} - h_{k-1}) x z ; dP/dh_k = u_in - u_out.
+        Vec2 &gr = grad[t.cell_vertex[o + k]];
+        gr.x += 0.5 * dEdA * (hn.y - hp.y) + (dEdP + in_lam) * in_x - (dEdP + out_lam) * out_x;
+        gr.y += 0.5 * dEdA * (hp.x - hn.x) + (dEdP + in_lam) * in_y - (dEdP + out_lam) * out_y;
+      } else if (group_at(k - 1) != g || m == 1) {
+        // A multifold vertex V, shared by the k >= 4 cells of the group's ring
+        // w_0..w_{k-1}.  The energy has a kink there: each way of
+        // triangulating the ring is one smooth branch.  We take the mean of
+        // the branches' gradients over the k fan triangulations (from each
+        // w_j), which for a four-fold vertex is exactly the mean of the two
+        // one-sided derivatives, i.e. the central difference.  In each branch
+        // the edges around V have length zero but the direction they take on
+        // that branch's side: perpendicular to the Delaunay edge, rot90(q - c).
+        int run_end = k;  // last polygon position at V
+        while (run_end - k + 1 < m && group_at(run_end + 1) == g) ++run_end;
+        const Vec2 &hp = t.vertices[t.cell_vertex[o + (k + m - 1) % m]];
+        const Vec2 &hn = t.vertices[t.cell_vertex[o + (run_end + 1) % m]];
+        const Vec2 V = t.group_centre[g];
+        const int *ring = &t.group_point[t.group_offset[g]];
+        const int kk = t.group_offset[g + 1] - t.group_offset[g];
+        int i = 0;
+        while (i < kk && ring[i] != c) ++i;
+        if (i == kk) throw Error("tessera: internal error: cell missing from its vertex ring");
+        const double cxp = pts.x(c), cyp = pts.y(c);
+        auto spoke_dir = [&](int q, double &ux, double &uy, double &lam) {
+          const double dx = pts.x(q) - cxp, dy = pts.y(q) - cyp;
+          const double d = std::hypot(dx, dy);
+          ux = -dy / d;
+          uy = dx / d;
+          lam = w * model.lambda_of(type[c], type[q]);
+        };
+        const double inv_k = 1.0 / kk;
+        for (int j = 0; j < kk; ++j) {
+          // Spokes of c at V in branch j, from the in-edge's neighbour
+          // w_{i+1} to the out-edge's neighbour w_{i-1}.
+          spokes.assign(1, ring[(i + 1) % kk]);
+          if (j == i) {
+            for (int q = 2; q <= kk - 2; ++q) spokes.push_back(ring[(i + q) % kk]);
+          } else if (j != (i + 1) % kk && j != (i + kk - 1) % kk) {
+            spokes.push_back(ring[j]);
+          }
+          spokes.push_back(ring[(i + kk - 1) % kk]);
+          const int M = static_cast<int>(spokes.size()) - 1;
+          for (int s = 1; s <= M; ++s) {
+            double ax, ay, al, bx, by, bl;
+            spoke_dir(spokes[s - 1], ax, ay, al);
+            spoke_dir(spokes[s], bx, by, bl);
+            double gx = (dEdP + al) * ax - (dEdP + bl) * bx;
+            double gy = (dEdP + al) * ay - (dEdP + bl) * by;
+            if (s == 1) {
+              gx += 0.5 * dEdA * (V.y - hp.y);
+              gy += 0.5 * dEdA * (hp.x - V.x);
+            }
+            if (s == M) {
+              gx += 0.5 * dEdA * (hn.y - V.y);
+              gy += 0.5 * dEdA * (V.x - hn.x);
+            }
+            push(c, spokes[s - 1], spokes[s], gx * inv_k, gy * inv_k);
+          }
+        }
+      }
+      in_x = out_x;
+      in_y = out_y;
+      in_lam = out_lam;
+    }
+  }
+
+  for (int tri = 0; tri < nt; ++tri) {
+    const Vec2 g = grad[tri];
+    if (g.x == 0.0 && g.y == 0.0) continue;
+    push(t.triangles[tri][0], t.triangles[tri][1], t.triangles[tri][2], g.x, g.y);
   }
   return out;
 }

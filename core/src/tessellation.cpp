@@ -126,6 +126,23 @@ Built build(const Points &pts, int n_owned, const long *ids, NameOf name_of) {
   t.radius.reserve(static_cast<size_t>(2.2 * n_owned));
 
   for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) f->info() = -1;
+  std::vector<Delaunay::Face_handle> face_of;
+  face_of.reserve(static_cast<size_t>(2.2 * n_owned));
+  // Gives face f a triangle index (and its circumcentre) on first sight.
+  auto index_of = [&](Delaunay::Face_handle f) {
+    if (f->info() < 0) {
+      f->info() = static_cast<int>(t.triangles.size());
+      const int a = f->vertex(0)->info(), b = f->vertex(1)->info(), d = f->vertex(2)->info();
+      t.triangles.push_back({a, b, d});
+      Vec2 h;
+      double r;
+      circumcentre(pts.x(a), pts.y(a), pts.x(b), pts.y(b), pts.x(d), pts.y(d), h, r);
+      t.vertices.push_back(h);
+      t.radius.push_back(r);
+      face_of.push_back(f);
+    }
+    return f->info();
+  };
 
   for (int c = 0; c < n_owned; ++c) {
     const auto v = vh[c];
@@ -137,17 +154,7 @@ Built build(const Points &pts, int n_owned, const long *ids, NameOf name_of) {
         break;
       }
       const int i = fc->index(v);
-      if (fc->info() < 0) {
-        fc->info() = static_cast<int>(t.triangles.size());
-        const int a = fc->vertex(0)->info(), b = fc->vertex(1)->info(), d = fc->vertex(2)->info();
-        t.triangles.push_back({a, b, d});
-        Vec2 h;
-        double r;
-        circumcentre(pts.x(a), pts.y(a), pts.x(b), pts.y(b), pts.x(d), pts.y(d), h, r);
-        t.vertices.push_back(h);
-        t.radius.push_back(r);
-      }
-      t.cell_vertex.push_back(fc->info());
+      t.cell_vertex.push_back(index_of(fc));
       // Going counter-clockwise around v, the next face shares the edge from v
       // to this face's vertex cw(i): that point is across the Voronoi edge.
       t.cell_neighbor.push_back(fc->vertex(Delaunay::cw(i))->info());
@@ -164,10 +171,13 @@ Built build(const Points &pts, int n_owned, const long *ids, NameOf name_of) {
   for (int c = 0; c < n_owned; ++c) {
     const int o = t.cell_offset[c], m = t.cell_size(c);
     double area2 = 0.0, perim = 0.0;
+    // Shoelace relative to the cell centre: absolute coordinates far from the
+    // origin would cancel catastrophically.
+    const double cx = pts.x(c), cy = pts.y(c);
     for (int k = 0; k < m; ++k) {
       const int t0 = t.cell_vertex[o + k], t1 = t.cell_vertex[o + (k + 1) % m];
       const Vec2 &h0 = t.vertices[t0], &h1 = t.vertices[t1];
-      area2 += h0.x * h1.y - h1.x * h0.y;
+      area2 += (h0.x - cx) * (h1.y - cy) - (h1.x - cx) * (h0.y - cy);
       const double len = std::hypot(h1.x - h0.x, h1.y - h0.y);
       const double tol = kZeroEdge * std::max(t.radius[t0], t.radius[t1]);
       const double l = len > tol ? len : 0.0;
@@ -177,6 +187,68 @@ Built build(const Points &pts, int n_owned, const long *ids, NameOf name_of) {
     t.area[c] = 0.5 * area2;
     t.perimeter[c] = perim;
   }
+
+  // Multifold vertices: Delaunay triangles sharing one circumcentre (within
+  // the zero-edge tolerance).  Every triangle of an owned cell is compared
+  // with its three neighbours; a match seeds a search for all the triangles
+  // at that vertex, so that its complete ring of cells is known even where
+  // some of them are not owned here.
+  auto same_vertex = [&](int a, int b) {
+    const double d = std::hypot(t.vertices[a].x - t.vertices[b].x, t.vertices[a].y - t.vertices[b].y);
+    return d <= kZeroEdge * std::max(t.radius[a], t.radius[b]);
+  };
+  t.triangle_group.assign(t.triangles.size(), -1);
+  t.group_offset.assign(1, 0);
+  const int n_cell_triangles = static_cast<int>(t.triangles.size());
+  std::vector<int> stack, members;
+  for (int seed = 0; seed < n_cell_triangles; ++seed) {
+    if (t.triangle_group[seed] >= 0) continue;
+    bool multifold = false;
+    for (int e = 0; e < 3 && !multifold; ++e) {
+      const auto g = face_of[seed]->neighbor(e);
+      if (dt.is_infinite(g)) continue;
+      const int gi = index_of(g);
+      if (t.triangle_group.size() < t.triangles.size()) t.triangle_group.resize(t.triangles.size(), -1);
+      multifold = same_vertex(seed, gi);
+    }
+    if (!multifold) continue;
+    const int group = static_cast<int>(t.group_centre.size());
+    members.assign(1, seed);
+    stack.assign(1, seed);
+    t.triangle_group[seed] = group;
+    while (!stack.empty()) {
+      const int cur = stack.back();
+      stack.pop_back();
+      for (int e = 0; e < 3; ++e) {
+        const auto g = face_of[cur]->neighbor(e);
+        if (dt.is_infinite(g)) continue;
+        const int gi = index_of(g);
+        if (t.triangle_group.size() < t.triangles.size()) t.triangle_group.resize(t.triangles.size(), -1);
+        if (t.triangle_group[gi] >= 0 || !same_vertex(seed, gi)) continue;
+        t.triangle_group[gi] = group;
+        members.push_back(gi);
+        stack.push_back(gi);
+      }
+    }
+    Vec2 centre;
+    for (int m : members) {
+      centre.x += t.vertices[m].x / members.size();
+      centre.y += t.vertices[m].y / members.size();
+    }
+    // The ring of cells around the vertex, counter-clockwise.
+    std::vector<int> ring;
+    for (int m : members)
+      for (int p : t.triangles[m]) ring.push_back(p);
+    std::sort(ring.begin(), ring.end());
+    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+    std::vector<std::pair<double, int>> by_angle;
+    for (int p : ring) by_angle.emplace_back(std::atan2(pts.y(p) - centre.y, pts.x(p) - centre.x), p);
+    std::sort(by_angle.begin(), by_angle.end());
+    for (const auto &ap : by_angle) t.group_point.push_back(ap.second);
+    t.group_offset.push_back(static_cast<int>(t.group_point.size()));
+    t.group_centre.push_back(centre);
+  }
+  t.triangle_group.resize(t.triangles.size(), -1);
   return out;
 }
 
@@ -206,32 +278,21 @@ int Tessellation::coordination_number(int c, double rel_tol) const {
   return z;
 }
 
-int Tessellation::count_multifold_vertices(double rel_tol) const {
-  // Triangles joined by zero-length edges share one Voronoi vertex; a group of
-  // k >= 2 triangles is a vertex shared by k + 2 >= 4 cells.
-  std::vector<int> parent(triangles.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int a) {
-    while (parent[a] != a) a = parent[a] = parent[parent[a]];
-    return a;
-  };
-  std::vector<char> joined(triangles.size(), 0);
-  for (int c = 0; c < n_owned; ++c) {
-    const int o = cell_offset[c], m = cell_size(c);
-    double mean = 0.0;
-    for (int k = 0; k < m; ++k) mean += edge_length[o + k];
-    mean = m ? mean / m : 0.0;
-    for (int k = 0; k < m; ++k) {
-      if (edge_length[o + k] > rel_tol * mean) continue;
-      const int a = cell_vertex[o + k], b = cell_vertex[o + (k + 1) % m];
-      parent[find(a)] = find(b);
-      joined[a] = joined[b] = 1;
-    }
+double Tessellation::multifold_vertex_share() const {
+  // A vertex shared by k cells is seen once from each of them; each owned
+  // cell contributes 1/k, so copies (periodic images, MPI ranks) add up to one.
+  double share = 0.0;
+  for (int g = 0; g + 1 < static_cast<int>(group_offset.size()); ++g) {
+    const int k = group_offset[g + 1] - group_offset[g];
+    int owned = 0;
+    for (int j = group_offset[g]; j < group_offset[g + 1]; ++j) owned += group_point[j] < n_owned;
+    share += static_cast<double>(owned) / k;
   }
-  int count = 0;
-  for (size_t i = 0; i < triangles.size(); ++i)
-    if (joined[i] && find(static_cast<int>(i)) == static_cast<int>(i)) ++count;
-  return count;
+  return share;
+}
+
+int Tessellation::count_multifold_vertices() const {
+  return static_cast<int>(std::lround(multifold_vertex_share()));
 }
 
 Tessellation tessellate_local(const Points &pts, int n_owned, const long *ids,
@@ -341,9 +402,9 @@ Tessellation tessellate_periodic(const Box &box, const Points &pts, const long *
       }
       grow = std::max(0.5 * margin, 1.25 * cov.needed_margin);
     }
-    margin += grow;
-    if (margin > max_margin)
+    if (margin >= max_margin)
       throw Error("tessera: periodic tessellation did not converge (are all points on one line?)");
+    margin = std::min(margin + grow, max_margin);
   }
 }
 

@@ -82,6 +82,17 @@ struct Tessellation {
   std::vector<double> area;       // per owned cell
   std::vector<double> perimeter;  // per owned cell
 
+  // Multifold vertices: several triangles with one circumcentre (co-circular
+  // points).  triangle_group[tri] is the vertex's index or -1; the vertex's
+  // ring of k >= 4 points, counter-clockwise around it, is
+  // group_point[group_offset[g] .. group_offset[g+1]); group_centre[g] is its
+  // position.  Triangles at such a vertex that touch no owned cell are added
+  // to `triangles` too, so that the ring is always complete.
+  std::vector<int> triangle_group;
+  std::vector<int> group_offset;
+  std::vector<int> group_point;
+  std::vector<Vec2> group_centre;
+
   // An owned cell that touches the convex hull of the points (its region is
   // unbounded, so the ghost shell is missing), or -1.  Only set when
   // tessellate_local was asked not to throw; such cells are left empty and
@@ -98,9 +109,12 @@ struct Tessellation {
   // Number of Voronoi neighbours counted over edges longer than tol times the
   // cell's mean edge length (zero-length edges of multifold vertices excluded).
   int coordination_number(int c, double rel_tol = 1e-9) const;
-  // Number of distinct Voronoi vertices shared by four or more cells among the
-  // owned cells' vertices (each counted once, by position, relative tol).
-  int count_multifold_vertices(double rel_tol = 1e-9) const;
+  // Multifold vertices (shared by four or more cells) around the owned cells.
+  // multifold_vertex_share() adds 1/k for each owned cell at a k-fold vertex,
+  // so that sums over MPI ranks (or over periodic images) count each vertex
+  // exactly once; count_multifold_vertices() rounds it for a single owner.
+  double multifold_vertex_share() const;
+  int count_multifold_vertices() const;
 };
 
 // Triangulate points (owned first, then ghosts) without periodicity and build

@@ -135,7 +135,7 @@ int FixPolarity::setmask()
 {
   int mask = 0;
   mask |= POST_FORCE;
-  mask |= END_OF_STEP;
+  mask |= INITIAL_INTEGRATE;
   return mask;
 }
 
@@ -184,52 +184,62 @@ void FixPolarity::setup(int vflag)
   post_force(vflag);
 }
 
+/* Adds the active force along the current polarity, and notes the
+   direction of each cell's velocity (dr/dt of the step that just ended) for
+   the next angle update, before an integrator overwrites v. */
+
 void FixPolarity::post_force(int /*vflag*/)
 {
   double **mu = atom->mu;
   double **f = atom->f;
+  double **v = atom->v;
   const int *mask = atom->mask;
-  for (int i = 0; i < atom->nlocal; i++) {
+  const int nlocal = atom->nlocal;
+  psi.resize(nlocal);
+  has_psi.resize(nlocal);
+  for (int i = 0; i < nlocal; i++) {
+    has_psi[i] = (v[i][0] != 0.0 || v[i][1] != 0.0);
+    psi[i] = has_psi[i] ? std::atan2(v[i][1], v[i][0]) : 0.0;
     if (!(mask[i] & groupbit) || !(mu[i][3] > 0.0)) continue;
     f[i][0] += f_active * mu[i][0] / mu[i][3];
     f[i][1] += f_active * mu[i][1] / mu[i][3];
   }
 }
 
-/* Forward Euler (Euler-Maruyama with noise) step of the angle, from the
-   positions and angles of this step, after the active force has used them. */
+/* Forward Euler (Euler-Maruyama with noise) step of the angle, at the start
+   of step n+1 from the positions (Voronoi neighbours), angles and velocities
+   of step n, the same state whose active force moves the positions in this
+   step.  Doing it here rather than at the end of step n keeps mu at the end
+   of every step equal to the angle that step's force used, so that a new
+   run or a restart continues exactly. */
 
-void FixPolarity::end_of_step()
+void FixPolarity::initial_integrate(int /*vflag*/)
 {
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
   double **mu = atom->mu;
-  double **v = atom->v;
   const int *mask = atom->mask;
   const tagint *tag = atom->tag;
+  if (static_cast<int>(psi.size()) != nlocal)
+    error->one(FLERR, "fix polarity: internal error: velocity directions not recorded");
 
   theta.resize(nall);
   for (int i = 0; i < nall; i++) theta[i] = std::atan2(mu[i][1], mu[i][0]);
   tau.assign(nlocal, 0.0);
-  psi.resize(nlocal);
-  has_psi.resize(nlocal);
-  for (int i = 0; i < nlocal; i++) {
-    has_psi[i] = (v[i][0] != 0.0 || v[i][1] != 0.0);
-    psi[i] = has_psi[i] ? std::atan2(v[i][1], v[i][0]) : 0.0;
-  }
 
   if (params.J_S != 0.0) {
-    if (!pair->tessellation_current())
-      error->one(FLERR, "fix polarity: the tessellation of pair vertex/voronoi is not current");
-    tessera::polarity_torque(pair->tessellation(), theta.data(), params, psi.data(),
-                             has_psi.data(), tau.data());
+    const tessera::Tessellation &t = pair->tessellation();
+    if (pair->tessellation_step() != update->ntimestep - 1 || t.n_owned != nlocal)
+      error->one(FLERR,
+                 "fix polarity: the tessellation of pair vertex/voronoi is not from the "
+                 "previous step");
+    tessera::polarity_torque(t, theta.data(), params, psi.data(), has_psi.data(), tau.data());
   } else {
     // Without neighbour alignment no tessellation is needed: the torque of
-    // each cell depends on its own angle only.
+    // each cell depends on its own angle and velocity only.
     tessera::Tessellation none;
     none.n_owned = nlocal;
     none.cell_offset.assign(nlocal + 1, 0);
-    none.edge_length.clear();
     tessera::polarity_torque(none, theta.data(), params, psi.data(), has_psi.data(), tau.data());
   }
 

@@ -28,7 +28,7 @@ class FixPolarity : public Fix {
   void init() override;
   void setup(int) override;
   void post_force(int) override;
-  void end_of_step() override;
+  void initial_integrate(int) override;
   double compute_vector(int) override;
 
  protected:

@@ -152,12 +152,13 @@ void FixPolarity::init()
 
 /* Atoms with mu = 0 get a uniformly random polarity angle (thesis 4.1.4: a
    biased start biases the streams).  The angle depends only on the seed and
-   the atom ID, not on the number of ranks. */
+   the atom's position (not on its ID, which create_atoms assigns differently
+   on different numbers of ranks), so a script starts alike on any number of
+   ranks. */
 
 void FixPolarity::init_angles()
 {
   double **mu = atom->mu;
-  const tagint *tag = atom->tag;
   const int *mask = atom->mask;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
@@ -171,7 +172,10 @@ void FixPolarity::init_angles()
         continue;
       }
     }
-    const double th = MathConst::MY_2PI * uniform01(seed, tag[i], 0, 3);
+    uint64_t bx, by;
+    std::memcpy(&bx, &atom->x[i][0], sizeof bx);
+    std::memcpy(&by, &atom->x[i][1], sizeof by);
+    const double th = MathConst::MY_2PI * uniform01(seed, mix(bx) ^ by, 0, 3);
     mu[i][0] = std::cos(th);
     mu[i][1] = std::sin(th);
     mu[i][2] = 0.0;

@@ -1,0 +1,177 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""Shared plumbing of the reproduction studies (studies/*/run).
+
+Each study is one executable script that writes LAMMPS inputs, runs them with
+tessera-lmp (several serial runs side by side), analyses the output with numpy
+and tools/tessera_tools, and writes PNGs and a markdown report.  Full runs write
+their raw output to studies/<name>/out/ (git-ignored) and the committed
+REPORT.md and figures/*.png next to the script; ``--quick`` runs a tiny version
+into studies/<name>/out/quick/ and leaves the committed files alone.
+"""
+
+import argparse
+import concurrent.futures
+import os
+import resource
+import shutil
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+STUDIES = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(STUDIES)
+sys.path.insert(0, os.path.join(ROOT, "tools"))
+
+import matplotlib  # noqa: E402
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402,F401
+
+from tessera_tools.logplot import parse_log  # noqa: E402,F401
+
+#: committed PNGs stay below this size (README gallery; the limit is 200 KB)
+MAX_PNG_BYTES = 180 * 1024
+
+
+def find_lmp(explicit=None):
+    """The tessera-lmp executable: --lmp, $TESSERA_LMP, $TESSERA_BUILD/lammps, build/lammps."""
+    candidates = [explicit, os.environ.get("TESSERA_LMP")]
+    if os.environ.get("TESSERA_BUILD"):
+        candidates.append(os.path.join(os.environ["TESSERA_BUILD"], "lammps", "tessera-lmp"))
+    candidates.append(os.path.join(ROOT, "build", "lammps", "tessera-lmp"))
+    for path in candidates:
+        if path and os.path.isfile(path):
+            return os.path.abspath(path)
+    raise SystemExit("tessera-lmp not found: build it with scripts/build, or pass --lmp PATH "
+                     "(or set TESSERA_LMP)")
+
+
+class Study:
+    """Command line, directories and LAMMPS runs of one study."""
+
+    def __init__(self, name, description, argv=None, extra_args=None):
+        parser = argparse.ArgumentParser(prog=f"studies/{name}/run", description=description)
+        parser.add_argument("--quick", action="store_true",
+                            help="tiny version (seconds) into out/quick/; committed files untouched")
+        parser.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1),
+                            help="serial LAMMPS runs side by side (default 2)")
+        parser.add_argument("--lmp", help="tessera-lmp executable (default: build/lammps/tessera-lmp)")
+        parser.add_argument("--analyse-only", action="store_true",
+                            help="reuse the LAMMPS output already in out/ (no runs)")
+        if extra_args:
+            extra_args(parser)
+        self.args = parser.parse_args(argv)
+        self.name = name
+        self.quick = self.args.quick
+        self.here = os.path.join(STUDIES, name)
+        self.out = os.path.join(self.here, "out", "quick") if self.quick else os.path.join(self.here, "out")
+        # in quick mode the "committed" files also go to out/quick
+        self.figures = os.path.join(self.out, "figures") if self.quick else os.path.join(self.here, "figures")
+        self.report_path = os.path.join(self.out if self.quick else self.here, "REPORT.md")
+        os.makedirs(self.out, exist_ok=True)
+        os.makedirs(self.figures, exist_ok=True)
+        self.lmp = None if self.args.analyse_only else find_lmp(self.args.lmp)
+        self.started = time.time()
+
+    # ----------------------------------------------------------------- runs
+    def run_lammps(self, workdir, script, variables=None, log="log.lammps", timeout=3600):
+        """Write ``script`` to workdir/in.lmp and run it serially; returns the log path.
+
+        Raises RuntimeError with the tail of the log when LAMMPS fails.
+        """
+        os.makedirs(workdir, exist_ok=True)
+        log_path = os.path.join(workdir, log)
+        if self.args.analyse_only:
+            return log_path
+        with open(os.path.join(workdir, "in.lmp"), "w") as f:
+            f.write(script)
+        cmd = [self.lmp, "-in", "in.lmp", "-log", log, "-screen", "none", "-nocite"]
+        for key, value in (variables or {}).items():
+            cmd += ["-var", key, str(value)]
+        # another developer may be relinking the shared build: retry a missing binary
+        for attempt in range(20):
+            if os.access(self.lmp, os.X_OK):
+                break
+            time.sleep(3)
+        proc = subprocess.run(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                              timeout=timeout)
+        if proc.returncode != 0:
+            tail = ""
+            if os.path.exists(log_path):
+                with open(log_path, errors="replace") as f:
+                    tail = "".join(f.readlines()[-15:])
+            raise RuntimeError(f"LAMMPS failed in {workdir} (exit {proc.returncode}):\n"
+                               f"{proc.stdout.decode(errors='replace')[-2000:]}\n{tail}")
+        return log_path
+
+    def run_all(self, jobs):
+        """Run a list of (workdir, script, variables) side by side; returns the log paths
+        (None and an entry in ``self.failures`` for runs that failed)."""
+        self.failures = getattr(self, "failures", [])
+        logs = [None] * len(jobs)
+        with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, self.args.jobs)) as pool:
+            futures = {pool.submit(self.run_lammps, *job): k for k, job in enumerate(jobs)}
+            for fut in concurrent.futures.as_completed(futures):
+                k = futures[fut]
+                try:
+                    logs[k] = fut.result()
+                except RuntimeError as err:
+                    self.failures.append((jobs[k][0], str(err)))
+                    print(f"[{self.name}] run failed: {jobs[k][0]}", file=sys.stderr)
+        return logs
+
+    # -------------------------------------------------------------- output
+    def savefig(self, fig, filename, dpi=110, commit=True):
+        """Save into figures/ (committed) or out/; committed PNGs are kept below 200 KB
+        by lowering the resolution."""
+        path = os.path.join(self.figures if commit else self.out, filename)
+        while True:
+            fig.savefig(path, dpi=dpi)
+            if not commit or os.path.getsize(path) <= MAX_PNG_BYTES or dpi <= 40:
+                break
+            dpi = int(dpi * 0.8)
+        plt.close(fig)
+        return path
+
+    def rel(self, path):
+        """Path relative to the report (for links)."""
+        return os.path.relpath(path, os.path.dirname(self.report_path))
+
+    def elapsed(self):
+        return time.time() - self.started
+
+    def write_report(self, text):
+        with open(self.report_path, "w") as f:
+            f.write(text)
+        print(f"[{self.name}] wrote {self.report_path} and {len(os.listdir(self.figures))} figures "
+              f"in {self.elapsed():.0f} s wall, {self.child_cpu():.0f} s CPU in LAMMPS")
+
+    @staticmethod
+    def child_cpu():
+        """CPU seconds used by finished child processes (the LAMMPS runs)."""
+        ru = resource.getrusage(resource.RUSAGE_CHILDREN)
+        return ru.ru_utime + ru.ru_stime
+
+
+def md_table(header, rows):
+    """A markdown table from a header list and rows of already formatted cells."""
+    lines = ["| " + " | ".join(header) + " |", "|" + "|".join("---" for _ in header) + "|"]
+    lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
+    return "\n".join(lines) + "\n"
+
+
+def fit_power(x, y):
+    """Least-squares slope and prefactor of log y = log c + p log x; (nan, nan) if < 2 points."""
+    x, y = np.asarray(x, float), np.asarray(y, float)
+    ok = (x > 0) & (y > 0) & np.isfinite(y)
+    if ok.sum() < 2:
+        return float("nan"), float("nan")
+    p, logc = np.polyfit(np.log(x[ok]), np.log(y[ok]), 1)
+    return float(p), float(np.exp(logc))
+
+
+def copy_if_exists(src, dst):
+    if os.path.exists(src):
+        shutil.copy(src, dst)

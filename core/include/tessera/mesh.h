@@ -1,0 +1,68 @@
+// Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
+//
+// A Delaunay triangulation kept between time steps in flat arrays.
+//
+// Cells move a small fraction of their size per step, so the triangulation of
+// step n is almost always the triangulation of step n+1, or a few edge flips
+// away from it.  update() checks every edge with exact (filtered) in-circle
+// tests and restores the Delaunay property by Lawson flips, in O(N) with a
+// small constant; only when a triangle folds over (a point crossed an edge)
+// does the caller need build() again, which triangulates from scratch with
+// CGAL.  The point at infinity closes the convex hull, so hull changes are
+// flips too.  CGAL stays inside mesh.cpp.
+#pragma once
+
+#include "tessera/tessellation.h"
+
+#include <vector>
+
+namespace tessera {
+
+class Mesh {
+public:
+  // Triangulates the points from scratch.  ids (optional) name points in
+  // error messages; report (optional) maps a point to the index reported in
+  // them (periodic images report their owner).  Throws Error on non-finite
+  // coordinates, coincident points, or fewer than 3 non-collinear points.
+  void build(const Points &pts, const long *ids = nullptr, const int *report = nullptr);
+
+  // The same points (same number, same order) at new positions: restores the
+  // Delaunay property by flips.  Returns false when the mesh cannot follow
+  // (a triangle folded over, or the point count changed); the mesh is then
+  // invalid and build() must be called.
+  //
+  // With a region of interest [roi_lo, roi_hi], triangles that fold over
+  // entirely outside it (thin triangles on the convex hull of a ghost shell)
+  // are frozen instead: they and their edges are left alone, and the mesh is
+  // exact for every triangle whose circumdisk lies inside the region (a
+  // Delaunay triangle is certified by locally Delaunay edges along any path
+  // inside its circumdisk).  Callers then check their cells' circumdisks
+  // against the region, as check_coverage() does.
+  bool update(const Points &pts, const double *roi_lo = nullptr, const double *roi_hi = nullptr);
+
+  // Fills t with the Voronoi cells of points 0..n_owned-1 (and the
+  // circumcentres of all finite triangles).  Reuses t's storage.
+  void cells(const Points &pts, int n_owned, Tessellation &t) const;
+
+  bool valid() const { return valid_; }
+  int n_points() const { return n_points_; }
+  long flips_last_update() const { return flips_; }
+
+private:
+  static constexpr int kInfinite = -1;
+  bool valid_ = false;
+  int n_points_ = 0;
+  long flips_ = 0;
+  std::vector<int> v_;   // 3 per triangle: point indices, counter-clockwise; -1 = infinity
+  std::vector<int> nb_;  // 3 per triangle: neighbour across the edge opposite vertex k
+  std::vector<int> vt_;  // per point: one triangle containing it
+  mutable std::vector<int> stack_;
+  std::vector<char> frozen_;
+  mutable std::vector<int> compact_;  // mesh triangle -> finite triangle index, or -1
+  mutable std::vector<int> mesh_of_;  // finite triangle index -> mesh triangle
+
+  void flip(int t, int k, int u, int j);
+  bool flip_needed(const Points &pts, int p, int q, int r, int s) const;
+};
+
+}  // namespace tessera

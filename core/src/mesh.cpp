@@ -1,0 +1,397 @@
+// Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
+//
+// Flat-array Delaunay triangulation: built by CGAL, kept Delaunay across
+// steps by Lawson flips with filtered exact predicates, and read off into
+// Voronoi cells.
+
+#include "tessera/mesh.h"
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+namespace tessera {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, Kernel>;
+using Fb = CGAL::Triangulation_face_base_with_info_2<int, Kernel>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, Tds>;
+using CPoint = Kernel::Point_2;
+
+// Voronoi edges shorter than this fraction of the adjacent circumradius are
+// the zero-length edges of a multifold vertex whose circumcentres differ only
+// by round-off; they get length exactly 0.
+constexpr double kZeroEdge = 1e-10;
+
+std::string point_name(int i, const long *ids) {
+  std::ostringstream s;
+  if (ids)
+    s << "id " << ids[i];
+  else
+    s << "point " << i;
+  return s.str();
+}
+
+// Orientation of (a, b, c): > 0 counter-clockwise.  Shewchuk's static error
+// bound decides almost every case in double precision; the rest go to CGAL's
+// exact predicate.
+inline int orientation(double ax, double ay, double bx, double by, double cx, double cy) {
+  const double l = (ax - cx) * (by - cy), r = (ay - cy) * (bx - cx);
+  const double det = l - r;
+  const double bound = 3.3306690738754716e-16 * (std::fabs(l) + std::fabs(r));
+  if (det > bound) return 1;
+  if (-det > bound) return -1;
+  return static_cast<int>(CGAL::orientation(CPoint(ax, ay), CPoint(bx, by), CPoint(cx, cy)));
+}
+
+// > 0 when d is strictly inside the circle through the counter-clockwise a, b, c.
+inline int in_circle(double ax, double ay, double bx, double by, double cx, double cy, double dx,
+                     double dy) {
+  const double adx = ax - dx, ady = ay - dy, bdx = bx - dx, bdy = by - dy, cdx = cx - dx,
+               cdy = cy - dy;
+  const double bc = bdx * cdy, cb = cdx * bdy, ca = cdx * ady, ac = adx * cdy, ab = adx * bdy,
+               ba = bdx * ady;
+  const double al = adx * adx + ady * ady, bl = bdx * bdx + bdy * bdy, cl = cdx * cdx + cdy * cdy;
+  const double det = al * (bc - cb) + bl * (ca - ac) + cl * (ab - ba);
+  const double perm = (std::fabs(bc) + std::fabs(cb)) * al + (std::fabs(ca) + std::fabs(ac)) * bl +
+                      (std::fabs(ab) + std::fabs(ba)) * cl;
+  const double bound = 1.1102230246251577e-15 * perm;
+  if (det > bound) return 1;
+  if (-det > bound) return -1;
+  return static_cast<int>(CGAL::side_of_oriented_circle(CPoint(ax, ay), CPoint(bx, by),
+                                                        CPoint(cx, cy), CPoint(dx, dy)));
+}
+
+inline void circumcentre(double ax, double ay, double bx, double by, double cx, double cy,
+                         Vec2 &h, double &r) {
+  const double bpx = bx - ax, bpy = by - ay, cpx = cx - ax, cpy = cy - ay;
+  const double d = 2.0 * (bpx * cpy - bpy * cpx);
+  const double b2 = bpx * bpx + bpy * bpy, c2 = cpx * cpx + cpy * cpy;
+  const double ux = (cpy * b2 - bpy * c2) / d;
+  const double uy = (bpx * c2 - cpx * b2) / d;
+  h.x = ax + ux;
+  h.y = ay + uy;
+  r = std::sqrt(ux * ux + uy * uy);
+}
+
+}  // namespace
+
+void Mesh::build(const Points &pts, const long *ids, const int *report) {
+  valid_ = false;
+  const int n = pts.n;
+  auto rep = [&](int i) { return report ? report[i] : i; };
+  if (n < 3) {
+    std::ostringstream s;
+    s << "tessera: need at least 3 non-collinear points to tessellate, got " << n;
+    throw Error(s.str());
+  }
+  std::vector<std::pair<CPoint, int>> input;
+  input.reserve(n);
+  for (int i = 0; i < n; ++i) input.emplace_back(CPoint(pts.x(i), pts.y(i)), i);
+  Delaunay dt;
+  dt.insert(input.begin(), input.end());
+
+  if (static_cast<int>(dt.number_of_vertices()) != n) {
+    std::vector<char> seen(n, 0);
+    for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+      seen[v->info()] = 1;
+    for (int i = 0; i < n; ++i) {
+      if (seen[i]) continue;
+      const int j = dt.nearest_vertex(input[i].first)->info();
+      std::ostringstream s;
+      s << "tessera: two cell centres at the same position (" << pts.x(i) << ", " << pts.y(i)
+        << "): " << point_name(rep(j), ids) << " and " << point_name(rep(i), ids)
+        << "; move or delete one of them";
+      throw Error(s.str());
+    }
+  }
+  if (dt.dimension() < 2) {
+    std::ostringstream s;
+    s << "tessera: need at least 3 non-collinear points to tessellate; all " << n
+      << " points are on one line";
+    throw Error(s.str());
+  }
+
+  // Export, with the infinite vertex as -1.  Faces are numbered in
+  // spatially sorted order of their first finite vertex for locality.
+  int nf = 0;
+  for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) f->info() = nf++;
+  v_.assign(3 * static_cast<size_t>(nf), kInfinite);
+  nb_.assign(3 * static_cast<size_t>(nf), -1);
+  vt_.assign(n, -1);
+  const auto inf = dt.infinite_vertex();
+  for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) {
+    const int id = f->info();
+    for (int k = 0; k < 3; ++k) {
+      const auto vk = f->vertex(k);
+      v_[3 * id + k] = vk == inf ? kInfinite : vk->info();
+      nb_[3 * id + k] = f->neighbor(k)->info();
+      if (vk != inf) vt_[vk->info()] = id;
+    }
+  }
+  n_points_ = n;
+  flips_ = 0;
+  valid_ = true;
+}
+
+bool Mesh::flip_needed(const Points &pts, int p, int q, int r, int s) const {
+  if (r == kInfinite || s == kInfinite) return false;  // a hull edge
+  if (p == kInfinite)  // hull chain s -> q -> r must turn clockwise
+    return orientation(pts.x(s), pts.y(s), pts.x(q), pts.y(q), pts.x(r), pts.y(r)) > 0;
+  if (q == kInfinite)  // hull chain r -> p -> s
+    return orientation(pts.x(r), pts.y(r), pts.x(p), pts.y(p), pts.x(s), pts.y(s)) > 0;
+  return in_circle(pts.x(p), pts.y(p), pts.x(q), pts.y(q), pts.x(r), pts.y(r), pts.x(s),
+                   pts.y(s)) > 0;
+}
+
+// Flips the edge between triangle t = (r, p, q) (r = vertex k) and
+// u = (s, q, p) (s = vertex j) into t = (r, p, s), u = (s, q, r).
+void Mesh::flip(int t, int k, int u, int j) {
+  const int r = v_[3 * t + k], p = v_[3 * t + (k + 1) % 3], q = v_[3 * t + (k + 2) % 3];
+  const int s = v_[3 * u + j];
+  const int A = nb_[3 * t + (k + 1) % 3];  // across (q, r)
+  const int B = nb_[3 * t + (k + 2) % 3];  // across (r, p)
+  const int C = nb_[3 * u + (j + 1) % 3];  // across (p, s)
+  const int D = nb_[3 * u + (j + 2) % 3];  // across (s, q)
+  v_[3 * t] = r;
+  v_[3 * t + 1] = p;
+  v_[3 * t + 2] = s;
+  nb_[3 * t] = C;
+  nb_[3 * t + 1] = u;
+  nb_[3 * t + 2] = B;
+  v_[3 * u] = s;
+  v_[3 * u + 1] = q;
+  v_[3 * u + 2] = r;
+  nb_[3 * u] = A;
+  nb_[3 * u + 1] = t;
+  nb_[3 * u + 2] = D;
+  for (int e = 0; e < 3; ++e) {
+    if (nb_[3 * A + e] == t) nb_[3 * A + e] = u;
+    if (nb_[3 * C + e] == u) nb_[3 * C + e] = t;
+  }
+  if (r != kInfinite) vt_[r] = t;
+  if (p != kInfinite) vt_[p] = t;
+  if (s != kInfinite) vt_[s] = u;
+  if (q != kInfinite) vt_[q] = u;
+}
+
+bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi) {
+  flips_ = 0;
+  if (!valid_ || pts.n != n_points_) {
+    valid_ = false;
+    return false;
+  }
+  const int nt = static_cast<int>(v_.size() / 3);
+  // A finite triangle that is no longer counter-clockwise has folded over:
+  // flips cannot repair that.  Outside the region of interest it is frozen.
+  frozen_.assign(nt, 0);
+  for (int t = 0; t < nt; ++t) {
+    const int a = v_[3 * t], b = v_[3 * t + 1], c = v_[3 * t + 2];
+    if (a == kInfinite || b == kInfinite || c == kInfinite) continue;
+    const double ax = pts.x(a), ay = pts.y(a), bx = pts.x(b), by = pts.y(b), cx = pts.x(c),
+                 cy = pts.y(c);
+    if (orientation(ax, ay, bx, by, cx, cy) > 0) continue;
+    const bool outside =
+        roi_lo && (std::max({ax, bx, cx}) < roi_lo[0] || std::min({ax, bx, cx}) > roi_hi[0] ||
+                   std::max({ay, by, cy}) < roi_lo[1] || std::min({ay, by, cy}) > roi_hi[1]);
+    if (!outside) {
+      valid_ = false;
+      return false;
+    }
+    frozen_[t] = 1;
+  }
+  // Lawson: every edge once, then the edges around each flip.
+  stack_.clear();
+  for (int t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k)
+      if (nb_[3 * t + k] > t) {
+        const int r = v_[3 * t + k], p = v_[3 * t + (k + 1) % 3], q = v_[3 * t + (k + 2) % 3];
+        const int u = nb_[3 * t + k];
+        if (frozen_[t] || frozen_[u]) continue;
+        int j = 0;
+        while (nb_[3 * u + j] != t) ++j;
+        if (flip_needed(pts, p, q, r, v_[3 * u + j])) {
+          stack_.push_back(t);
+          stack_.push_back(k);
+        }
+      }
+  const long max_flips = 20L * nt + 1000;
+  while (!stack_.empty()) {
+    const int k = stack_.back();
+    stack_.pop_back();
+    const int t = stack_.back();
+    stack_.pop_back();
+    const int u = nb_[3 * t + k];
+    if (frozen_[t] || frozen_[u]) continue;
+    int j = 0;
+    while (j < 3 && nb_[3 * u + j] != t) ++j;
+    if (j == 3) continue;
+    const int r = v_[3 * t + k], p = v_[3 * t + (k + 1) % 3], q = v_[3 * t + (k + 2) % 3];
+    if (!flip_needed(pts, p, q, r, v_[3 * u + j])) continue;
+    flip(t, k, u, j);
+    if (++flips_ > max_flips) {  // cannot happen for a valid mesh; be safe
+      valid_ = false;
+      return false;
+    }
+    // The four outer edges of the new pair (r,p,s) in t and (s,q,r) in u.
+    const int edges[4][2] = {{t, 0}, {t, 2}, {u, 0}, {u, 2}};
+    for (const auto &e : edges) {
+      stack_.push_back(e[0]);
+      stack_.push_back(e[1]);
+    }
+  }
+  return true;
+}
+
+void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
+  const int nt = static_cast<int>(v_.size() / 3);
+  t.n_points = n_points_;
+  t.n_owned = n_owned;
+  t.unbounded_cell = -1;
+
+  // Finite triangles, numbered compactly, with their circumcentres.
+  compact_.assign(nt, -1);
+  mesh_of_.clear();
+  t.triangles.clear();
+  t.vertices.clear();
+  t.radius.clear();
+  for (int m = 0; m < nt; ++m) {
+    const int a = v_[3 * m], b = v_[3 * m + 1], c = v_[3 * m + 2];
+    if (a == kInfinite || b == kInfinite || c == kInfinite) continue;
+    compact_[m] = static_cast<int>(t.triangles.size());
+    mesh_of_.push_back(m);
+    t.triangles.push_back({a, b, c});
+    Vec2 h;
+    double r;
+    circumcentre(pts.x(a), pts.y(a), pts.x(b), pts.y(b), pts.x(c), pts.y(c), h, r);
+    t.vertices.push_back(h);
+    t.radius.push_back(r);
+  }
+
+  t.cell_offset.resize(n_owned + 1);
+  t.cell_offset[0] = 0;
+  t.cell_vertex.clear();
+  t.cell_neighbor.clear();
+  t.edge_length.clear();
+  t.area.resize(n_owned);
+  t.perimeter.resize(n_owned);
+  for (int c = 0; c < n_owned; ++c) {
+    const int o = static_cast<int>(t.cell_vertex.size());
+    const int start = vt_[c];
+    int m = start;
+    bool unbounded = false;
+    do {
+      int i = 0;
+      while (v_[3 * m + i] != c) ++i;
+      if (compact_[m] < 0) {
+        unbounded = true;
+        break;
+      }
+      t.cell_vertex.push_back(compact_[m]);
+      // Counter-clockwise around c the next triangle shares the edge from c to
+      // this triangle's vertex i+2; that point is across the Voronoi edge.
+      t.cell_neighbor.push_back(v_[3 * m + (i + 2) % 3]);
+      m = nb_[3 * m + (i + 1) % 3];
+    } while (m != start);
+    if (unbounded) {
+      if (t.unbounded_cell < 0) t.unbounded_cell = c;
+      t.cell_vertex.resize(o);
+      t.cell_neighbor.resize(o);
+    }
+    const int len = static_cast<int>(t.cell_vertex.size()) - o;
+    t.cell_offset[c + 1] = o + len;
+    double area2 = 0.0, perim = 0.0;
+    // Shoelace relative to the cell centre: absolute coordinates far from the
+    // origin would cancel catastrophically.
+    const double cx = pts.x(c), cy = pts.y(c);
+    for (int k = 0; k < len; ++k) {
+      const int t0 = t.cell_vertex[o + k], t1 = t.cell_vertex[o + (k + 1 == len ? 0 : k + 1)];
+      const Vec2 &h0 = t.vertices[t0], &h1 = t.vertices[t1];
+      area2 += (h0.x - cx) * (h1.y - cy) - (h1.x - cx) * (h0.y - cy);
+      const double dx = h1.x - h0.x, dy = h1.y - h0.y;
+      const double d = std::sqrt(dx * dx + dy * dy);
+      const double l = d > kZeroEdge * std::max(t.radius[t0], t.radius[t1]) ? d : 0.0;
+      t.edge_length.push_back(l);
+      perim += l;
+    }
+    t.area[c] = 0.5 * area2;
+    t.perimeter[c] = perim;
+  }
+
+  // Multifold vertices: triangles sharing one circumcentre (within the
+  // zero-edge tolerance).  Any edge of a triangle of an owned cell joining two
+  // such triangles seeds a search over all triangles at that vertex, so that
+  // its whole ring of cells is known even where some are not owned here.
+  const int nft = static_cast<int>(t.triangles.size());
+  t.triangle_group.assign(nft, -1);
+  t.group_offset.assign(1, 0);
+  t.group_point.clear();
+  t.group_centre.clear();
+  auto same_vertex = [&](int a, int b) {
+    const double dx = t.vertices[a].x - t.vertices[b].x, dy = t.vertices[a].y - t.vertices[b].y;
+    const double tol = kZeroEdge * std::max(t.radius[a], t.radius[b]);
+    return dx * dx + dy * dy <= tol * tol;
+  };
+  std::vector<int> members, ring;
+  for (int c = 0; c < n_owned; ++c) {
+    for (int k = t.cell_offset[c]; k < t.cell_offset[c + 1]; ++k) {
+      const int seed = t.cell_vertex[k];
+      if (t.triangle_group[seed] != -1) continue;  // in a group, or checked (-2)
+      const int ms = mesh_of_[seed];
+      bool multifold = false;
+      for (int e = 0; e < 3 && !multifold; ++e) {
+        const int g = compact_[nb_[3 * ms + e]];
+        multifold = g >= 0 && same_vertex(seed, g);
+      }
+      if (!multifold) t.triangle_group[seed] = -2;
+      if (!multifold) continue;
+      const int group = static_cast<int>(t.group_centre.size());
+      members.assign(1, seed);
+      stack_.assign(1, ms);
+      t.triangle_group[seed] = group;
+      while (!stack_.empty()) {
+        const int cur = stack_.back();
+        stack_.pop_back();
+        for (int e = 0; e < 3; ++e) {
+          const int nm = nb_[3 * cur + e];
+          const int g = compact_[nm];
+          if (g < 0 || t.triangle_group[g] >= 0 || !same_vertex(seed, g)) continue;
+          t.triangle_group[g] = group;
+          members.push_back(g);
+          stack_.push_back(nm);
+        }
+      }
+      Vec2 centre;
+      for (int mm : members) {
+        centre.x += t.vertices[mm].x / members.size();
+        centre.y += t.vertices[mm].y / members.size();
+      }
+      ring.clear();
+      for (int mm : members)
+        for (int p : t.triangles[mm]) ring.push_back(p);
+      std::sort(ring.begin(), ring.end());
+      ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+      std::vector<std::pair<double, int>> by_angle;
+      by_angle.reserve(ring.size());
+      for (int p : ring)
+        by_angle.emplace_back(std::atan2(pts.y(p) - centre.y, pts.x(p) - centre.x), p);
+      std::sort(by_angle.begin(), by_angle.end());
+      for (const auto &ap : by_angle) t.group_point.push_back(ap.second);
+      t.group_offset.push_back(static_cast<int>(t.group_point.size()));
+      t.group_centre.push_back(centre);
+    }
+  }
+  for (int &g : t.triangle_group)
+    if (g == -2) g = -1;
+}
+
+}  // namespace tessera

@@ -81,7 +81,10 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
                            const Model &model, double *f, int f_stride, double *cell_energy) {
   ForceOutput out;
   const int nt = static_cast<int>(t.triangles.size());
-  std::vector<Vec2> grad(nt);  // dE/dh per Voronoi vertex
+  // dE/dh per Voronoi vertex; kept between calls so that a time step
+  // allocates nothing once sizes have settled.
+  thread_local std::vector<Vec2> grad;
+  grad.assign(nt, Vec2{});
   const double w = model.tension_weight();
 
   // F_p = -(dh/dr_p)^T g for the three corners of a triangle whose
@@ -121,7 +124,7 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
     out.virial[3] += by * fbx + cy * fcx - ay * gx;
   };
 
-  std::vector<int> spokes;
+  thread_local std::vector<int> spokes;
   for (int c = 0; c < t.n_owned; ++c) {
     const double ec = cell_energy_of(t, c, type, model);
     if (cell_energy) cell_energy[c] = ec;

@@ -89,6 +89,14 @@ void Mesh::build(const Points &pts, const long *ids, const int *report) {
   valid_ = false;
   const int n = pts.n;
   auto rep = [&](int i) { return report ? report[i] : i; };
+  for (int i = 0; i < n; ++i) {
+    if (!std::isfinite(pts.x(i)) || !std::isfinite(pts.y(i))) {
+      std::ostringstream s;
+      s << "tessera: " << point_name(rep(i), ids) << " has a non-finite coordinate (" << pts.x(i)
+        << ", " << pts.y(i) << ")";
+      throw Error(s.str());
+    }
+  }
   if (n < 3) {
     std::ostringstream s;
     s << "tessera: need at least 3 non-collinear points to tessellate, got " << n;
@@ -138,6 +146,33 @@ void Mesh::build(const Points &pts, const long *ids, const int *report) {
       if (vk != inf) vt_[vk->info()] = id;
     }
   }
+  // Renumber the triangles in the order the points' stars visit them, so
+  // that reading cells point by point walks memory nearly sequentially (the
+  // points themselves are spatially sorted by LAMMPS).
+  std::vector<int> order(nf, -1);
+  int next = 0;
+  for (int p = 0; p < n; ++p) {
+    const int start = vt_[p];
+    int m = start;
+    do {
+      if (order[m] < 0) order[m] = next++;
+      const int *v = &v_[3 * m];
+      const int i = (v[1] == p) + 2 * (v[2] == p);
+      m = nb_[3 * m + (i == 2 ? 0 : i + 1)];
+    } while (m != start);
+  }
+  for (int m = 0; m < nf; ++m)
+    if (order[m] < 0) order[m] = next++;
+  std::vector<int> v2(v_.size()), nb2(nb_.size());
+  for (int m = 0; m < nf; ++m)
+    for (int k = 0; k < 3; ++k) {
+      v2[3 * order[m] + k] = v_[3 * m + k];
+      nb2[3 * order[m] + k] = order[nb_[3 * m + k]];
+    }
+  v_.swap(v2);
+  nb_.swap(nb2);
+  for (int &t : vt_) t = order[t];
+
   n_points_ = n;
   flips_ = 0;
   valid_ = true;
@@ -190,6 +225,11 @@ bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi)
     valid_ = false;
     return false;
   }
+  for (int i = 0; i < pts.n; ++i)
+    if (!std::isfinite(pts.x(i)) || !std::isfinite(pts.y(i))) {  // build() names it
+      valid_ = false;
+      return false;
+    }
   const int nt = static_cast<int>(v_.size() / 3);
   // A finite triangle that is no longer counter-clockwise has folded over:
   // flips cannot repair that.  Outside the region of interest it is frozen.
@@ -217,8 +257,7 @@ bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi)
         const int r = v_[3 * t + k], p = v_[3 * t + (k + 1) % 3], q = v_[3 * t + (k + 2) % 3];
         const int u = nb_[3 * t + k];
         if (frozen_[t] || frozen_[u]) continue;
-        int j = 0;
-        while (nb_[3 * u + j] != t) ++j;
+        const int j = (nb_[3 * u + 1] == t) + 2 * (nb_[3 * u + 2] == t);
         if (flip_needed(pts, p, q, r, v_[3 * u + j])) {
           stack_.push_back(t);
           stack_.push_back(k);
@@ -259,101 +298,125 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
   t.unbounded_cell = -1;
 
   // Finite triangles, numbered compactly, with their circumcentres.
-  compact_.assign(nt, -1);
-  mesh_of_.clear();
-  t.triangles.clear();
-  t.vertices.clear();
-  t.radius.clear();
+  compact_.resize(nt);
+  mesh_of_.resize(nt);
+  t.triangles.resize(nt);
+  t.vertices.resize(nt);
+  t.radius.resize(nt);
+  int nft = 0;
   for (int m = 0; m < nt; ++m) {
     const int a = v_[3 * m], b = v_[3 * m + 1], c = v_[3 * m + 2];
-    if (a == kInfinite || b == kInfinite || c == kInfinite) continue;
-    compact_[m] = static_cast<int>(t.triangles.size());
-    mesh_of_.push_back(m);
-    t.triangles.push_back({a, b, c});
-    Vec2 h;
-    double r;
-    circumcentre(pts.x(a), pts.y(a), pts.x(b), pts.y(b), pts.x(c), pts.y(c), h, r);
-    t.vertices.push_back(h);
-    t.radius.push_back(r);
-  }
-
-  t.cell_offset.resize(n_owned + 1);
-  t.cell_offset[0] = 0;
-  t.cell_vertex.clear();
-  t.cell_neighbor.clear();
-  t.edge_length.clear();
-  t.area.resize(n_owned);
-  t.perimeter.resize(n_owned);
-  for (int c = 0; c < n_owned; ++c) {
-    const int o = static_cast<int>(t.cell_vertex.size());
-    const int start = vt_[c];
-    int m = start;
-    bool unbounded = false;
-    do {
-      int i = 0;
-      while (v_[3 * m + i] != c) ++i;
-      if (compact_[m] < 0) {
-        unbounded = true;
-        break;
-      }
-      t.cell_vertex.push_back(compact_[m]);
-      // Counter-clockwise around c the next triangle shares the edge from c to
-      // this triangle's vertex i+2; that point is across the Voronoi edge.
-      t.cell_neighbor.push_back(v_[3 * m + (i + 2) % 3]);
-      m = nb_[3 * m + (i + 1) % 3];
-    } while (m != start);
-    if (unbounded) {
-      if (t.unbounded_cell < 0) t.unbounded_cell = c;
-      t.cell_vertex.resize(o);
-      t.cell_neighbor.resize(o);
+    if (a == kInfinite || b == kInfinite || c == kInfinite) {
+      compact_[m] = -1;
+      continue;
     }
-    const int len = static_cast<int>(t.cell_vertex.size()) - o;
-    t.cell_offset[c + 1] = o + len;
-    double area2 = 0.0, perim = 0.0;
-    // Shoelace relative to the cell centre: absolute coordinates far from the
-    // origin would cancel catastrophically.
-    const double cx = pts.x(c), cy = pts.y(c);
-    for (int k = 0; k < len; ++k) {
-      const int t0 = t.cell_vertex[o + k], t1 = t.cell_vertex[o + (k + 1 == len ? 0 : k + 1)];
-      const Vec2 &h0 = t.vertices[t0], &h1 = t.vertices[t1];
-      area2 += (h0.x - cx) * (h1.y - cy) - (h1.x - cx) * (h0.y - cy);
-      const double dx = h1.x - h0.x, dy = h1.y - h0.y;
-      const double d = std::sqrt(dx * dx + dy * dy);
-      const double l = d > kZeroEdge * std::max(t.radius[t0], t.radius[t1]) ? d : 0.0;
-      t.edge_length.push_back(l);
-      perim += l;
-    }
-    t.area[c] = 0.5 * area2;
-    t.perimeter[c] = perim;
+    compact_[m] = nft;
+    mesh_of_[nft] = m;
+    t.triangles[nft] = {a, b, c};
+    circumcentre(pts.x(a), pts.y(a), pts.x(b), pts.y(b), pts.x(c), pts.y(c), t.vertices[nft],
+                 t.radius[nft]);
+    ++nft;
   }
+  t.triangles.resize(nft);
+  t.vertices.resize(nft);
+  t.radius.resize(nft);
+  mesh_of_.resize(nft);
 
-  // Multifold vertices: triangles sharing one circumcentre (within the
-  // zero-edge tolerance).  Any edge of a triangle of an owned cell joining two
-  // such triangles seeds a search over all triangles at that vertex, so that
-  // its whole ring of cells is known even where some are not owned here.
-  const int nft = static_cast<int>(t.triangles.size());
-  t.triangle_group.assign(nft, -1);
-  t.group_offset.assign(1, 0);
-  t.group_point.clear();
-  t.group_centre.clear();
   auto same_vertex = [&](int a, int b) {
     const double dx = t.vertices[a].x - t.vertices[b].x, dy = t.vertices[a].y - t.vertices[b].y;
     const double tol = kZeroEdge * std::max(t.radius[a], t.radius[b]);
     return dx * dx + dy * dy <= tol * tol;
   };
-  std::vector<int> members, ring;
+  // Multifold vertices (triangles sharing one circumcentre) are seeded while
+  // the cells are read: a zero-length edge of an owned cell marks two such
+  // triangles.  The one case an owned cell's polygon cannot show is the
+  // Delaunay edge opposite the cell in its triangle (x, y): if x or y is
+  // owned, its own polygon shows it; if both are ghosts it is checked here.
+  seeds_.clear();
+
+  t.cell_offset.resize(n_owned + 1);
+  t.cell_offset[0] = 0;
+  t.area.resize(n_owned);
+  t.perimeter.resize(n_owned);
+  // Written through raw pointers with room checked per triangle: push_back's
+  // bookkeeping was a measurable part of a step.
+  size_t cap = std::max<size_t>(t.cell_vertex.capacity(), 7 * static_cast<size_t>(n_owned) + 64);
+  t.cell_vertex.resize(cap);
+  t.cell_neighbor.resize(cap);
+  t.edge_length.resize(cap);
+  size_t used = 0;
   for (int c = 0; c < n_owned; ++c) {
-    for (int k = t.cell_offset[c]; k < t.cell_offset[c + 1]; ++k) {
-      const int seed = t.cell_vertex[k];
-      if (t.triangle_group[seed] != -1) continue;  // in a group, or checked (-2)
-      const int ms = mesh_of_[seed];
-      bool multifold = false;
-      for (int e = 0; e < 3 && !multifold; ++e) {
-        const int g = compact_[nb_[3 * ms + e]];
-        multifold = g >= 0 && same_vertex(seed, g);
+    const size_t o = used;
+    const int start = vt_[c];
+    int m = start;
+    bool unbounded = false;
+    do {
+      const int *v = &v_[3 * m];
+      const int i = (v[1] == c) + 2 * (v[2] == c);  // index of c, without branches
+      const int cm = compact_[m];
+      if (cm < 0) {
+        unbounded = true;
+        break;
       }
-      if (!multifold) t.triangle_group[seed] = -2;
-      if (!multifold) continue;
+      if (used == cap) {
+        cap *= 2;
+        t.cell_vertex.resize(cap);
+        t.cell_neighbor.resize(cap);
+        t.edge_length.resize(cap);
+      }
+      t.cell_vertex[used] = cm;
+      // Counter-clockwise around c the next triangle shares the edge from c to
+      // this triangle's vertex i+2; that point is across the Voronoi edge.
+      const int i1 = i == 2 ? 0 : i + 1, i2 = i1 == 2 ? 0 : i1 + 1;
+      t.cell_neighbor[used] = v[i2];
+      ++used;
+      if (v[i1] >= n_owned && v[i2] >= n_owned) {
+        const int g = compact_[nb_[3 * m + i]];
+        if (g >= 0 && same_vertex(cm, g)) seeds_.push_back(cm);
+      }
+      m = nb_[3 * m + i1];
+    } while (m != start);
+    if (unbounded) {
+      if (t.unbounded_cell < 0) t.unbounded_cell = c;
+      used = o;
+    }
+    const int len = static_cast<int>(used - o);
+    t.cell_offset[c + 1] = static_cast<int>(used);
+    double area2 = 0.0, perim = 0.0;
+    // Shoelace relative to the cell centre: absolute coordinates far from the
+    // origin would cancel catastrophically.
+    const double cx = pts.x(c), cy = pts.y(c);
+    const int *cv = &t.cell_vertex[o];
+    double *el = &t.edge_length[o];
+    for (int k = 0; k < len; ++k) {
+      const int t0 = cv[k], t1 = cv[k + 1 == len ? 0 : k + 1];
+      const Vec2 &h0 = t.vertices[t0], &h1 = t.vertices[t1];
+      area2 += (h0.x - cx) * (h1.y - cy) - (h1.x - cx) * (h0.y - cy);
+      const double dx = h1.x - h0.x, dy = h1.y - h0.y;
+      const double d = std::sqrt(dx * dx + dy * dy);
+      const double l = d > kZeroEdge * std::max(t.radius[t0], t.radius[t1]) ? d : 0.0;
+      el[k] = l;
+      perim += l;
+      if (l == 0.0) seeds_.push_back(t0);
+    }
+    t.area[c] = 0.5 * area2;
+    t.perimeter[c] = perim;
+  }
+  t.cell_vertex.resize(used);
+  t.cell_neighbor.resize(used);
+  t.edge_length.resize(used);
+
+  // Each seed starts a search over all triangles at that vertex, so that its
+  // whole ring of cells is known even where some are not owned here.
+  t.triangle_group.assign(nft, -1);
+  t.group_offset.assign(1, 0);
+  t.group_point.clear();
+  t.group_centre.clear();
+  std::vector<int> members, ring;
+  for (const int seed : seeds_) {
+    {
+      if (t.triangle_group[seed] >= 0) continue;
+      const int ms = mesh_of_[seed];
       const int group = static_cast<int>(t.group_centre.size());
       members.assign(1, seed);
       stack_.assign(1, ms);
@@ -369,6 +432,10 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
           members.push_back(g);
           stack_.push_back(nm);
         }
+      }
+      if (members.size() < 2) {  // a tolerance edge case: no partner after all
+        t.triangle_group[seed] = -1;
+        continue;
       }
       Vec2 centre;
       for (int mm : members) {
@@ -390,8 +457,6 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
       t.group_centre.push_back(centre);
     }
   }
-  for (int &g : t.triangle_group)
-    if (g == -2) g = -1;
 }
 
 }  // namespace tessera

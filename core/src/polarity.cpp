@@ -23,6 +23,31 @@ void polarity_torque(const Tessellation &t, const double *theta, const PolarityP
   }
 }
 
+void polarity_torque_vec(const Tessellation &t, const double *n, int n_stride,
+                         const PolarityParams &p, const double *vhat, const unsigned char *has_v,
+                         double *tau) {
+  const double cphi = std::cos(p.phi_G), sphi = std::sin(p.phi_G);
+  for (int c = 0; c < t.n_owned; ++c) {
+    const double nx = n[static_cast<long>(c) * n_stride], ny = n[static_cast<long>(c) * n_stride + 1];
+    double cross = 0.0;
+    if (p.J_S != 0.0) {
+      double sx = 0.0, sy = 0.0;  // sum of the neighbours' polarities
+      for (int k = t.cell_offset[c]; k < t.cell_offset[c + 1]; ++k) {
+        if (!(t.edge_length[k] > 0.0)) continue;
+        const long j = static_cast<long>(t.cell_neighbor[k]) * n_stride;
+        sx += n[j];
+        sy += n[j + 1];
+      }
+      cross = nx * sy - ny * sx;
+    }
+    const double cg = nx * cphi + ny * sphi, sg = ny * cphi - nx * sphi;
+    double v = p.J_S * cross - p.J_G * sg * cg;
+    if (p.J_V != 0.0 && vhat && (!has_v || has_v[c]))
+      v -= p.J_V * (vhat[2 * c] * ny - vhat[2 * c + 1] * nx);
+    tau[c] = v;
+  }
+}
+
 void velocity_observables(const Tessellation &t, const double *vel, int vel_stride,
                           double *coordination, double *orientation) {
   auto unit = [&](int i, double &ux, double &uy) {

@@ -59,7 +59,8 @@ private:
   mutable std::vector<int> stack_;
   std::vector<char> frozen_;
   mutable std::vector<int> compact_;  // mesh triangle -> finite triangle index, or -1
-  mutable std::vector<int> mesh_of_;  // finite triangle index -> mesh triangle
+  mutable std::vector<int> mesh_of_;
+  mutable std::vector<int> seeds_;  // finite triangle index -> mesh triangle
 
   void flip(int t, int k, int u, int j);
   bool flip_needed(const Points &pts, int p, int q, int r, int s) const;

@@ -24,6 +24,16 @@ struct PolarityParams {
 void polarity_torque(const Tessellation &t, const double *theta, const PolarityParams &p,
                      const double *psi, const unsigned char *has_psi, double *tau);
 
+// The same torque from unit polarity vectors n (stride n_stride, for every
+// point of t) instead of angles, without trigonometric functions:
+//   sin(th_j - th_i) = n_i x n_j, sin(th - phi) cos(th - phi) = s' c' with
+//   (c', s') = n rotated by -phi, sin(th_i - psi_i) = vhat_i x n_i.
+// vhat (optional, stride 2, n_owned entries) is the unit velocity; has_v[i]
+// == 0 where the velocity is zero.
+void polarity_torque_vec(const Tessellation &t, const double *n, int n_stride,
+                         const PolarityParams &p, const double *vhat, const unsigned char *has_v,
+                         double *tau);
+
 // Coordination C_i = mean over Voronoi neighbours j (non-zero edges) of
 // v_i/|v_i| . v_j/|v_j| (in [-1, 1]), and orientation O_i = arccos(v_i/|v_i| . x)
 // in [0, pi].  vel: stride-2 velocities of all points of t.  Cells with zero

@@ -199,14 +199,17 @@ void FixPolarity::post_force(int /*vflag*/)
   double **v = atom->v;
   const int *mask = atom->mask;
   const int nlocal = atom->nlocal;
-  psi.resize(nlocal);
-  has_psi.resize(nlocal);
+  vhat.resize(2 * nlocal);
+  has_v.resize(nlocal);
   for (int i = 0; i < nlocal; i++) {
-    has_psi[i] = (v[i][0] != 0.0 || v[i][1] != 0.0);
-    psi[i] = has_psi[i] ? std::atan2(v[i][1], v[i][0]) : 0.0;
+    const double s = std::sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1]);
+    has_v[i] = s > 0.0;
+    vhat[2 * i] = has_v[i] ? v[i][0] / s : 0.0;
+    vhat[2 * i + 1] = has_v[i] ? v[i][1] / s : 0.0;
     if (!(mask[i] & groupbit) || !(mu[i][3] > 0.0)) continue;
-    f[i][0] += f_active * mu[i][0] / mu[i][3];
-    f[i][1] += f_active * mu[i][1] / mu[i][3];
+    const double inv = f_active / mu[i][3];
+    f[i][0] += inv * mu[i][0];
+    f[i][1] += inv * mu[i][1];
   }
 }
 
@@ -215,36 +218,44 @@ void FixPolarity::post_force(int /*vflag*/)
    of step n, the same state whose active force moves the positions in this
    step.  Doing it here rather than at the end of step n keeps mu at the end
    of every step equal to the angle that step's force used, so that a new
-   run or a restart continues exactly. */
+   run or a restart continues exactly.  The torque works on unit vectors
+   (cross products instead of sines of angle differences); the angle change
+   is applied as a rotation of mu. */
 
 void FixPolarity::initial_integrate(int /*vflag*/)
 {
   const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
   double **mu = atom->mu;
   const int *mask = atom->mask;
   const tagint *tag = atom->tag;
-  if (static_cast<int>(psi.size()) != nlocal)
+  if (static_cast<int>(has_v.size()) != nlocal)
     error->one(FLERR, "fix polarity: internal error: velocity directions not recorded");
 
-  theta.resize(nall);
-  for (int i = 0; i < nall; i++) theta[i] = std::atan2(mu[i][1], mu[i][0]);
-  tau.assign(nlocal, 0.0);
-
+  // Unit polarities: mu[i][0..1] / |mu|.  mu is stored with |mu| in mu[i][3];
+  // every cell's moment has length mu[i][3] > 0 after init().
+  const int nall = nlocal + atom->nghost;
+  unit.resize(2 * nall);
+  for (int i = 0; i < nall; i++) {
+    const double inv = mu[i][3] > 0.0 ? 1.0 / mu[i][3] : 0.0;
+    unit[2 * i] = mu[i][0] * inv;
+    unit[2 * i + 1] = mu[i][1] * inv;
+  }
+  tau.resize(nlocal);
   if (params.J_S != 0.0) {
     const tessera::Tessellation &t = pair->tessellation();
     if (pair->tessellation_step() != update->ntimestep - 1 || t.n_owned != nlocal)
       error->one(FLERR,
                  "fix polarity: the tessellation of pair vertex/voronoi is not from the "
                  "previous step");
-    tessera::polarity_torque(t, theta.data(), params, psi.data(), has_psi.data(), tau.data());
+    tessera::polarity_torque_vec(t, unit.data(), 2, params, vhat.data(), has_v.data(),
+                                 tau.data());
   } else {
     // Without neighbour alignment no tessellation is needed: the torque of
-    // each cell depends on its own angle and velocity only.
-    tessera::Tessellation none;
+    // each cell depends on its own polarity and velocity only.
     none.n_owned = nlocal;
     none.cell_offset.assign(nlocal + 1, 0);
-    tessera::polarity_torque(none, theta.data(), params, psi.data(), has_psi.data(), tau.data());
+    tessera::polarity_torque_vec(none, unit.data(), 2, params, vhat.data(), has_v.data(),
+                                 tau.data());
   }
 
   const double dt = update->dt;
@@ -252,11 +263,16 @@ void FixPolarity::initial_integrate(int /*vflag*/)
   const bigint step = update->ntimestep;
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    double th = theta[i] + dt * tau[i] / gamma_r;
-    if (d_rot > 0.0) th += noise * gaussian(seed, tag[i], step);
+    double dth = dt * tau[i] / gamma_r;
+    if (d_rot > 0.0) dth += noise * gaussian(seed, tag[i], step);
+    const double c = std::cos(dth), s = std::sin(dth);
     const double m = mu[i][3] > 0.0 ? mu[i][3] : 1.0;
-    mu[i][0] = m * std::cos(th);
-    mu[i][1] = m * std::sin(th);
+    const double nx = unit[2 * i], ny = unit[2 * i + 1];
+    // Renormalise so that round-off in the rotations does not drift |mu|.
+    double rx = c * nx - s * ny, ry = s * nx + c * ny;
+    const double r = 1.0 / std::sqrt(rx * rx + ry * ry);
+    mu[i][0] = m * rx * r;
+    mu[i][1] = m * ry * r;
     mu[i][2] = 0.0;
     mu[i][3] = m;
   }

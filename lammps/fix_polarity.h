@@ -15,6 +15,7 @@ FixStyle(polarity,FixPolarity);
 #include "fix.h"
 
 #include "tessera/polarity.h"
+#include "tessera/tessellation.h"
 
 #include <cstdint>
 #include <vector>
@@ -38,8 +39,9 @@ class FixPolarity : public Fix {
   double d_rot;
   int seed;
   class PairVertexVoronoi *pair;
-  std::vector<double> theta, tau, psi;
-  std::vector<unsigned char> has_psi;
+  std::vector<double> tau, vhat, unit;
+  tessera::Tessellation none;  // an empty tessellation when no neighbours are needed
+  std::vector<unsigned char> has_v;
 
   void init_angles();
   void polar_orders(double &polar, double &nematic);

@@ -41,6 +41,12 @@ PairVertexVoronoi::PairVertexVoronoi(LAMMPS *lmp) : Pair(lmp)
   lambda_set = nullptr;
   type_set = nullptr;
   tess_step = -1;
+  incremental = 1;
+  mesh_ncalls = -1;
+  nextra = 7;
+  reference_every = 0;
+  pvector = stats;
+  for (double &v : stats) v = 0.0;
 }
 
 PairVertexVoronoi::~PairVertexVoronoi()
@@ -112,8 +118,29 @@ void PairVertexVoronoi::settings(int narg, char **arg)
                    "default) or 'cell' (Lambda*P per cell, as the thesis code), got '{}'",
                    arg[iarg + 1]);
       iarg += 2;
+    } else if (strcmp(arg[iarg], "incremental") == 0) {
+      if (iarg + 2 > narg)
+        error->all(FLERR, "pair_style vertex/voronoi: keyword 'incremental' needs a value (yes or no)");
+      if (strcmp(arg[iarg + 1], "yes") == 0)
+        incremental = 1;
+      else if (strcmp(arg[iarg + 1], "no") == 0)
+        incremental = 0;
+      else
+        error->all(FLERR, "pair_style vertex/voronoi: incremental must be yes or no, got '{}'",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "reference") == 0) {
+      if (iarg + 2 > narg)
+        error->all(FLERR, "pair_style vertex/voronoi: keyword 'reference' needs a value N");
+      reference_every = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (reference_every < 0)
+        error->all(FLERR, "pair_style vertex/voronoi: reference N must be >= 0, got {}",
+                   arg[iarg + 1]);
+      iarg += 2;
     } else {
-      error->all(FLERR, "pair_style vertex/voronoi: unknown keyword '{}' (known: tension)",
+      error->all(FLERR,
+                 "pair_style vertex/voronoi: unknown keyword '{}' (known: tension, incremental, "
+                 "reference)",
                  arg[iarg]);
     }
   }
@@ -270,6 +297,7 @@ void PairVertexVoronoi::init_style()
       model.set_lambda(i - 1, j - 1, lam);
     }
   // No neighbor list is requested: the tessellation needs only the ghost atoms.
+  for (double &v : stats) v = 0.0;
 }
 
 double PairVertexVoronoi::init_one(int i, int j)
@@ -292,29 +320,55 @@ bool PairVertexVoronoi::tessellation_current() const
   return tess_step == update->ntimestep && tess.n_owned == atom->nlocal;
 }
 
+/* Triangulation of owned + ghost atoms.  Between neighbor list builds the
+   atoms keep their local indices, so the mesh of the previous step is
+   updated by flips; after a rebuild (atoms exchanged, sorted, or a new
+   run) it is triangulated from scratch. */
+
 void PairVertexVoronoi::tessellate()
 {
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
   tessera::Points pts{&atom->x[0][0], nall, 3};
-  try {
-    tess = tessera::tessellate_local(pts, nlocal, nullptr, false);
-  } catch (tessera::Error &) {
-    // Redo with atom IDs so that the message names them.
-    std::vector<long> ids(nall);
-    for (int i = 0; i < nall; i++) ids[i] = atom->tag[i];
-    try {
-      tessera::tessellate_local(pts, nlocal, ids.data(), false);
-    } catch (tessera::Error &e) {
-      error->one(FLERR, "pair_style vertex/voronoi: {}", e.what());
-    }
-    error->one(FLERR, "pair_style vertex/voronoi: tessellation failed");
-  }
-
   const double w = ghost_width();
   const double lo[2] = {domain->sublo[0] - w, domain->sublo[1] - w};
   const double hi[2] = {domain->subhi[0] + w, domain->subhi[1] + w};
-  const tessera::Coverage cov = tessera::check_coverage(tess, lo, hi);
+
+  bool fresh = false;
+  auto build = [&]() {
+    try {
+      mesh.build(pts);
+    } catch (tessera::Error &) {
+      // Redo with atom IDs so that the message names them.
+      std::vector<long> ids(nall);
+      for (int i = 0; i < nall; i++) ids[i] = atom->tag[i];
+      try {
+        mesh.build(pts, ids.data());
+      } catch (tessera::Error &e) {
+        error->one(FLERR, "pair_style vertex/voronoi: {}", e.what());
+      }
+      error->one(FLERR, "pair_style vertex/voronoi: tessellation failed");
+    }
+    mesh_ncalls = neighbor->ncalls;
+    fresh = true;
+    stats[2] += 1.0;
+  };
+  if (!incremental || mesh_ncalls != neighbor->ncalls || !mesh.valid() || mesh.n_points() != nall)
+    build();
+  else if (mesh.update(pts, lo, hi))
+    stats[3] += mesh.flips_last_update();
+  else
+    build();
+  mesh.cells(pts, nlocal, tess);
+
+  tessera::Coverage cov = tessera::check_coverage(tess, lo, hi);
+  if (!cov.ok && !fresh) {
+    // An updated mesh is certified only inside the region: make sure the
+    // failure is the configuration's, not the mesh's.
+    build();
+    mesh.cells(pts, nlocal, tess);
+    cov = tessera::check_coverage(tess, lo, hi);
+  }
   double need = cov.needed_margin, need_all;
   MPI_Allreduce(&need, &need_all, 1, MPI_DOUBLE, MPI_MAX, world);
   if (need_all > 0.0) {
@@ -343,7 +397,9 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
 
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
+  const double t0 = MPI_Wtime();
   tessellate();
+  const double t1 = MPI_Wtime();
 
   type0.resize(nall);
   const int *type = atom->type;
@@ -354,6 +410,18 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
   const tessera::ForceOutput out =
       tessera::compute_forces(tess, pts, type0.data(), model, &atom->f[0][0], 3, cell_e.data());
 
+  stats[0] += t1 - t0;
+  stats[1] += MPI_Wtime() - t1;
+  stats[4] += 1.0;
+  if (reference_every > 0 && update->ntimestep % reference_every == 0) {
+    // A from-scratch CGAL triangulation of the same points, timed for
+    // benchmarks (bench/): the yardstick of the incremental mesh.
+    const double r0 = MPI_Wtime();
+    tessera::Mesh scratch;
+    scratch.build(pts);
+    stats[5] += MPI_Wtime() - r0;
+    stats[6] += 1.0;
+  }
   if (eflag_global) eng_vdwl += out.energy;
   if (eflag_atom)
     for (int i = 0; i < nlocal; i++) eatom[i] += cell_e[i];

@@ -15,6 +15,7 @@ PairStyle(vertex/voronoi,PairVertexVoronoi);
 #include "pair.h"
 
 #include "tessera/energy.h"
+#include "tessera/mesh.h"
 #include "tessera/tessellation.h"
 
 #include <vector>
@@ -58,6 +59,11 @@ class PairVertexVoronoi : public Pair {
 
   tessera::Tessellation tess;
   bigint tess_step;
+  tessera::Mesh mesh;
+  int incremental;      // keep the triangulation between steps (default) or rebuild every step
+  bigint mesh_ncalls;   // neighbor->ncalls when the mesh was built: atoms re-ordered since?
+  int reference_every;  // time a from-scratch triangulation every this many steps (0: never)
+  double stats[7];      // pvector: see the doc (times, rebuilds, flips, steps, reference)
   std::vector<int> type0;
   std::vector<double> cell_e;
 

@@ -93,19 +93,19 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
     const double ax = pts.x(ia), ay = pts.y(ia);
     const double bx = pts.x(ib) - ax, by = pts.y(ib) - ay;
     const double cx = pts.x(ic) - ax, cy = pts.y(ic) - ay;
-    const double D = 2.0 * (bx * cy - by * cx);
+    const double iD = 0.5 / (bx * cy - by * cx);  // 1 / D, D = 2 (b' x c')
     const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
-    const double ux = (cy * b2 - by * c2) / D, uy = (bx * c2 - cx * b2) / D;
+    const double ux = (cy * b2 - by * c2) * iD, uy = (bx * c2 - cx * b2) * iD;
     // u = N / D with u = h - a; Jacobians with respect to b' = b - a, c' = c - a:
     //   du/db' = (dN/db' - u (dD/db')^T) / D, dD/db' = 2 (cy, -cx), dD/dc' = 2 (-by, bx).
-    const double Jb_xx = (2.0 * cy * bx - ux * 2.0 * cy) / D;
-    const double Jb_xy = (2.0 * cy * by - c2 + ux * 2.0 * cx) / D;
-    const double Jb_yx = (c2 - 2.0 * cx * bx - uy * 2.0 * cy) / D;
-    const double Jb_yy = (-2.0 * cx * by + uy * 2.0 * cx) / D;
-    const double Jc_xx = (-2.0 * by * cx + ux * 2.0 * by) / D;
-    const double Jc_xy = (b2 - 2.0 * by * cy - ux * 2.0 * bx) / D;
-    const double Jc_yx = (2.0 * bx * cx - b2 + uy * 2.0 * by) / D;
-    const double Jc_yy = (2.0 * bx * cy - uy * 2.0 * bx) / D;
+    const double Jb_xx = 2.0 * cy * (bx - ux) * iD;
+    const double Jb_xy = (2.0 * (cy * by + ux * cx) - c2) * iD;
+    const double Jb_yx = (c2 - 2.0 * (cx * bx + uy * cy)) * iD;
+    const double Jb_yy = 2.0 * cx * (uy - by) * iD;
+    const double Jc_xx = 2.0 * by * (ux - cx) * iD;
+    const double Jc_xy = (b2 - 2.0 * (by * cy + ux * bx)) * iD;
+    const double Jc_yx = (2.0 * (bx * cx + uy * by) - b2) * iD;
+    const double Jc_yy = 2.0 * bx * (cy - uy) * iD;
     // F = -J^T g for b and c; a takes the rest (the three Jacobians sum to I).
     const double fbx = -(Jb_xx * gx + Jb_yx * gy), fby = -(Jb_xy * gx + Jb_yy * gy);
     const double fcx = -(Jc_xx * gx + Jc_yx * gy), fcy = -(Jc_xy * gx + Jc_yy * gy);
@@ -125,42 +125,57 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
   };
 
   thread_local std::vector<int> spokes;
+  const int ntypes = model.ntypes();
   for (int c = 0; c < t.n_owned; ++c) {
-    const double ec = cell_energy_of(t, c, type, model);
-    if (cell_energy) cell_energy[c] = ec;
-    out.energy += ec;
-
-    const CellType &ct = model.types[type[c]];
-    const double dEdA = ct.K * (t.area[c] - ct.A0);
-    const double dEdP = ct.Gamma * t.perimeter[c];
     const int o = t.cell_offset[c], m = t.cell_size(c);
-    if (m == 0) continue;
-    auto group_at = [&](int k) { return t.triangle_group[t.cell_vertex[o + ((k % m) + m) % m]]; };
+    const int tc = type[c];
+    const CellType &ct = model.types[tc];
+    const double dA = t.area[c] - ct.A0;
+    const double dEdA = ct.K * dA;
+    const double dEdP = ct.Gamma * t.perimeter[c];
+    const double *lam_row = &model.lambda[static_cast<size_t>(tc) * ntypes];
+    if (m == 0) {
+      const double ec = 0.5 * ct.K * dA * dA + 0.5 * ct.Gamma * t.perimeter[c] * t.perimeter[c];
+      if (cell_energy) cell_energy[c] = ec;
+      out.energy += ec;
+      continue;
+    }
+    const int *cv = &t.cell_vertex[o];
+    const int *cn = &t.cell_neighbor[o];
+    const double *el = &t.edge_length[o];
+    auto wrap = [m](int k) { return k < 0 ? k + m : (k >= m ? k - m : k); };
+    auto group_at = [&](int k) { return t.triangle_group[cv[wrap(k)]]; };
 
-    // Unit vector and tension coefficient of each edge k (vertex k -> k+1).
-    auto edge = [&](int k, double &ux, double &uy, double &lam) {
-      const int a = t.cell_vertex[o + k], b = t.cell_vertex[o + (k + 1) % m];
-      const double l = t.edge_length[o + k];
+    // Unit vector of edge k (vertex k -> k+1); zero for a zero-length edge,
+    // which only occurs inside a multifold vertex, handled below.
+    auto unit = [&](int k, double &ux, double &uy) {
+      const double l = el[k];
       if (l > 0.0) {
-        ux = (t.vertices[b].x - t.vertices[a].x) / l;
-        uy = (t.vertices[b].y - t.vertices[a].y) / l;
+        const Vec2 &a = t.vertices[cv[k]], &b = t.vertices[cv[wrap(k + 1)]];
+        const double inv = 1.0 / l;
+        ux = (b.x - a.x) * inv;
+        uy = (b.y - a.y) * inv;
       } else {
-        ux = uy = 0.0;  // only inside a multifold vertex, which is handled below
+        ux = uy = 0.0;
       }
-      lam = w * model.lambda_of(type[c], type[t.cell_neighbor[o + k]]);
     };
 
-    double in_x, in_y, in_lam;
-    edge(m - 1, in_x, in_y, in_lam);
+    double tension = 0.0;
+    double in_x, in_y;
+    unit(m - 1, in_x, in_y);
+    double in_lam = w * lam_row[type[cn[m - 1]]];
     for (int k = 0; k < m; ++k) {
-      double out_x, out_y, out_lam;
-      edge(k, out_x, out_y, out_lam);
-      const int g = group_at(k);
+      double out_x, out_y;
+      unit(k, out_x, out_y);
+      const double lam = lam_row[type[cn[k]]];
+      const double out_lam = w * lam;
+      tension += lam * el[k];
+      const int g = t.triangle_group[cv[k]];
       if (g < 0) {
-        const Vec2 &hp = t.vertices[t.cell_vertex[o + (k + m - 1) % m]];
-        const Vec2 &hn = t.vertices[t.cell_vertex[o + (k + 1) % m]];
+        const Vec2 &hp = t.vertices[cv[k == 0 ? m - 1 : k - 1]];
+        const Vec2 &hn = t.vertices[cv[k + 1 == m ? 0 : k + 1]];
         // dA/dh_k = 1/2 (h_{k+1} - h_{k-1}) x z ; dP/dh_k = u_in - u_out.
-        Vec2 &gr = grad[t.cell_vertex[o + k]];
+        Vec2 &gr = grad[cv[k]];
         gr.x += 0.5 * dEdA * (hn.y - hp.y) + (dEdP + in_lam) * in_x - (dEdP + out_lam) * out_x;
         gr.y += 0.5 * dEdA * (hp.x - hn.x) + (dEdP + in_lam) * in_y - (dEdP + out_lam) * out_y;
       } else if (group_at(k - 1) != g || m == 1) {
@@ -174,8 +189,8 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
         // that branch's side: perpendicular to the Delaunay edge, rot90(q - c).
         int run_end = k;  // last polygon position at V
         while (run_end - k + 1 < m && group_at(run_end + 1) == g) ++run_end;
-        const Vec2 &hp = t.vertices[t.cell_vertex[o + (k + m - 1) % m]];
-        const Vec2 &hn = t.vertices[t.cell_vertex[o + (run_end + 1) % m]];
+        const Vec2 &hp = t.vertices[cv[wrap(k - 1)]];
+        const Vec2 &hn = t.vertices[cv[(run_end + 1) % m]];
         const Vec2 V = t.group_centre[g];
         const int *ring = &t.group_point[t.group_offset[g]];
         const int kk = t.group_offset[g + 1] - t.group_offset[g];
@@ -224,6 +239,10 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
       in_y = out_y;
       in_lam = out_lam;
     }
+    const double ec = 0.5 * ct.K * dA * dA + 0.5 * ct.Gamma * t.perimeter[c] * t.perimeter[c] +
+                      w * tension;
+    if (cell_energy) cell_energy[c] = ec;
+    out.energy += ec;
   }
 
   for (int tri = 0; tri < nt; ++tri) {

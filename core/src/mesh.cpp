@@ -74,10 +74,10 @@ inline int in_circle(double ax, double ay, double bx, double by, double cx, doub
 inline void circumcentre(double ax, double ay, double bx, double by, double cx, double cy,
                          Vec2 &h, double &r) {
   const double bpx = bx - ax, bpy = by - ay, cpx = cx - ax, cpy = cy - ay;
-  const double d = 2.0 * (bpx * cpy - bpy * cpx);
+  const double id = 0.5 / (bpx * cpy - bpy * cpx);
   const double b2 = bpx * bpx + bpy * bpy, c2 = cpx * cpx + cpy * cpy;
-  const double ux = (cpy * b2 - bpy * c2) / d;
-  const double uy = (bpx * c2 - cpx * b2) / d;
+  const double ux = (cpy * b2 - bpy * c2) * id;
+  const double uy = (bpx * c2 - cpx * b2) * id;
   h.x = ax + ux;
   h.y = ay + uy;
   r = std::sqrt(ux * ux + uy * uy);

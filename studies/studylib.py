@@ -11,6 +11,7 @@ into studies/<name>/out/quick/ and leaves the committed files alone.
 
 import argparse
 import concurrent.futures
+import json
 import os
 import resource
 import shutil
@@ -58,6 +59,8 @@ class Study:
         parser.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1),
                             help="serial LAMMPS runs side by side (default 2)")
         parser.add_argument("--lmp", help="tessera-lmp executable (default: build/lammps/tessera-lmp)")
+        parser.add_argument("--out", help="write everything (runs, report, figures) under this directory "
+                                              "instead of studies/<name>/out[/quick] (used by ctest)")
         parser.add_argument("--analyse-only", action="store_true",
                             help="reuse the LAMMPS output already in out/ (no runs)")
         if extra_args:
@@ -67,9 +70,12 @@ class Study:
         self.quick = self.args.quick
         self.here = os.path.join(STUDIES, name)
         self.out = os.path.join(self.here, "out", "quick") if self.quick else os.path.join(self.here, "out")
-        # in quick mode the "committed" files also go to out/quick
-        self.figures = os.path.join(self.out, "figures") if self.quick else os.path.join(self.here, "figures")
-        self.report_path = os.path.join(self.out if self.quick else self.here, "REPORT.md")
+        if self.args.out:
+            self.out = os.path.abspath(self.args.out)
+        # in quick mode (or with --out) the "committed" files also go to the output directory
+        separate = self.quick or self.args.out
+        self.figures = os.path.join(self.out, "figures") if separate else os.path.join(self.here, "figures")
+        self.report_path = os.path.join(self.out if separate else self.here, "REPORT.md")
         os.makedirs(self.out, exist_ok=True)
         os.makedirs(self.figures, exist_ok=True)
         self.lmp = None if self.args.analyse_only else find_lmp(self.args.lmp)
@@ -141,6 +147,22 @@ class Study:
 
     def elapsed(self):
         return time.time() - self.started
+
+    def runtime_text(self):
+        """One line on how long the study took; an --analyse-only rerun quotes the last real run."""
+        path = os.path.join(self.out, "runtime.json")
+        if self.args.analyse_only:
+            try:
+                with open(path) as f:
+                    info = json.load(f)
+            except OSError:
+                return "Runtime: unknown (report regenerated from existing output)."
+        else:
+            info = dict(wall=self.elapsed(), cpu=self.child_cpu(), jobs=self.args.jobs)
+            with open(path, "w") as f:
+                json.dump(info, f)
+        return (f"Runtime: {info['wall']:.0f} s wall with {info['jobs']} LAMMPS runs side by side, "
+                f"{info['cpu']:.0f} s CPU in LAMMPS.")
 
     def write_report(self, text):
         with open(self.report_path, "w") as f:

@@ -19,6 +19,7 @@
 #include "neighbor.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -125,8 +126,11 @@ void PairVertexVoronoi::settings(int narg, char **arg)
         incremental = 1;
       else if (strcmp(arg[iarg + 1], "no") == 0)
         incremental = 0;
+      else if (strcmp(arg[iarg + 1], "check") == 0)
+        incremental = 2;
       else
-        error->all(FLERR, "pair_style vertex/voronoi: incremental must be yes or no, got '{}'",
+        error->all(FLERR,
+                   "pair_style vertex/voronoi: incremental must be yes, no or check, got '{}'",
                    arg[iarg + 1]);
       iarg += 2;
     } else if (strcmp(arg[iarg], "reference") == 0) {
@@ -333,6 +337,13 @@ void PairVertexVoronoi::tessellate()
   const double w = ghost_width();
   const double lo[2] = {domain->sublo[0] - w, domain->sublo[1] - w};
   const double hi[2] = {domain->subhi[0] + w, domain->subhi[1] + w};
+  // The updated mesh is certified inside a smaller region: thin triangles on
+  // the hull of the ghost shell fold over often, and outside this region
+  // they are frozen rather than forcing a rebuild.  Owned cells' circumdisks
+  // reach about one cell beyond the sub-domain, well inside it.
+  const double wi = 0.6 * w;
+  const double lo_inc[2] = {domain->sublo[0] - wi, domain->sublo[1] - wi};
+  const double hi_inc[2] = {domain->subhi[0] + wi, domain->subhi[1] + wi};
 
   bool fresh = false;
   auto build = [&]() {
@@ -355,20 +366,21 @@ void PairVertexVoronoi::tessellate()
   };
   if (!incremental || mesh_ncalls != neighbor->ncalls || !mesh.valid() || mesh.n_points() != nall)
     build();
-  else if (mesh.update(pts, lo, hi))
+  else if (mesh.update(pts, lo_inc, hi_inc))
     stats[3] += mesh.flips_last_update();
   else
     build();
   mesh.cells(pts, nlocal, tess);
 
-  tessera::Coverage cov = tessera::check_coverage(tess, lo, hi);
-  if (!cov.ok && !fresh) {
-    // An updated mesh is certified only inside the region: make sure the
-    // failure is the configuration's, not the mesh's.
+  tessera::Coverage cov;
+  if (!fresh && !tessera::check_coverage(tess, lo_inc, hi_inc).ok) {
+    // A cell reaches past the region where the updated mesh is certified:
+    // triangulate from scratch, then check against the full ghost shell.
     build();
     mesh.cells(pts, nlocal, tess);
-    cov = tessera::check_coverage(tess, lo, hi);
   }
+  if (incremental == 2 && !fresh) check_against_scratch(pts, lo, hi);
+  cov = tessera::check_coverage(tess, lo, hi);
   double need = cov.needed_margin, need_all;
   MPI_Allreduce(&need, &need_all, 1, MPI_DOUBLE, MPI_MAX, world);
   if (need_all > 0.0) {
@@ -385,6 +397,38 @@ void PairVertexVoronoi::tessellate()
                cut_global, 1.1 * needed);
   }
   tess_step = update->ntimestep;
+}
+
+/* incremental check: the updated mesh's cells against a from-scratch
+   triangulation of the same atoms.  Every Voronoi neighbour across an edge
+   longer than a round-off threshold must be found by both; areas and
+   perimeters must agree.  For tests of the incremental path. */
+
+void PairVertexVoronoi::check_against_scratch(const tessera::Points &pts, const double *lo,
+                                              const double *hi)
+{
+  tessera::Mesh scratch;
+  scratch.build(pts);
+  tessera::Tessellation ref;
+  scratch.cells(pts, tess.n_owned, ref);
+  if (!tessera::check_coverage(ref, lo, hi).ok) return;    // the run stops on this anyway
+  for (int c = 0; c < tess.n_owned; c++) {
+    auto strong = [](const tessera::Tessellation &t, int cell) {
+      std::vector<int> nb;
+      for (int k = t.cell_offset[cell]; k < t.cell_offset[cell + 1]; k++)
+        if (t.edge_length[k] > 1e-8 * t.radius[t.cell_vertex[k]]) nb.push_back(t.cell_neighbor[k]);
+      std::sort(nb.begin(), nb.end());
+      return nb;
+    };
+    const double scale = std::sqrt(std::fabs(ref.area[c])) + 1.0;
+    if (strong(tess, c) != strong(ref, c) || std::fabs(tess.area[c] - ref.area[c]) > 1e-9 * scale * scale ||
+        std::fabs(tess.perimeter[c] - ref.perimeter[c]) > 1e-9 * scale)
+      error->one(FLERR,
+                 "pair_style vertex/voronoi incremental check: the cell of atom {} differs from a "
+                 "from-scratch triangulation at step {} (area {} vs {}, perimeter {} vs {})",
+                 atom->tag[c], update->ntimestep, tess.area[c], ref.area[c], tess.perimeter[c],
+                 ref.perimeter[c]);
+  }
 }
 
 void PairVertexVoronoi::compute(int eflag, int vflag)

@@ -60,7 +60,7 @@ class PairVertexVoronoi : public Pair {
   tessera::Tessellation tess;
   bigint tess_step;
   tessera::Mesh mesh;
-  int incremental;      // keep the triangulation between steps (default) or rebuild every step
+  int incremental;      // 1: keep the triangulation between steps, 0: rebuild every step, 2: check
   bigint mesh_ncalls;   // neighbor->ncalls when the mesh was built: atoms re-ordered since?
   int reference_every;  // time a from-scratch triangulation every this many steps (0: never)
   double stats[7];      // pvector: see the doc (times, rebuilds, flips, steps, reference)
@@ -69,6 +69,7 @@ class PairVertexVoronoi : public Pair {
 
   void allocate();
   void tessellate();
+  void check_against_scratch(const tessera::Points &, const double *, const double *);
   double ghost_width() const;
 };
 

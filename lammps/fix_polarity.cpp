@@ -201,11 +201,16 @@ void FixPolarity::post_force(int /*vflag*/)
   const int nlocal = atom->nlocal;
   vhat.resize(2 * nlocal);
   has_v.resize(nlocal);
+  const bool need_v = params.J_V != 0.0;  // only velocity alignment needs it
   for (int i = 0; i < nlocal; i++) {
-    const double s = std::sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1]);
-    has_v[i] = s > 0.0;
-    vhat[2 * i] = has_v[i] ? v[i][0] / s : 0.0;
-    vhat[2 * i + 1] = has_v[i] ? v[i][1] / s : 0.0;
+    if (need_v) {
+      const double s = std::sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1]);
+      has_v[i] = s > 0.0;
+      vhat[2 * i] = has_v[i] ? v[i][0] / s : 0.0;
+      vhat[2 * i + 1] = has_v[i] ? v[i][1] / s : 0.0;
+    } else {
+      has_v[i] = 0;
+    }
     if (!(mask[i] & groupbit) || !(mu[i][3] > 0.0)) continue;
     const double inv = f_active / mu[i][3];
     f[i][0] += inv * mu[i][0];

@@ -372,7 +372,7 @@ void PairVertexVoronoi::tessellate()
     build();
   mesh.cells(pts, nlocal, tess);
 
-  tessera::Coverage cov;
+  tessera::Coverage cov;  // ok unless checked below
   if (!fresh && !tessera::check_coverage(tess, lo_inc, hi_inc).ok) {
     // A cell reaches past the region where the updated mesh is certified:
     // triangulate from scratch, then check against the full ghost shell.
@@ -380,7 +380,8 @@ void PairVertexVoronoi::tessellate()
     mesh.cells(pts, nlocal, tess);
   }
   if (incremental == 2 && !fresh) check_against_scratch(pts, lo, hi);
-  cov = tessera::check_coverage(tess, lo, hi);
+  // An updated mesh that passed the smaller region passes the full one.
+  if (fresh) cov = tessera::check_coverage(tess, lo, hi);
   double need = cov.needed_margin, need_all;
   MPI_Allreduce(&need, &need_all, 1, MPI_DOUBLE, MPI_MAX, world);
   if (need_all > 0.0) {

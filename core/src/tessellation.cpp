@@ -108,19 +108,25 @@ Coverage check_coverage(const Tessellation &t, const double lo[2], const double 
     cov.worst_cell = t.unbounded_cell;
     return cov;
   }
-  for (int c = 0; c < t.n_owned; ++c) {
-    for (int k = t.cell_offset[c]; k < t.cell_offset[c + 1]; ++k) {
-      const int tri = t.cell_vertex[k];
-      const Vec2 &h = t.vertices[tri];
-      const double r = t.radius[tri];
-      const double need = std::max({lo[0] - (h.x - r), (h.x + r) - hi[0], lo[1] - (h.y - r),
-                                    (h.y + r) - hi[1]});
-      if (need > cov.needed_margin) {
-        cov.ok = false;
-        cov.needed_margin = need;
-        cov.worst_cell = c;
-      }
+  // The triangles used by owned cells are those with an owned corner; one
+  // sequential pass over the triangles visits each once.
+  int worst = -1;
+  for (size_t k = 0; k < t.triangles.size(); ++k) {
+    const auto &tri = t.triangles[k];
+    if (tri[0] >= t.n_owned && tri[1] >= t.n_owned && tri[2] >= t.n_owned) continue;
+    const Vec2 &h = t.vertices[k];
+    const double r = t.radius[k];
+    const double need = std::max(std::max(lo[0] - (h.x - r), (h.x + r) - hi[0]),
+                                 std::max(lo[1] - (h.y - r), (h.y + r) - hi[1]));
+    if (need > cov.needed_margin) {
+      cov.ok = false;
+      cov.needed_margin = need;
+      worst = static_cast<int>(k);
     }
+  }
+  if (worst >= 0) {
+    const auto &tri = t.triangles[worst];
+    cov.worst_cell = std::min({tri[0], tri[1], tri[2]});
   }
   return cov;
 }

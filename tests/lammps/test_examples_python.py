@@ -34,5 +34,28 @@ class BrownianMsdExample(LammpsTestCase):
         self.check(2)
 
 
+class TissueExample(LammpsTestCase):
+    """tissue.py: the shape index and polar order Python computes from the
+    gathered per-cell arrays equal LAMMPS's own (compute vertex/atom's mean,
+    fix polarity's vector)."""
+
+    def check(self, nranks):
+        run = self.run_python(script=os.path.join(EXAMPLES, "tissue.py"), nprocs=nranks,
+                              args=["--blocks", "2", "--steps", "50"])
+        rows = [line.split() for line in run.stdout.splitlines() if line and not line.startswith("#")]
+        self.assertEqual(len(rows), 2, run.output)
+        for step, q_py, q_lmp, p_py, p_lmp in ([float(w) for w in r] for r in rows):
+            self.assertAlmostEqual(q_py, q_lmp, delta=2e-6)
+            self.assertAlmostEqual(p_py, p_lmp, delta=2e-6)
+            self.assertGreater(q_py, 3.7)
+
+    def test_serial(self):
+        self.check(1)
+
+    @nprocs(2)
+    def test_two_ranks(self):
+        self.check(2)
+
+
 if __name__ == "__main__":
     lmptest.main()

@@ -231,38 +231,41 @@ bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi)
       return false;
     }
   const int nt = static_cast<int>(v_.size() / 3);
-  // A finite triangle that is no longer counter-clockwise has folded over:
-  // flips cannot repair that.  Outside the region of interest it is frozen.
+  // One pass over the triangles: a finite triangle that is no longer
+  // counter-clockwise has folded over, which flips cannot repair (outside the
+  // region of interest it is frozen instead); every edge is tested once, and
+  // the ones to flip are stacked (edges of frozen triangles are dropped when
+  // popped, as frozenness of the far side is not known yet here).
   frozen_.assign(nt, 0);
+  stack_.clear();
   for (int t = 0; t < nt; ++t) {
     const int a = v_[3 * t], b = v_[3 * t + 1], c = v_[3 * t + 2];
-    if (a == kInfinite || b == kInfinite || c == kInfinite) continue;
-    const double ax = pts.x(a), ay = pts.y(a), bx = pts.x(b), by = pts.y(b), cx = pts.x(c),
-                 cy = pts.y(c);
-    if (orientation(ax, ay, bx, by, cx, cy) > 0) continue;
-    const bool outside =
-        roi_lo && (std::max({ax, bx, cx}) < roi_lo[0] || std::min({ax, bx, cx}) > roi_hi[0] ||
-                   std::max({ay, by, cy}) < roi_lo[1] || std::min({ay, by, cy}) > roi_hi[1]);
-    if (!outside) {
-      valid_ = false;
-      return false;
-    }
-    frozen_[t] = 1;
-  }
-  // Lawson: every edge once, then the edges around each flip.
-  stack_.clear();
-  for (int t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k)
-      if (nb_[3 * t + k] > t) {
-        const int r = v_[3 * t + k], p = v_[3 * t + (k + 1) % 3], q = v_[3 * t + (k + 2) % 3];
-        const int u = nb_[3 * t + k];
-        if (frozen_[t] || frozen_[u]) continue;
-        const int j = (nb_[3 * u + 1] == t) + 2 * (nb_[3 * u + 2] == t);
-        if (flip_needed(pts, p, q, r, v_[3 * u + j])) {
-          stack_.push_back(t);
-          stack_.push_back(k);
+    if (a != kInfinite && b != kInfinite && c != kInfinite) {
+      const double ax = pts.x(a), ay = pts.y(a), bx = pts.x(b), by = pts.y(b), cx = pts.x(c),
+                   cy = pts.y(c);
+      if (orientation(ax, ay, bx, by, cx, cy) <= 0) {
+        const bool outside =
+            roi_lo && (std::max({ax, bx, cx}) < roi_lo[0] || std::min({ax, bx, cx}) > roi_hi[0] ||
+                       std::max({ay, by, cy}) < roi_lo[1] || std::min({ay, by, cy}) > roi_hi[1]);
+        if (!outside) {
+          valid_ = false;
+          return false;
         }
+        frozen_[t] = 1;
+        continue;
       }
+    }
+    for (int k = 0; k < 3; ++k) {
+      const int u = nb_[3 * t + k];
+      if (u < t) continue;
+      const int r = v_[3 * t + k], p = v_[3 * t + (k + 1) % 3], q = v_[3 * t + (k + 2) % 3];
+      const int j = (nb_[3 * u + 1] == t) + 2 * (nb_[3 * u + 2] == t);
+      if (flip_needed(pts, p, q, r, v_[3 * u + j])) {
+        stack_.push_back(t);
+        stack_.push_back(k);
+      }
+    }
+  }
   const long max_flips = 20L * nt + 1000;
   while (!stack_.empty()) {
     const int k = stack_.back();

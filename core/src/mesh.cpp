@@ -6,6 +6,8 @@
 
 #include "tessera/mesh.h"
 
+#include "point_name.h"
+
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
@@ -31,15 +33,6 @@ using CPoint = Kernel::Point_2;
 // the zero-length edges of a multifold vertex whose circumcentres differ only
 // by round-off; they get length exactly 0.
 constexpr double kZeroEdge = 1e-10;
-
-std::string point_name(int i, const long *ids) {
-  std::ostringstream s;
-  if (ids)
-    s << "id " << ids[i];
-  else
-    s << "point " << i;
-  return s.str();
-}
 
 // Orientation of (a, b, c): > 0 counter-clockwise.  Shewchuk's static error
 // bound decides almost every case in double precision; the rest go to CGAL's

@@ -7,39 +7,16 @@
 
 #include "tessera/mesh.h"
 
+#include "point_name.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
 #include <sstream>
-#include <unordered_map>
 #include <utility>
 
 namespace tessera {
-
-namespace {
-
-std::string point_name(int i, const long *ids) {
-  std::ostringstream s;
-  if (ids)
-    s << "id " << ids[i];
-  else
-    s << "point " << i;
-  return s.str();
-}
-
-void check_finite(const Points &pts, const long *ids) {
-  for (int i = 0; i < pts.n; ++i) {
-    if (!std::isfinite(pts.x(i)) || !std::isfinite(pts.y(i))) {
-      std::ostringstream s;
-      s << "tessera: " << point_name(i, ids) << " has a non-finite coordinate (" << pts.x(i)
-        << ", " << pts.y(i) << ")";
-      throw Error(s.str());
-    }
-  }
-}
-
-}  // namespace
 
 void Box::validate() const {
   for (int d = 0; d < 2; ++d) {
@@ -84,7 +61,6 @@ int Tessellation::count_multifold_vertices() const {
 
 Tessellation tessellate_local(const Points &pts, int n_owned, const long *ids,
                               bool throw_if_unbounded) {
-  check_finite(pts, ids);
   if (n_owned < 0 || n_owned > pts.n) throw Error("tessera: n_owned must be in [0, number of points]");
   Mesh mesh;
   mesh.build(pts, ids);
@@ -144,7 +120,6 @@ void wrap_into_box(const Box &box, std::vector<double> &xy) {
 
 Tessellation tessellate_periodic(const Box &box, const Points &pts, const long *ids) {
   box.validate();
-  check_finite(pts, ids);
   const int n = pts.n;
   if (n < 3) {
     std::ostringstream s;

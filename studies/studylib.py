@@ -148,6 +148,25 @@ class Study:
     def elapsed(self):
         return time.time() - self.started
 
+    def provenance(self):
+        """Which source the executable was built from, when it lives in a git checkout's build tree."""
+        if not self.lmp:
+            return None
+        d = os.path.dirname(self.lmp)
+        while d != os.path.dirname(d):
+            if os.path.exists(os.path.join(d, ".git")):
+                try:
+                    head = subprocess.run(["git", "-C", d, "log", "-1", "--format=%h %cd", "--date=short"],
+                                          capture_output=True, text=True, check=True).stdout.strip()
+                    dirty = subprocess.run(["git", "-C", d, "status", "--porcelain", "--", "core", "lammps"],
+                                           capture_output=True, text=True, check=True).stdout.strip()
+                except (OSError, subprocess.CalledProcessError):
+                    return None
+                return f"tessera-lmp built from commit {head}" + (
+                    " with uncommitted changes in core/ or lammps/" if dirty else "")
+            d = os.path.dirname(d)
+        return None
+
     def runtime_text(self):
         """One line on how long the study took; an --analyse-only rerun quotes the last real run."""
         path = os.path.join(self.out, "runtime.json")
@@ -158,11 +177,12 @@ class Study:
             except OSError:
                 return "Runtime: unknown (report regenerated from existing output)."
         else:
-            info = dict(wall=self.elapsed(), cpu=self.child_cpu(), jobs=self.args.jobs)
+            info = dict(wall=self.elapsed(), cpu=self.child_cpu(), jobs=self.args.jobs, source=self.provenance())
             with open(path, "w") as f:
                 json.dump(info, f)
+        source = f" ({info['source']})" if info.get("source") else ""
         return (f"Runtime: {info['wall']:.0f} s wall with {info['jobs']} LAMMPS runs side by side, "
-                f"{info['cpu']:.0f} s CPU in LAMMPS.")
+                f"{info['cpu']:.0f} s CPU in LAMMPS{source}.")
 
     def write_report(self, text):
         with open(self.report_path, "w") as f:

@@ -8,6 +8,7 @@
 #include "tessera/tessellation.h"
 
 #include <gtest/gtest.h>
+#include <random>
 
 #include <cmath>
 
@@ -188,3 +189,41 @@ TEST(Polarity, VelocityObservablesUniformFlow) {
     EXPECT_NEAR(orient[i], std::acos(0.6), 1e-14);
   }
 }
+
+namespace {
+
+TEST(Polarity, VectorFormEqualsAngleForm) {
+  // polarity_torque_vec (cross products) against polarity_torque (angles).
+  std::mt19937 rng(77);
+  std::uniform_real_distribution<double> u(0.0, 6.0), ang(-3.14159, 3.14159);
+  std::vector<double> xy;
+  for (int i = 0; i < 40; ++i) {
+    xy.push_back(u(rng));
+    xy.push_back(u(rng));
+  }
+  const tessera::Tessellation t =
+      tessera::tessellate_periodic(tessera::Box::rect(0, 6, 0, 6), tessera::Points{xy.data(), 40, 2});
+  std::vector<double> theta(t.n_points), n(3 * t.n_points);
+  std::vector<double> own(40);
+  for (double &a : own) a = ang(rng);
+  for (int p = 0; p < t.n_points; ++p) {
+    theta[p] = own[t.origin[p]];
+    n[3 * p] = std::cos(theta[p]);
+    n[3 * p + 1] = std::sin(theta[p]);
+  }
+  std::vector<double> psi(40), vhat(80);
+  std::vector<unsigned char> has(40, 1);
+  for (int i = 0; i < 40; ++i) {
+    psi[i] = ang(rng);
+    vhat[2 * i] = std::cos(psi[i]);
+    vhat[2 * i + 1] = std::sin(psi[i]);
+  }
+  has[3] = 0;
+  const tessera::PolarityParams p{1.3, 0.7, 0.4, 0.9};
+  std::vector<double> ta(40), tb(40);
+  tessera::polarity_torque(t, theta.data(), p, psi.data(), has.data(), ta.data());
+  tessera::polarity_torque_vec(t, n.data(), 3, p, vhat.data(), has.data(), tb.data());
+  for (int i = 0; i < 40; ++i) EXPECT_NEAR(ta[i], tb[i], 1e-12) << i;
+}
+
+}  // namespace

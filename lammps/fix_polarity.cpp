@@ -44,10 +44,76 @@ inline double uniform01(uint64_t seed, uint64_t tag, uint64_t step, uint64_t str
   return ((h >> 11) + 0.5) * (1.0 / 9007199254740992.0);    // in (0, 1)
 }
 
+// Gaussian numbers by Marsaglia and Tsang's ziggurat (128 layers): almost
+// always one hash, one table lookup and one multiply, no log or cos.  The
+// uniform bits come from a counter-based stream per (seed, atom, step).
+struct Ziggurat {
+  double kn[128], wn[128], fn[128];
+  Ziggurat()
+  {
+    const double m1 = 2147483648.0;
+    double dn = 3.442619855899, tn = dn;
+    const double vn = 9.91256303526217e-3;
+    const double q = vn / std::exp(-0.5 * dn * dn);
+    kn[0] = (dn / q) * m1;
+    kn[1] = 0.0;
+    wn[0] = q / m1;
+    wn[127] = dn / m1;
+    fn[0] = 1.0;
+    fn[127] = std::exp(-0.5 * dn * dn);
+    for (int i = 126; i >= 1; i--) {
+      dn = std::sqrt(-2.0 * std::log(vn / dn + std::exp(-0.5 * dn * dn)));
+      kn[i + 1] = (dn / tn) * m1;
+      tn = dn;
+      fn[i] = std::exp(-0.5 * dn * dn);
+      wn[i] = dn / m1;
+    }
+  }
+};
+
+struct Stream {
+  uint64_t base, k;
+  uint64_t next() { return mix(base ^ (++k * 0x632be59bd9b4e019ULL)); }
+  double uniform() { return ((next() >> 11) + 0.5) * (1.0 / 9007199254740992.0); }
+};
+
 inline double gaussian(uint64_t seed, uint64_t tag, uint64_t step)
 {
-  const double u1 = uniform01(seed, tag, step, 1), u2 = uniform01(seed, tag, step, 2);
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(MathConst::MY_2PI * u2);
+  static const Ziggurat z;
+  Stream s{mix(mix(mix(seed) ^ tag) ^ step), 0};
+  for (;;) {
+    const int32_t hz = static_cast<int32_t>(static_cast<uint32_t>(s.next()));
+    const int iz = hz & 127;
+    const double ahz = std::fabs(static_cast<double>(hz));
+    if (ahz < z.kn[iz]) return hz * z.wn[iz];
+    const double x = hz * z.wn[iz];
+    if (iz == 0) {    // the tail beyond r
+      const double r = 3.442619855899;
+      double xt, y;
+      do {
+        xt = -std::log(s.uniform()) / r;
+        y = -std::log(s.uniform());
+      } while (y + y < xt * xt);
+      return hz > 0 ? r + xt : -r - xt;
+    }
+    if (z.fn[iz] + s.uniform() * (z.fn[iz - 1] - z.fn[iz]) < std::exp(-0.5 * x * x)) return x;
+  }
+}
+
+// sin and cos of a small rotation angle by their Taylor series (exact to
+// double precision for |x| < 0.25, the usual size of one step's turn).
+inline void sincos_small(double x, double &s, double &c)
+{
+  if (std::fabs(x) < 0.25) {
+    const double x2 = x * x;
+    s = x * (1.0 + x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880 +
+                                                                             x2 * (-1.0 / 39916800))))));
+    c = 1.0 + x2 * (-0.5 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 +
+                                                                  x2 * (-1.0 / 3628800 + x2 / 479001600)))));
+  } else {
+    s = std::sin(x);
+    c = std::cos(x);
+  }
 }
 
 }    // namespace
@@ -270,7 +336,8 @@ void FixPolarity::initial_integrate(int /*vflag*/)
     if (!(mask[i] & groupbit)) continue;
     double dth = dt * tau[i] / gamma_r;
     if (d_rot > 0.0) dth += noise * gaussian(seed, tag[i], step);
-    const double c = std::cos(dth), s = std::sin(dth);
+    double s, c;
+    sincos_small(dth, s, c);
     const double m = mu[i][3] > 0.0 ? mu[i][3] : 1.0;
     const double nx = unit[2 * i], ny = unit[2 * i + 1];
     // Renormalise so that round-off in the rotations does not drift |mu|.

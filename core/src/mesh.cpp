@@ -41,8 +41,10 @@ inline int orientation(double ax, double ay, double bx, double by, double cx, do
   const double l = (ax - cx) * (by - cy), r = (ay - cy) * (bx - cx);
   const double det = l - r;
   const double bound = 3.3306690738754716e-16 * (std::fabs(l) + std::fabs(r));
-  if (det > bound) return 1;
-  if (-det > bound) return -1;
+  if (det > bound)
+    return 1;
+  if (-det > bound)
+    return -1;
   return static_cast<int>(CGAL::orientation(CPoint(ax, ay), CPoint(bx, by), CPoint(cx, cy)));
 }
 
@@ -58,14 +60,16 @@ inline int in_circle(double ax, double ay, double bx, double by, double cx, doub
   const double perm = (std::fabs(bc) + std::fabs(cb)) * al + (std::fabs(ca) + std::fabs(ac)) * bl +
                       (std::fabs(ab) + std::fabs(ba)) * cl;
   const double bound = 1.1102230246251577e-15 * perm;
-  if (det > bound) return 1;
-  if (-det > bound) return -1;
+  if (det > bound)
+    return 1;
+  if (-det > bound)
+    return -1;
   return static_cast<int>(CGAL::side_of_oriented_circle(CPoint(ax, ay), CPoint(bx, by),
                                                         CPoint(cx, cy), CPoint(dx, dy)));
 }
 
-inline void circumcentre(double ax, double ay, double bx, double by, double cx, double cy,
-                         Vec2 &h, double &r) {
+inline void circumcentre(double ax, double ay, double bx, double by, double cx, double cy, Vec2 &h,
+                         double &r) {
   const double bpx = bx - ax, bpy = by - ay, cpx = cx - ax, cpy = cy - ay;
   const double id = 0.5 / (bpx * cpy - bpy * cpx);
   const double b2 = bpx * bpx + bpy * bpy, c2 = cpx * cpx + cpy * cpy;
@@ -76,7 +80,7 @@ inline void circumcentre(double ax, double ay, double bx, double by, double cx, 
   r = std::sqrt(ux * ux + uy * uy);
 }
 
-}  // namespace
+} // namespace
 
 void Mesh::build(const Points &pts, const long *ids, const int *report) {
   valid_ = false;
@@ -95,50 +99,65 @@ void Mesh::build(const Points &pts, const long *ids, const int *report) {
     s << "tessera: need at least 3 non-collinear points to tessellate, got " << n;
     throw Error(s.str());
   }
-  std::vector<std::pair<CPoint, int>> input;
-  input.reserve(n);
-  for (int i = 0; i < n; ++i) input.emplace_back(CPoint(pts.x(i), pts.y(i)), i);
-  Delaunay dt;
-  dt.insert(input.begin(), input.end());
+  // The old arrays go first and CGAL's triangulation lives only until it is
+  // exported: the peak memory of a rebuild is what limits memory per cell.
+  std::vector<int>().swap(v_);
+  std::vector<int>().swap(nb_);
+  std::vector<int>().swap(vt_);
+  std::vector<char>().swap(frozen_);
+  int nf = 0;
+  {
+    Delaunay dt;
+    {
+      std::vector<std::pair<CPoint, int>> input;
+      input.reserve(n);
+      for (int i = 0; i < n; ++i)
+        input.emplace_back(CPoint(pts.x(i), pts.y(i)), i);
+      dt.insert(input.begin(), input.end());
+    }
 
-  if (static_cast<int>(dt.number_of_vertices()) != n) {
-    std::vector<char> seen(n, 0);
-    for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
-      seen[v->info()] = 1;
-    for (int i = 0; i < n; ++i) {
-      if (seen[i]) continue;
-      const int j = dt.nearest_vertex(input[i].first)->info();
+    if (static_cast<int>(dt.number_of_vertices()) != n) {
+      std::vector<char> seen(n, 0);
+      for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v)
+        seen[v->info()] = 1;
+      for (int i = 0; i < n; ++i) {
+        if (seen[i])
+          continue;
+        const int j = dt.nearest_vertex(CPoint(pts.x(i), pts.y(i)))->info();
+        std::ostringstream s;
+        s << "tessera: two cell centres at the same position (" << pts.x(i) << ", " << pts.y(i)
+          << "): " << point_name(rep(j), ids) << " and " << point_name(rep(i), ids)
+          << "; move or delete one of them";
+        throw Error(s.str());
+      }
+    }
+    if (dt.dimension() < 2) {
       std::ostringstream s;
-      s << "tessera: two cell centres at the same position (" << pts.x(i) << ", " << pts.y(i)
-        << "): " << point_name(rep(j), ids) << " and " << point_name(rep(i), ids)
-        << "; move or delete one of them";
+      s << "tessera: need at least 3 non-collinear points to tessellate; all " << n
+        << " points are on one line";
       throw Error(s.str());
     }
-  }
-  if (dt.dimension() < 2) {
-    std::ostringstream s;
-    s << "tessera: need at least 3 non-collinear points to tessellate; all " << n
-      << " points are on one line";
-    throw Error(s.str());
-  }
 
-  // Export, with the infinite vertex as -1.  Faces are numbered in
-  // spatially sorted order of their first finite vertex for locality.
-  int nf = 0;
-  for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) f->info() = nf++;
-  v_.assign(3 * static_cast<size_t>(nf), kInfinite);
-  nb_.assign(3 * static_cast<size_t>(nf), -1);
-  vt_.assign(n, -1);
-  const auto inf = dt.infinite_vertex();
-  for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) {
-    const int id = f->info();
-    for (int k = 0; k < 3; ++k) {
-      const auto vk = f->vertex(k);
-      v_[3 * id + k] = vk == inf ? kInfinite : vk->info();
-      nb_[3 * id + k] = f->neighbor(k)->info();
-      if (vk != inf) vt_[vk->info()] = id;
+    // Export, with the infinite vertex as -1 (faces in CGAL's order; they
+    // are renumbered below).
+    for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f)
+      f->info() = nf++;
+    v_.assign(3 * static_cast<size_t>(nf), kInfinite);
+    nb_.assign(3 * static_cast<size_t>(nf), -1);
+    vt_.assign(n, -1);
+    const auto inf = dt.infinite_vertex();
+    for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) {
+      const int id = f->info();
+      for (int k = 0; k < 3; ++k) {
+        const auto vk = f->vertex(k);
+        v_[3 * id + k] = vk == inf ? kInfinite : vk->info();
+        nb_[3 * id + k] = f->neighbor(k)->info();
+        if (vk != inf)
+          vt_[vk->info()] = id;
+      }
     }
-  }
+  } // CGAL's triangulation is freed here
+
   // Renumber the triangles in the order the points' stars visit them, so
   // that reading cells point by point walks memory nearly sequentially (the
   // points themselves are spatially sorted by LAMMPS).
@@ -148,23 +167,29 @@ void Mesh::build(const Points &pts, const long *ids, const int *report) {
     const int start = vt_[p];
     int m = start;
     do {
-      if (order[m] < 0) order[m] = next++;
+      if (order[m] < 0)
+        order[m] = next++;
       const int *v = &v_[3 * m];
       const int i = (v[1] == p) + 2 * (v[2] == p);
       m = nb_[3 * m + (i == 2 ? 0 : i + 1)];
     } while (m != start);
   }
   for (int m = 0; m < nf; ++m)
-    if (order[m] < 0) order[m] = next++;
-  std::vector<int> v2(v_.size()), nb2(nb_.size());
-  for (int m = 0; m < nf; ++m)
-    for (int k = 0; k < 3; ++k) {
-      v2[3 * order[m] + k] = v_[3 * m + k];
-      nb2[3 * order[m] + k] = order[nb_[3 * m + k]];
-    }
-  v_.swap(v2);
-  nb_.swap(nb2);
-  for (int &t : vt_) t = order[t];
+    if (order[m] < 0)
+      order[m] = next++;
+  {
+    std::vector<int> tmp(v_.size());
+    for (int m = 0; m < nf; ++m)
+      for (int k = 0; k < 3; ++k)
+        tmp[3 * order[m] + k] = v_[3 * m + k];
+    v_.swap(tmp);
+    for (int m = 0; m < nf; ++m)
+      for (int k = 0; k < 3; ++k)
+        tmp[3 * order[m] + k] = order[nb_[3 * m + k]];
+    nb_.swap(tmp);
+  }
+  for (int &t : vt_)
+    t = order[t];
 
   n_points_ = n;
   flips_ = 0;
@@ -172,13 +197,14 @@ void Mesh::build(const Points &pts, const long *ids, const int *report) {
 }
 
 bool Mesh::flip_needed(const Points &pts, int p, int q, int r, int s) const {
-  if (r == kInfinite || s == kInfinite) return false;  // a hull edge
-  if (p == kInfinite)  // hull chain s -> q -> r must turn clockwise
+  if (r == kInfinite || s == kInfinite)
+    return false;     // a hull edge
+  if (p == kInfinite) // hull chain s -> q -> r must turn clockwise
     return orientation(pts.x(s), pts.y(s), pts.x(q), pts.y(q), pts.x(r), pts.y(r)) > 0;
-  if (q == kInfinite)  // hull chain r -> p -> s
+  if (q == kInfinite) // hull chain r -> p -> s
     return orientation(pts.x(r), pts.y(r), pts.x(p), pts.y(p), pts.x(s), pts.y(s)) > 0;
-  return in_circle(pts.x(p), pts.y(p), pts.x(q), pts.y(q), pts.x(r), pts.y(r), pts.x(s),
-                   pts.y(s)) > 0;
+  return in_circle(pts.x(p), pts.y(p), pts.x(q), pts.y(q), pts.x(r), pts.y(r), pts.x(s), pts.y(s)) >
+         0;
 }
 
 // Flips the edge between triangle t = (r, p, q) (r = vertex k) and
@@ -186,10 +212,10 @@ bool Mesh::flip_needed(const Points &pts, int p, int q, int r, int s) const {
 void Mesh::flip(int t, int k, int u, int j) {
   const int r = v_[3 * t + k], p = v_[3 * t + (k + 1) % 3], q = v_[3 * t + (k + 2) % 3];
   const int s = v_[3 * u + j];
-  const int A = nb_[3 * t + (k + 1) % 3];  // across (q, r)
-  const int B = nb_[3 * t + (k + 2) % 3];  // across (r, p)
-  const int C = nb_[3 * u + (j + 1) % 3];  // across (p, s)
-  const int D = nb_[3 * u + (j + 2) % 3];  // across (s, q)
+  const int A = nb_[3 * t + (k + 1) % 3]; // across (q, r)
+  const int B = nb_[3 * t + (k + 2) % 3]; // across (r, p)
+  const int C = nb_[3 * u + (j + 1) % 3]; // across (p, s)
+  const int D = nb_[3 * u + (j + 2) % 3]; // across (s, q)
   v_[3 * t] = r;
   v_[3 * t + 1] = p;
   v_[3 * t + 2] = s;
@@ -203,13 +229,19 @@ void Mesh::flip(int t, int k, int u, int j) {
   nb_[3 * u + 1] = t;
   nb_[3 * u + 2] = D;
   for (int e = 0; e < 3; ++e) {
-    if (nb_[3 * A + e] == t) nb_[3 * A + e] = u;
-    if (nb_[3 * C + e] == u) nb_[3 * C + e] = t;
+    if (nb_[3 * A + e] == t)
+      nb_[3 * A + e] = u;
+    if (nb_[3 * C + e] == u)
+      nb_[3 * C + e] = t;
   }
-  if (r != kInfinite) vt_[r] = t;
-  if (p != kInfinite) vt_[p] = t;
-  if (s != kInfinite) vt_[s] = u;
-  if (q != kInfinite) vt_[q] = u;
+  if (r != kInfinite)
+    vt_[r] = t;
+  if (p != kInfinite)
+    vt_[p] = t;
+  if (s != kInfinite)
+    vt_[s] = u;
+  if (q != kInfinite)
+    vt_[q] = u;
 }
 
 bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi) {
@@ -219,7 +251,7 @@ bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi)
     return false;
   }
   for (int i = 0; i < pts.n; ++i)
-    if (!std::isfinite(pts.x(i)) || !std::isfinite(pts.y(i))) {  // build() names it
+    if (!std::isfinite(pts.x(i)) || !std::isfinite(pts.y(i))) { // build() names it
       valid_ = false;
       return false;
     }
@@ -250,7 +282,8 @@ bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi)
     }
     for (int k = 0; k < 3; ++k) {
       const int u = nb_[3 * t + k];
-      if (u < t) continue;
+      if (u < t)
+        continue;
       const int r = v_[3 * t + k], p = v_[3 * t + (k + 1) % 3], q = v_[3 * t + (k + 2) % 3];
       const int j = (nb_[3 * u + 1] == t) + 2 * (nb_[3 * u + 2] == t);
       if (flip_needed(pts, p, q, r, v_[3 * u + j])) {
@@ -266,14 +299,18 @@ bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi)
     const int t = stack_.back();
     stack_.pop_back();
     const int u = nb_[3 * t + k];
-    if (frozen_[t] || frozen_[u]) continue;
+    if (frozen_[t] || frozen_[u])
+      continue;
     int j = 0;
-    while (j < 3 && nb_[3 * u + j] != t) ++j;
-    if (j == 3) continue;
+    while (j < 3 && nb_[3 * u + j] != t)
+      ++j;
+    if (j == 3)
+      continue;
     const int r = v_[3 * t + k], p = v_[3 * t + (k + 1) % 3], q = v_[3 * t + (k + 2) % 3];
-    if (!flip_needed(pts, p, q, r, v_[3 * u + j])) continue;
+    if (!flip_needed(pts, p, q, r, v_[3 * u + j]))
+      continue;
     flip(t, k, u, j);
-    if (++flips_ > max_flips) {  // cannot happen for a valid mesh; be safe
+    if (++flips_ > max_flips) { // cannot happen for a valid mesh; be safe
       valid_ = false;
       return false;
     }
@@ -348,7 +385,7 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
     bool unbounded = false;
     do {
       const int *v = &v_[3 * m];
-      const int i = (v[1] == c) + 2 * (v[2] == c);  // index of c, without branches
+      const int i = (v[1] == c) + 2 * (v[2] == c); // index of c, without branches
       const int cm = compact_[m];
       if (cm < 0) {
         unbounded = true;
@@ -368,12 +405,14 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
       ++used;
       if (v[i1] >= n_owned && v[i2] >= n_owned) {
         const int g = compact_[nb_[3 * m + i]];
-        if (g >= 0 && same_vertex(cm, g)) seeds_.push_back(cm);
+        if (g >= 0 && same_vertex(cm, g))
+          seeds_.push_back(cm);
       }
       m = nb_[3 * m + i1];
     } while (m != start);
     if (unbounded) {
-      if (t.unbounded_cell < 0) t.unbounded_cell = c;
+      if (t.unbounded_cell < 0)
+        t.unbounded_cell = c;
       used = o;
     }
     const int len = static_cast<int>(used - o);
@@ -393,7 +432,8 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
       const double l = d > kZeroEdge * std::max(t.radius[t0], t.radius[t1]) ? d : 0.0;
       el[k] = l;
       perim += l;
-      if (l == 0.0) seeds_.push_back(t0);
+      if (l == 0.0)
+        seeds_.push_back(t0);
     }
     t.area[c] = 0.5 * area2;
     t.perimeter[c] = perim;
@@ -411,7 +451,8 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
   std::vector<int> members, ring;
   for (const int seed : seeds_) {
     {
-      if (t.triangle_group[seed] >= 0) continue;
+      if (t.triangle_group[seed] >= 0)
+        continue;
       const int ms = mesh_of_[seed];
       const int group = static_cast<int>(t.group_centre.size());
       members.assign(1, seed);
@@ -423,13 +464,14 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
         for (int e = 0; e < 3; ++e) {
           const int nm = nb_[3 * cur + e];
           const int g = compact_[nm];
-          if (g < 0 || t.triangle_group[g] >= 0 || !same_vertex(seed, g)) continue;
+          if (g < 0 || t.triangle_group[g] >= 0 || !same_vertex(seed, g))
+            continue;
           t.triangle_group[g] = group;
           members.push_back(g);
           stack_.push_back(nm);
         }
       }
-      if (members.size() < 2) {  // a tolerance edge case: no partner after all
+      if (members.size() < 2) { // a tolerance edge case: no partner after all
         t.triangle_group[seed] = -1;
         continue;
       }
@@ -440,7 +482,8 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
       }
       ring.clear();
       for (int mm : members)
-        for (int p : t.triangles[mm]) ring.push_back(p);
+        for (int p : t.triangles[mm])
+          ring.push_back(p);
       std::sort(ring.begin(), ring.end());
       ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
       std::vector<std::pair<double, int>> by_angle;
@@ -448,11 +491,12 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
       for (int p : ring)
         by_angle.emplace_back(std::atan2(pts.y(p) - centre.y, pts.x(p) - centre.x), p);
       std::sort(by_angle.begin(), by_angle.end());
-      for (const auto &ap : by_angle) t.group_point.push_back(ap.second);
+      for (const auto &ap : by_angle)
+        t.group_point.push_back(ap.second);
       t.group_offset.push_back(static_cast<int>(t.group_point.size()));
       t.group_centre.push_back(centre);
     }
   }
 }
 
-}  // namespace tessera
+} // namespace tessera

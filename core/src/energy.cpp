@@ -83,8 +83,9 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
   const int nt = static_cast<int>(t.triangles.size());
   // dE/dh per Voronoi vertex; kept between calls so that a time step
   // allocates nothing once sizes have settled.
-  thread_local std::vector<Vec2> grad;
-  grad.assign(nt, Vec2{});
+  thread_local std::vector<Vec2> grad_buffer;
+  grad_buffer.assign(nt, Vec2{});
+  Vec2 *const grad = grad_buffer.data();  // one TLS lookup, not one per access
   const double w = model.tension_weight();
 
   // F_p = -(dh/dr_p)^T g for the three corners of a triangle whose

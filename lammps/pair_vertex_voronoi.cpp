@@ -435,10 +435,6 @@ void PairVertexVoronoi::check_against_scratch(const tessera::Points &pts, const 
 void PairVertexVoronoi::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
-  if (vflag_atom)
-    error->all(FLERR,
-               "pair_style vertex/voronoi does not compute a per-atom virial yet (compute "
-               "stress/atom, centroid/stress/atom); use the global pressure");
 
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
@@ -452,8 +448,18 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
   cell_e.resize(nlocal);
 
   tessera::Points pts{&atom->x[0][0], nall, 3};
+  // Per-atom virial (compute stress/atom): each cell's own energy term's
+  // virial, assigned to its atom; the cells' virials add up to the total.
+  if (vflag_atom) cell_w.resize(4 * static_cast<size_t>(nlocal));
   const tessera::ForceOutput out =
-      tessera::compute_forces(tess, pts, type0.data(), model, &atom->f[0][0], 3, cell_e.data());
+      tessera::compute_forces(tess, pts, type0.data(), model, &atom->f[0][0], 3, cell_e.data(),
+                              vflag_atom ? cell_w.data() : nullptr);
+  if (vflag_atom)
+    for (int i = 0; i < nlocal; i++) {
+      vatom[i][0] += cell_w[4 * i];
+      vatom[i][1] += cell_w[4 * i + 1];
+      vatom[i][3] += 0.5 * (cell_w[4 * i + 2] + cell_w[4 * i + 3]);
+    }
 
   stats[0] += t1 - t0;
   stats[1] += MPI_Wtime() - t1;

@@ -66,6 +66,7 @@ class PairVertexVoronoi : public Pair {
   double stats[7];      // pvector: see the doc (times, rebuilds, flips, steps, reference)
   std::vector<int> type0;
   std::vector<double> cell_e;
+  std::vector<double> cell_w;  // per-cell virial (xx, yy, xy, yx) when asked for
 
   void allocate();
   void tessellate();

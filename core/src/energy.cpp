@@ -78,7 +78,8 @@ double compute_energy(const Tessellation &t, const int *type, const Model &model
 }
 
 ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *type,
-                           const Model &model, double *f, int f_stride, double *cell_energy) {
+                           const Model &model, double *f, int f_stride, double *cell_energy,
+                           double *cell_virial) {
   ForceOutput out;
   const int nt = static_cast<int>(t.triangles.size());
   // dE/dh per Voronoi vertex; kept between calls so that a time step
@@ -90,7 +91,9 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
 
   // F_p = -(dh/dr_p)^T g for the three corners of a triangle whose
   // circumcentre h has energy gradient g, and the virial of those forces.
-  auto push = [&](int ia, int ib, int ic, double gx, double gy) {
+  // Forces -(dh/dr_p)^T g on the corners a, b, c of a triangle whose
+  // circumcentre h has energy gradient g: F[0..5] = (fa, fb, fc).
+  auto corner_forces = [&](int ia, int ib, int ic, double gx, double gy, double *F) {
     const double ax = pts.x(ia), ay = pts.y(ia);
     const double bx = pts.x(ib) - ax, by = pts.y(ib) - ay;
     const double cx = pts.x(ic) - ax, cy = pts.y(ic) - ay;
@@ -111,6 +114,21 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
     const double fbx = -(Jb_xx * gx + Jb_yx * gy), fby = -(Jb_xy * gx + Jb_yy * gy);
     const double fcx = -(Jc_xx * gx + Jc_yx * gy), fcy = -(Jc_xy * gx + Jc_yy * gy);
     const double fax = -gx - fbx - fcx, fay = -gy - fby - fcy;
+    F[0] = fax;
+    F[1] = fay;
+    F[2] = fbx;
+    F[3] = fby;
+    F[4] = fcx;
+    F[5] = fcy;
+  };
+
+  auto push = [&](int ia, int ib, int ic, double gx, double gy) {
+    double F[6];
+    corner_forces(ia, ib, ic, gx, gy, F);
+    const double ax = pts.x(ia), ay = pts.y(ia);
+    const double bx = pts.x(ib) - ax, by = pts.y(ib) - ay;
+    const double cx = pts.x(ic) - ax, cy = pts.y(ic) - ay;
+    const double fax = F[0], fay = F[1], fbx = F[2], fby = F[3], fcx = F[4], fcy = F[5];
     f[static_cast<long>(ia) * f_stride] += fax;
     f[static_cast<long>(ia) * f_stride + 1] += fay;
     f[static_cast<long>(ib) * f_stride] += fbx;
@@ -125,9 +143,32 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
     out.virial[3] += by * fbx + cy * fcx - ay * gx;
   };
 
+  // Per-cell virial (optional): cell c's own energy term moves the corners
+  // of its triangles; sum (r_p - r_c) (x) F_p over them.  Translation
+  // invariance of each cell's energy makes this independent of the origin,
+  // and the cells' virials add up to the total.
+  double *wc = nullptr;
+  auto cell_part = [&](int c, int ia, int ib, int ic, double gx, double gy) {
+    if (!wc) return;
+    double F[6];
+    corner_forces(ia, ib, ic, gx, gy, F);
+    const int corner[3] = {ia, ib, ic};
+    for (int q = 0; q < 3; ++q) {
+      const double rx = pts.x(corner[q]) - pts.x(c), ry = pts.y(corner[q]) - pts.y(c);
+      wc[0] += rx * F[2 * q];
+      wc[1] += ry * F[2 * q + 1];
+      wc[2] += rx * F[2 * q + 1];
+      wc[3] += ry * F[2 * q];
+    }
+  };
+
   thread_local std::vector<int> spokes;
   const int ntypes = model.ntypes();
   for (int c = 0; c < t.n_owned; ++c) {
+    if (cell_virial) {
+      wc = cell_virial + 4 * static_cast<long>(c);
+      wc[0] = wc[1] = wc[2] = wc[3] = 0.0;
+    }
     const int o = t.cell_offset[c], m = t.cell_size(c);
     const int tc = type[c];
     const CellType &ct = model.types[tc];
@@ -176,9 +217,17 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
         const Vec2 &hp = t.vertices[cv[k == 0 ? m - 1 : k - 1]];
         const Vec2 &hn = t.vertices[cv[k + 1 == m ? 0 : k + 1]];
         // dA/dh_k = 1/2 (h_{k+1} - h_{k-1}) x z ; dP/dh_k = u_in - u_out.
+        const double gx =
+            0.5 * dEdA * (hn.y - hp.y) + (dEdP + in_lam) * in_x - (dEdP + out_lam) * out_x;
+        const double gy =
+            0.5 * dEdA * (hp.x - hn.x) + (dEdP + in_lam) * in_y - (dEdP + out_lam) * out_y;
         Vec2 &gr = grad[cv[k]];
-        gr.x += 0.5 * dEdA * (hn.y - hp.y) + (dEdP + in_lam) * in_x - (dEdP + out_lam) * out_x;
-        gr.y += 0.5 * dEdA * (hp.x - hn.x) + (dEdP + in_lam) * in_y - (dEdP + out_lam) * out_y;
+        gr.x += gx;
+        gr.y += gy;
+        if (wc) {
+          const auto &tri = t.triangles[cv[k]];
+          cell_part(c, tri[0], tri[1], tri[2], gx, gy);
+        }
       } else if (group_at(k - 1) != g || m == 1) {
         // A multifold vertex V, shared by the k >= 4 cells of the group's ring
         // w_0..w_{k-1}.  The energy has a kink there: each way of
@@ -233,6 +282,7 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
               gy += 0.5 * dEdA * (V.x - hn.x);
             }
             push(c, spokes[s - 1], spokes[s], gx * inv_k, gy * inv_k);
+            cell_part(c, c, spokes[s - 1], spokes[s], gx * inv_k, gy * inv_k);
           }
         }
       }

@@ -169,6 +169,33 @@ change_box all {dim} scale {1 / (1 - eps)!r} remap
             self.assertAlmostEqual(-pkk * area, dE, delta=1e-5 * max(1.0, abs(dE)))
 
 
+class PerAtomVirial(LammpsTestCase):
+    """compute stress/atom: the cells' virials add up to the global one
+    (sum of stress/atom = -p V with zero velocities), on 1 and 2 ranks."""
+
+    def check(self, nprocs):
+        run = self.run_lmp(config_script() + """
+compute s all stress/atom NULL virial
+compute st all reduce sum c_s[1] c_s[2] c_s[4]
+thermo_style custom step pxx pyy pxy c_st[1] c_st[2] c_st[3] vol
+thermo_modify norm no format float %.15g
+run 0
+""", nprocs=nprocs)
+        row = [float(w) for w in run.stdout.split("Step")[1].splitlines()[1].split()]
+        _, pxx, pyy, pxy, sxx, syy, sxy, vol = row
+        area = vol    # LAMMPS's 2d volume is the area
+        for p, s in ((pxx, sxx), (pyy, syy), (pxy, sxy)):
+            self.assertAlmostEqual(s, -p * area, delta=1e-9 * (1 + abs(p * area)))
+        self.assertGreater(abs(sxx), 1e-3)
+
+    def test_serial(self):
+        self.check(1)
+
+    @nprocs(2)
+    def test_two_ranks(self):
+        self.check(2)
+
+
 class Hexagonal(LammpsTestCase):
     """Perfect hexagonal lattice with A0 = area per cell: zero force and the
     analytic energy, for both junction conventions."""

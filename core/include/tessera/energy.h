@@ -64,12 +64,16 @@ struct ForceOutput {
 // Energy of the owned cells and forces on all n_points points (owned and
 // ghost) from it.  Forces are *added* to f (stride f_stride, n_points rows);
 // cell_energy (optional, n_owned entries) receives each owned cell's energy,
-// with its junction terms weighted by tension_weight().  type holds 0-based
-// types for all n_points.  pts must be the points that were tessellated (for
-// tessellate_periodic pass positions_of(t)).
+// with its junction terms weighted by tension_weight().  cell_virial
+// (optional, 4 per owned cell: xx, yy, xy, yx) receives the virial of each
+// cell's own energy term, sum_p (r_p - r_c) F_p over the points it moves;
+// the cells' virials add up to ForceOutput::virial (costs about one more
+// force evaluation).  type holds 0-based types for all n_points.  pts must
+// be the points that were tessellated (for tessellate_periodic pass
+// positions_of(t)).
 ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *type,
                            const Model &model, double *f, int f_stride,
-                           double *cell_energy = nullptr);
+                           double *cell_energy = nullptr, double *cell_virial = nullptr);
 
 // Energy only (no gradient); used by tests and finite differences.
 double compute_energy(const Tessellation &t, const int *type, const Model &model,

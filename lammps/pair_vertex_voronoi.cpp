@@ -16,6 +16,7 @@
 #include "error.h"
 #include "force.h"
 #include "memory.h"
+#include "modify.h"
 #include "neighbor.h"
 #include "update.h"
 
@@ -46,12 +47,15 @@ PairVertexVoronoi::PairVertexVoronoi(LAMMPS *lmp) : Pair(lmp)
   mesh_ncalls = -1;
   nextra = 7;
   reference_every = 0;
+  grow = 1;
+  cutghost_saved = -1.0;
   pvector = stats;
   for (double &v : stats) v = 0.0;
 }
 
 PairVertexVoronoi::~PairVertexVoronoi()
 {
+  if (cutghost_saved >= 0.0) comm->cutghostuser = cutghost_saved;
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -133,6 +137,17 @@ void PairVertexVoronoi::settings(int narg, char **arg)
                    "pair_style vertex/voronoi: incremental must be yes, no or check, got '{}'",
                    arg[iarg + 1]);
       iarg += 2;
+    } else if (strcmp(arg[iarg], "grow") == 0) {
+      if (iarg + 2 > narg)
+        error->all(FLERR, "pair_style vertex/voronoi: keyword 'grow' needs a value (yes or no)");
+      if (strcmp(arg[iarg + 1], "yes") == 0)
+        grow = 1;
+      else if (strcmp(arg[iarg + 1], "no") == 0)
+        grow = 0;
+      else
+        error->all(FLERR, "pair_style vertex/voronoi: grow must be yes or no, got '{}'",
+                   arg[iarg + 1]);
+      iarg += 2;
     } else if (strcmp(arg[iarg], "reference") == 0) {
       if (iarg + 2 > narg)
         error->all(FLERR, "pair_style vertex/voronoi: keyword 'reference' needs a value N");
@@ -144,7 +159,7 @@ void PairVertexVoronoi::settings(int narg, char **arg)
     } else {
       error->all(FLERR,
                  "pair_style vertex/voronoi: unknown keyword '{}' (known: tension, incremental, "
-                 "reference)",
+                 "grow, reference)",
                  arg[iarg]);
     }
   }
@@ -329,7 +344,7 @@ bool PairVertexVoronoi::tessellation_current() const
    updated by flips; after a rebuild (atoms exchanged, sorted, or a new
    run) it is triangulated from scratch. */
 
-void PairVertexVoronoi::tessellate()
+bool PairVertexVoronoi::tessellate()
 {
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
@@ -385,19 +400,60 @@ void PairVertexVoronoi::tessellate()
   double need = cov.needed_margin, need_all;
   MPI_Allreduce(&need, &need_all, 1, MPI_DOUBLE, MPI_MAX, world);
   if (need_all > 0.0) {
-    if (std::isinf(need_all))
+    const bool infinite = std::isinf(need_all);
+    const double needed = infinite ? 2.0 * cut_global : 1.1 * (cut_global + need_all);
+    if (grow && force->pair == this &&
+        needed <= 2.0 * MAX(domain->xprd, domain->yprd) + cut_global) {
+      grow_ghost_shell(MAX(needed, 1.2 * cut_global));
+      return true;
+    }
+    if (infinite)
       error->all(FLERR,
                  "pair_style vertex/voronoi: cutoff {} is far too small: some cells have no "
                  "complete ring of neighbours; use a cutoff of at least 2.5 cell diameters",
                  cut_global);
-    const double needed = cut_global + need_all;
     error->all(FLERR,
                "pair_style vertex/voronoi: cutoff {:.6g} is too small for this configuration "
                "(a Voronoi vertex's circumcircle reaches past the ghost atoms); use "
                "'pair_style vertex/voronoi {:.3g}' or larger",
-               cut_global, 1.1 * needed);
+               cut_global, needed);
   }
   tess_step = update->ntimestep;
+  return false;
+}
+
+/* The ghost shell was too thin: widen it to cut and acquire the ghost atoms
+   again now, with the steps of a neighbor-list build (remap into the box,
+   exchange, borders, the fixes' neighbor hooks, the distance-check
+   reference), so that this step's forces are computed with complete cells.
+   The pair style computes the first forces of a step, so the force array
+   only needs clearing for the new set of atoms. */
+
+void PairVertexVoronoi::grow_ghost_shell(double cut)
+{
+  if (comm->me == 0)
+    utils::logmesg(lmp,
+                   "pair_style vertex/voronoi: cutoff grown from {:.4g} to {:.4g} at step {} (a "
+                   "cell needed a wider ghost shell)\n",
+                   cut_global, cut, update->ntimestep);
+  cut_global = cut;
+  cutforce = cut;
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = 1; j <= atom->ntypes; j++) cutsq[i][j] = cut * cut;
+  if (cutghost_saved < 0.0) cutghost_saved = comm->cutghostuser;
+  comm->cutghostuser = MAX(comm->cutghostuser, cut + neighbor->skin);
+  domain->pbc();
+  comm->setup();
+  comm->exchange();
+  comm->borders();
+  if (modify->n_pre_neighbor) modify->pre_neighbor();
+  neighbor->build(1);
+  if (modify->n_post_neighbor) modify->post_neighbor();
+  const int nall = atom->nlocal + atom->nghost;
+  double **f = atom->f;
+  for (int i = 0; i < nall; i++) f[i][0] = f[i][1] = f[i][2] = 0.0;
+  if (atom->torque_flag)
+    for (int i = 0; i < nall; i++) atom->torque[i][0] = atom->torque[i][1] = atom->torque[i][2] = 0.0;
 }
 
 /* incremental check: the updated mesh's cells against a from-scratch
@@ -436,10 +492,15 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
 
+  const double t0 = MPI_Wtime();
+  // Each pass that widens the ghost shell re-acquires the atoms; then the
+  // energy/virial accumulators are set up again for the new atom count.
+  for (int pass = 0; tessellate(); pass++) {
+    if (pass == 8) error->all(FLERR, "pair_style vertex/voronoi: the ghost shell did not converge");
+    ev_init(eflag, vflag);
+  }
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
-  const double t0 = MPI_Wtime();
-  tessellate();
   const double t1 = MPI_Wtime();
 
   type0.resize(nall);

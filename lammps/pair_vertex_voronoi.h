@@ -69,7 +69,10 @@ class PairVertexVoronoi : public Pair {
   std::vector<double> cell_w;  // per-cell virial (xx, yy, xy, yx) when asked for
 
   void allocate();
-  void tessellate();
+  bool tessellate();  // true if the ghost shell had to grow (atoms re-acquired)
+  void grow_ghost_shell(double);
+  int grow;             // widen the ghost shell when a cell needs it (default) or stop
+  double cutghost_saved;  // comm->cutghostuser before this style raised it, or -1
   void check_against_scratch(const tessera::Points &, const double *, const double *);
   double ghost_width() const;
 };

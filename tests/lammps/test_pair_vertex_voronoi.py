@@ -356,16 +356,19 @@ mass 1 1.0
         self.assertLammpsError(run, "cutoff must be > 0")
 
     def test_cutoff_too_small(self):
-        run = self.run_lmp(self.BASE + "pair_style vertex/voronoi 0.6\n"
+        run = self.run_lmp(self.BASE + "pair_style vertex/voronoi 0.6 grow no\n"
                            "pair_coeff * * 1 1 0.1 -0.5\nrun 0\n", ok=False)
         self.assertLammpsError(run, "vertex/voronoi", "cutoff")
 
-    def test_cutoff_too_small_names_needed_value(self):
-        # A hole: the circumcircles around it need more than the cutoff.
-        run = self.run_lmp(self.BASE.replace("0 6 0 3", "0 12 0 6") + """
+    HOLE = """
 region hole sphere 0.3 0.4 0 2.2 units box
 delete_atoms region hole
-pair_style vertex/voronoi 1.6
+"""
+
+    def test_cutoff_too_small_names_needed_value(self):
+        # A hole: the circumcircles around it need more than the cutoff.
+        run = self.run_lmp(self.BASE.replace("0 6 0 3", "0 12 0 6") + self.HOLE + """
+pair_style vertex/voronoi 1.6 grow no
 pair_coeff * * 1 1 0.1 -0.5
 run 0
 """, ok=False)
@@ -405,6 +408,59 @@ pair_coeff * * 1 1 0.1 -0.5
 run 0
 """, ok=False)
         self.assertLammpsError(run, "same position", "id ")
+
+
+class Grow(LammpsTestCase):
+    """grow yes (the default): a ghost shell too thin for a cell is widened
+    during the step, and the forces and energy are those of a run with a
+    wide enough cutoff from the start."""
+
+    SCRIPT = Errors.BASE.replace("0 6 0 3", "0 12 0 6") + Errors.HOLE + """
+pair_style vertex/voronoi {cut}
+pair_coeff * * 1 1 0.1 -0.5
+thermo_modify norm no
+dump d all custom 1 f.dump id fx fy
+dump_modify d sort id format float %.17g
+run 0
+print "E $(pe:%.17g)"
+"""
+
+    def check(self, nprocs):
+        wide = self.run_lmp(self.SCRIPT.format(cut=6.0), nprocs=nprocs)
+        self.assertNotIn("cutoff grown", wide.stdout)
+        grown = self.run_lmp(self.SCRIPT.format(cut=1.6), nprocs=nprocs)
+        self.assertIn("cutoff grown from 1.6", grown.stdout)
+        fw, fg = wide.dump("f.dump")[0], grown.dump("f.dump")[0]
+        for col in ("fx", "fy"):
+            np.testing.assert_allclose(fg[col], fw[col], rtol=0, atol=1e-10)
+        self.assertAlmostEqual(thermo_values(grown)[0], thermo_values(wide)[0], delta=1e-9)
+
+    def test_serial(self):
+        self.check(1)
+
+    @nprocs(2)
+    def test_two_ranks(self):
+        self.check(2)
+
+    def test_far_too_small(self):
+        # cells without a complete ring of neighbours: the shell doubles
+        run = self.run_lmp(Errors.BASE + "pair_style vertex/voronoi 0.6\n"
+                           "pair_coeff * * 1 1 0.1 -0.5\nrun 0\n")
+        self.assertIn("cutoff grown from 0.6", run.stdout)
+
+    def test_during_a_run(self):
+        # the active example with a small cutoff: voids open during the run,
+        # the shell grows, and the run still forms one stream
+        path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples",
+                            "grooves", "in.grooves")
+        with open(path) as f:
+            script = f.read().replace("pair_style      vertex/voronoi 8.0",
+                                      "pair_style      vertex/voronoi 3.0")
+        script = "\n".join(l for l in script.splitlines() if not l.startswith("dump"))
+        run = self.run_lmp(script + "\nprint \"P $(f_act[1]:%.6f)\"\n")
+        self.assertIn("cutoff grown from 3", run.stdout)
+        polar = [float(l.split()[1]) for l in run.stdout.splitlines() if l.startswith("P ")][0]
+        self.assertGreater(polar, 0.99)
 
 
 if __name__ == "__main__":

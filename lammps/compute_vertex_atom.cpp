@@ -49,61 +49,6 @@ double edge_floor(const tessera::Tessellation &t, int c)
   return REL_TOL * mean / m;
 }
 
-// Uniform bins over a set of points, to find the points on a circumcircle.
-class PointBins {
- public:
-  PointBins(double **x, int n) : x(x)
-  {
-    lo[0] = lo[1] = 0.0;
-    double hi[2] = {0.0, 0.0};
-    for (int i = 0; i < n; i++)
-      for (int d = 0; d < 2; d++) {
-        if (i == 0 || x[i][d] < lo[d]) lo[d] = x[i][d];
-        if (i == 0 || x[i][d] > hi[d]) hi[d] = x[i][d];
-      }
-    const double lx = MAX(hi[0] - lo[0], 1e-300), ly = MAX(hi[1] - lo[1], 1e-300);
-    // About two points per bin.
-    size = std::sqrt(2.0 * lx * ly / MAX(n, 1));
-    if (!(size > 0.0)) size = MAX(lx, ly);
-    nb[0] = static_cast<int>(MAX(1.0, MIN(lx / size + 1.0, 4.0 * n + 1.0)));
-    nb[1] = static_cast<int>(MAX(1.0, MIN(ly / size + 1.0, 4.0 * n + 1.0)));
-    head.assign(static_cast<size_t>(nb[0]) * nb[1], -1);
-    next.assign(n, -1);
-    for (int i = 0; i < n; i++) {
-      const size_t b = static_cast<size_t>(bin(x[i][1], 1)) * nb[0] + bin(x[i][0], 0);
-      next[i] = head[b];
-      head[b] = i;
-    }
-  }
-
-  // Indices of the points at distance r from h within rel_tol * r.
-  void on_circle(double hx, double hy, double r, double rel_tol, std::vector<int> &out) const
-  {
-    out.clear();
-    const double reach = r * (1.0 + rel_tol);
-    const int x0 = bin(hx - reach, 0), x1 = bin(hx + reach, 0);
-    const int y0 = bin(hy - reach, 1), y1 = bin(hy + reach, 1);
-    for (int by = y0; by <= y1; by++)
-      for (int bx = x0; bx <= x1; bx++)
-        for (int i = head[static_cast<size_t>(by) * nb[0] + bx]; i >= 0; i = next[i]) {
-          const double d = std::hypot(x[i][0] - hx, x[i][1] - hy);
-          if (std::fabs(d - r) <= rel_tol * r) out.push_back(i);
-        }
-  }
-
- private:
-  double **x;
-  double lo[2], size;
-  int nb[2];
-  std::vector<int> head, next;
-
-  int bin(double v, int d) const
-  {
-    const double b = std::floor((v - lo[d]) / size);
-    return static_cast<int>(MAX(0.0, MIN(b, nb[d] - 1.0)));
-  }
-};
-
 }    // namespace
 
 /* ----------------------------------------------------------------------
@@ -290,13 +235,8 @@ void ComputeVertexAtom::compute_vector()
   vector[2] = count_new_neighbors();
 }
 
-/* Voronoi vertices where four or more cells of the group meet.  Each is
-   counted once over all ranks and periodic images: by the owned cell with the
-   lowest atom ID among the group's cells around it.  The cells around a
-   vertex are the points on its circumcircle, looked up among owned and ghost
-   atoms: the pair style's coverage check guarantees that every circumcircle
-   of an owned cell lies inside the ghost shell, so none is missed even when
-   the owner sees only one of the vertex's Delaunay triangles. */
+/* Voronoi vertices where four or more cells of the group meet, each counted
+   once over all ranks and periodic images. */
 
 double ComputeVertexAtom::count_multifold()
 {
@@ -304,31 +244,22 @@ double ComputeVertexAtom::count_multifold()
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
   const tagint *tag = atom->tag;
-  const PointBins bins(atom->x, t.n_points);
 
-  std::vector<int> on_circle;
+  // The tessellation lists each multifold vertex around the owned cells with
+  // its complete ring of cells (owned and ghost).  A vertex is counted by the
+  // copy in which the group member with the lowest ID is an owned atom: once
+  // over all ranks and periodic images.
   bigint count = 0;
-  for (int c = 0; c < nlocal; c++) {
-    if (!(mask[c] & groupbit)) continue;
-    const int o = t.cell_offset[c], m = t.cell_size(c);
-    const double zero_len = edge_floor(t, c);
-    for (int k = 0; k < m; k++) {
-      // Vertex k is the same Voronoi vertex as vertex k-1 if the edge between
-      // them has zero length: look at each vertex once, at its first copy.
-      if (m > 1 && t.edge_length[o + (k + m - 1) % m] <= zero_len) continue;
-      const int tri = t.cell_vertex[o + k];
-      const tessera::Vec2 &h = t.vertices[tri];
-      bins.on_circle(h.x, h.y, t.radius[tri], REL_TOL, on_circle);
-      if (on_circle.size() < 4) continue;
-      tagint lowest = tag[c];
-      int members = 0;
-      for (int j : on_circle) {
-        if (!(mask[j] & groupbit)) continue;
-        members++;
-        lowest = MIN(lowest, tag[j]);
-      }
-      if (members >= 4 && lowest == tag[c]) count++;
+  const int ngroups = static_cast<int>(t.group_offset.size()) - 1;
+  for (int g = 0; g < ngroups; g++) {
+    int members = 0, lowest = -1;
+    for (int k = t.group_offset[g]; k < t.group_offset[g + 1]; k++) {
+      const int j = t.group_point[k];
+      if (!(mask[j] & groupbit)) continue;
+      members++;
+      if (lowest < 0 || tag[j] < tag[lowest]) lowest = j;
     }
+    if (members >= 4 && lowest < nlocal) count++;
   }
   bigint total;
   MPI_Allreduce(&count, &total, 1, MPI_LMP_BIGINT, MPI_SUM, world);

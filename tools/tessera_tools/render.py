@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from .trajectories import ORIENTATION_TICKS, attach_colorbar, coordination, orientation
+from .trajectories import ORIENTATION_TICKS, attach_colorbar, coordination, frame_axes, orientation
 from .voronoi import tessellate_frame
 
 FIELDS = {
@@ -170,14 +170,8 @@ def draw_tessellation(ax, frame, tess, field="area", view="box", cmap=None, vmin
         scale = 0.45 * math.sqrt(tess.box.area / n)
         ax.quiver(pts[:, 0], pts[:, 1], unit[:, 0] * scale, unit[:, 1] * scale, angles="xy",
                   scale_units="xy", scale=1.0, width=0.004, color="k", pivot="middle")
-    allpts = np.vstack([tess.box.corners()] + ([np.vstack(polys)] if view == "cells" else []))
-    lo_xy, hi_xy = allpts.min(axis=0), allpts.max(axis=0)
-    pad = 0.01 * (hi_xy - lo_xy).max()
-    ax.set_xlim(lo_xy[0] - pad, hi_xy[0] + pad)
-    ax.set_ylim(lo_xy[1] - pad, hi_xy[1] + pad)
-    ax.set_aspect("equal")
-    ax.set_xlabel("x")
-    ax.set_ylabel("y")
+    frame_axes(ax, np.vstack([tess.box.corners()] + ([np.vstack(polys)] if view == "cells" else [])),
+               0.01)
     if colorbar and values is not None:
         attach_colorbar(ax, coll, label or default_label, ANGLE_FIELDS.get(ALIASES.get(field, field)))
     return coll

@@ -95,6 +95,18 @@ class Trajectory:
         return out
 
 
+def frame_axes(ax, points, pad_fraction):
+    """Equal-aspect axes around ``points`` (M, 2) with a margin of
+    ``pad_fraction`` of the larger extent, labelled x and y."""
+    lo_xy, hi_xy = points.min(axis=0), points.max(axis=0)
+    pad = pad_fraction * (hi_xy - lo_xy).max()
+    ax.set_xlim(lo_xy[0] - pad, hi_xy[0] + pad)
+    ax.set_ylim(lo_xy[1] - pad, hi_xy[1] + pad)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
+
+
 def attach_colorbar(ax, mappable, label=None, ticks=None):
     """A colour bar exactly as tall as the (equal-aspect) axes beside it."""
     from mpl_toolkits.axes_grid1 import make_axes_locatable
@@ -222,14 +234,7 @@ def draw_trajectories(ax, traj, values, kind, cmap=None, vmin=None, vmax=None, l
                              edgecolor="0.3", linestyle="--", linewidth=0.8))
     pts = seg.reshape(-1, 2) if len(seg) else traj.positions.reshape(-1, 2)
     corners = traj.boxes[0].corners()
-    allpts = np.vstack([pts, corners]) if box else pts
-    lo_xy, hi_xy = allpts.min(axis=0), allpts.max(axis=0)
-    pad = 0.02 * (hi_xy - lo_xy).max()
-    ax.set_xlim(lo_xy[0] - pad, hi_xy[0] + pad)
-    ax.set_ylim(lo_xy[1] - pad, hi_xy[1] + pad)
-    ax.set_aspect("equal")
-    ax.set_xlabel("x")
-    ax.set_ylabel("y")
+    frame_axes(ax, np.vstack([pts, corners]) if box else pts, 0.02)
     if colorbar:
         attach_colorbar(ax, lc, label, ORIENTATION_TICKS if kind == "orientation" else None)
     return lc

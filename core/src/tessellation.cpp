@@ -27,8 +27,7 @@ void Box::validate() const {
       throw Error(s.str());
     }
   }
-  if (xy != 0.0)
-    throw Error("tessera: triclinic (tilted) boxes are not supported yet; use a box with xy = 0");
+  if (!std::isfinite(xy)) throw Error("tessera: box tilt xy must be finite");
 }
 
 int Tessellation::coordination_number(int c, double rel_tol) const {
@@ -76,7 +75,20 @@ Tessellation tessellate_local(const Points &pts, int n_owned, const long *ids,
   return t;
 }
 
+void Region::bounding_box(double margin, double lo[2], double hi[2]) const {
+  // The slanted sides move sideways by margin |b| / by when grown by margin.
+  const double side = margin * std::hypot(bx, by) / by;
+  lo[0] = o[0] + std::min(0.0, bx) - side;
+  hi[0] = o[0] + ax + std::max(0.0, bx) + side;
+  lo[1] = o[1] - margin;
+  hi[1] = o[1] + by + margin;
+}
+
 Coverage check_coverage(const Tessellation &t, const double lo[2], const double hi[2]) {
+  return check_coverage(t, Region::rect(lo, hi), 0.0);
+}
+
+Coverage check_coverage(const Tessellation &t, const Region &region, double margin) {
   Coverage cov;
   if (t.unbounded_cell >= 0) {
     cov.ok = false;
@@ -84,6 +96,11 @@ Coverage check_coverage(const Tessellation &t, const double lo[2], const double 
     cov.worst_cell = t.unbounded_cell;
     return cov;
   }
+  // Inward unit normal of the left side (along b through o); the right side
+  // (through o + a) has the opposite one.
+  const double blen = std::hypot(region.bx, region.by);
+  const double nx = region.by / blen, ny = -region.bx / blen;
+  const double ox = region.o[0], oy = region.o[1];
   // The triangles used by owned cells are those with an owned corner; one
   // sequential pass over the triangles visits each once.
   int worst = -1;
@@ -91,9 +108,11 @@ Coverage check_coverage(const Tessellation &t, const double lo[2], const double 
     const auto &tri = t.triangles[k];
     if (tri[0] >= t.n_owned && tri[1] >= t.n_owned && tri[2] >= t.n_owned) continue;
     const Vec2 &h = t.vertices[k];
-    const double r = t.radius[k];
-    const double need = std::max(std::max(lo[0] - (h.x - r), (h.x + r) - hi[0]),
-                                 std::max(lo[1] - (h.y - r), (h.y + r) - hi[1]));
+    const double r = t.radius[k] - margin;
+    const double dx = h.x - ox, dy = h.y - oy;
+    const double left = nx * dx + ny * dy;
+    const double right = -(nx * (dx - region.ax) + ny * dy);
+    const double need = r - std::min(std::min(dy, region.by - dy), std::min(left, right));
     if (need > cov.needed_margin) {
       cov.ok = false;
       cov.needed_margin = need;
@@ -108,13 +127,19 @@ Coverage check_coverage(const Tessellation &t, const double lo[2], const double 
 }
 
 void wrap_into_box(const Box &box, std::vector<double> &xy) {
-  for (size_t i = 0; i < xy.size(); ++i) {
-    const int d = static_cast<int>(i % 2);
-    const double L = box.length(d);
-    double v = xy[i] - box.lo[d];
-    v -= L * std::floor(v / L);
-    if (v >= L) v -= L;  // floor of a value just below L can round up
-    xy[i] = box.lo[d] + v;
+  const double lx = box.length(0), ly = box.length(1);
+  auto wrap01 = [](double s) {
+    s -= std::floor(s);
+    return s >= 1.0 ? 0.0 : s;  // floor of a value just below 1 can round up
+  };
+  for (size_t i = 0; i + 1 < xy.size(); i += 2) {
+    const double sy = wrap01((xy[i + 1] - box.lo[1]) / ly);
+    const double shift = std::floor((xy[i + 1] - box.lo[1]) / ly);
+    // x relative to the box's left side at this height, after the y wrap
+    const double x = xy[i] - shift * box.xy - box.lo[0] - sy * box.xy;
+    const double sx = wrap01(x / lx);
+    xy[i] = box.lo[0] + sx * lx + sy * box.xy;
+    xy[i + 1] = box.lo[1] + sy * ly;
   }
 }
 
@@ -133,25 +158,33 @@ Tessellation tessellate_periodic(const Box &box, const Points &pts, const long *
   }
   wrap_into_box(box, own);
 
-  const double L[2] = {box.length(0), box.length(1)};
+  const double lx = box.length(0), ly = box.length(1);
+  const Region region = box.region();
   double margin = 2.0 * std::sqrt(box.area() / n);
-  const double max_margin = 4.0 * std::max(L[0], L[1]) + margin;
+  const double max_margin = 4.0 * std::max(lx + std::fabs(box.xy), ly) + margin;
   std::vector<double> all;
   std::vector<int> origin;
   while (true) {
-    const double lo[2] = {box.lo[0] - margin, box.lo[1] - margin};
-    const double hi[2] = {box.hi[0] + margin, box.hi[1] + margin};
     all.assign(own.begin(), own.end());
     origin.resize(n);
     std::iota(origin.begin(), origin.end(), 0);
-    const int sx = static_cast<int>(std::ceil(margin / L[0]));
-    const int sy = static_cast<int>(std::ceil(margin / L[1]));
-    for (int i = -sx; i <= sx; ++i) {
-      for (int j = -sy; j <= sy; ++j) {
+    // Images p + i (lx, 0) + j (xy, ly) inside the box grown by margin.
+    double blo[2], bhi[2];
+    region.bounding_box(margin, blo, bhi);
+    const int sy = static_cast<int>(std::ceil(margin / ly)) + 1;
+    const int sx = static_cast<int>(std::ceil((margin + sy * std::fabs(box.xy)) / lx)) + 1;
+    const double blen = std::hypot(box.xy, ly);
+    for (int j = -sy; j <= sy; ++j) {
+      for (int i = -sx; i <= sx; ++i) {
         if (i == 0 && j == 0) continue;
         for (int p = 0; p < n; ++p) {
-          const double x = own[2 * p] + i * L[0], y = own[2 * p + 1] + j * L[1];
-          if (x < lo[0] || x > hi[0] || y < lo[1] || y > hi[1]) continue;
+          const double x = own[2 * p] + i * lx + j * box.xy, y = own[2 * p + 1] + j * ly;
+          if (x < blo[0] || x > bhi[0] || y < blo[1] || y > bhi[1]) continue;
+          // inside the parallelogram grown by margin
+          const double dx = x - region.o[0], dy = y - region.o[1];
+          const double left = (ly * dx - box.xy * dy) / blen;
+          const double right = -(ly * (dx - lx) - box.xy * dy) / blen;
+          if (left < -margin || right < -margin) continue;
           all.push_back(x);
           all.push_back(y);
           origin.push_back(p);
@@ -167,7 +200,7 @@ Tessellation tessellate_periodic(const Box &box, const Points &pts, const long *
     if (t.unbounded_cell >= 0) {
       grow = margin;
     } else {
-      const Coverage cov = check_coverage(t, lo, hi);
+      const Coverage cov = check_coverage(t, region, margin);
       if (cov.ok) {
         t.origin = std::move(origin);
         t.position.resize(t.n_points);

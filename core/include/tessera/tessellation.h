@@ -35,12 +35,34 @@ struct Points {
   double y(int i) const { return data[static_cast<long>(i) * stride + 1]; }
 };
 
-// Periodic simulation box.  Only rectangular boxes are supported now; the tilt
-// is carried so that triclinic boxes can be added without changing callers.
+// A parallelogram: the points o + s a + t b with s, t in [0, 1], where
+// a = (ax, 0) runs along x and b = (bx, by) with by > 0: the shape of a
+// LAMMPS (sub-)domain, orthogonal when bx = 0.
+struct Region {
+  double o[2] = {0.0, 0.0};
+  double ax = 1.0;
+  double bx = 0.0, by = 1.0;
+
+  static Region rect(const double lo[2], const double hi[2]) {
+    Region r;
+    r.o[0] = lo[0];
+    r.o[1] = lo[1];
+    r.ax = hi[0] - lo[0];
+    r.bx = 0.0;
+    r.by = hi[1] - lo[1];
+    return r;
+  }
+  // The smallest rectangle [lo, hi] containing the region grown by margin
+  // (perpendicular to each side).
+  void bounding_box(double margin, double lo[2], double hi[2]) const;
+};
+
+// Periodic simulation box: edge vectors (lx, 0) and (xy, ly) from lo, as in
+// LAMMPS (xy = 0: orthogonal; otherwise triclinic).
 struct Box {
   double lo[2] = {0.0, 0.0};
   double hi[2] = {1.0, 1.0};
-  double xy = 0.0;  // tilt factor; must be 0 for now
+  double xy = 0.0;  // tilt factor
 
   static Box rect(double xlo, double xhi, double ylo, double yhi) {
     Box b;
@@ -52,7 +74,12 @@ struct Box {
   }
   double length(int d) const { return hi[d] - lo[d]; }
   double area() const { return length(0) * length(1); }
-  // Throws Error if a length is not positive or not finite, or xy != 0.
+  Region region() const {
+    Region r = Region::rect(lo, hi);
+    r.bx = xy;
+    return r;
+  }
+  // Throws Error if a length is not positive or not finite, or xy is not finite.
   void validate() const;
 };
 
@@ -138,6 +165,9 @@ struct Coverage {
   int worst_cell = -1;  // an owned cell using the worst triangle, or -1
 };
 Coverage check_coverage(const Tessellation &t, const double lo[2], const double hi[2]);
+// The same for a parallelogram region grown by margin on every side
+// (perpendicular distance), e.g. a triclinic sub-domain and its ghost shell.
+Coverage check_coverage(const Tessellation &t, const Region &region, double margin = 0.0);
 
 // Tessellate n points in a periodic box.  Builds periodic images within a
 // margin of the box, and grows the margin until check_coverage passes, so the
@@ -145,7 +175,7 @@ Coverage check_coverage(const Tessellation &t, const double lo[2], const double 
 // (wrap them first; wrap_into_box helps).
 Tessellation tessellate_periodic(const Box &box, const Points &pts, const long *ids = nullptr);
 
-// Wrap coordinates (stride 2) into [lo, hi) of the box.
+// Wrap coordinates (stride 2) into the box (fractional coordinates in [0, 1)).
 void wrap_into_box(const Box &box, std::vector<double> &xy);
 
 }  // namespace tessera

@@ -279,8 +279,6 @@ void PairVertexVoronoi::init_style()
     error->all(FLERR,
                "pair_style vertex/voronoi requires periodic x and y boundaries ('boundary p p "
                "p'); a confluent tissue has no free edge in this model");
-  if (domain->triclinic)
-    error->all(FLERR, "pair_style vertex/voronoi does not support triclinic boxes yet");
   if (force->newton_pair == 0)
     error->all(FLERR, "pair_style vertex/voronoi requires 'newton on' (forces go to ghost atoms)");
   if (atom->tag_enable == 0) error->all(FLERR, "pair_style vertex/voronoi requires atom IDs");
@@ -334,6 +332,26 @@ double PairVertexVoronoi::ghost_width() const
   return MAX(neighbor->cutneighmax, comm->cutghostuser) - 0.5 * neighbor->skin;
 }
 
+/* This rank's sub-domain as a parallelogram in box coordinates (a rectangle
+   for orthogonal boxes; tilted sides for triclinic ones, whose ghost shell
+   is bounded by planes parallel to the sides). */
+
+tessera::Region PairVertexVoronoi::subdomain() const
+{
+  if (!domain->triclinic) return tessera::Region::rect(domain->sublo, domain->subhi);
+  double lo[3] = {domain->sublo_lamda[0], domain->sublo_lamda[1], 0.0};
+  double corner[3];
+  domain->lamda2x(lo, corner);
+  tessera::Region r;
+  r.o[0] = corner[0];
+  r.o[1] = corner[1];
+  r.ax = (domain->subhi_lamda[0] - domain->sublo_lamda[0]) * domain->xprd;
+  const double fy = domain->subhi_lamda[1] - domain->sublo_lamda[1];
+  r.bx = fy * domain->xy;
+  r.by = fy * domain->yprd;
+  return r;
+}
+
 bool PairVertexVoronoi::tessellation_current() const
 {
   return tess_step == update->ntimestep && tess.n_owned == atom->nlocal;
@@ -350,15 +368,14 @@ bool PairVertexVoronoi::tessellate()
   const int nall = nlocal + atom->nghost;
   tessera::Points pts{&atom->x[0][0], nall, 3};
   const double w = ghost_width();
-  const double lo[2] = {domain->sublo[0] - w, domain->sublo[1] - w};
-  const double hi[2] = {domain->subhi[0] + w, domain->subhi[1] + w};
+  const tessera::Region sub = subdomain();
   // The updated mesh is certified inside a smaller region: thin triangles on
   // the hull of the ghost shell fold over often, and outside this region
   // they are frozen rather than forcing a rebuild.  Owned cells' circumdisks
   // reach about one cell beyond the sub-domain, well inside it.
   const double wi = 0.6 * w;
-  const double lo_inc[2] = {domain->sublo[0] - wi, domain->sublo[1] - wi};
-  const double hi_inc[2] = {domain->subhi[0] + wi, domain->subhi[1] + wi};
+  double lo_inc[2], hi_inc[2];
+  sub.bounding_box(wi, lo_inc, hi_inc);
 
   bool fresh = false;
   auto build = [&]() {
@@ -388,15 +405,15 @@ bool PairVertexVoronoi::tessellate()
   mesh.cells(pts, nlocal, tess);
 
   tessera::Coverage cov;  // ok unless checked below
-  if (!fresh && !tessera::check_coverage(tess, lo_inc, hi_inc).ok) {
+  if (!fresh && !tessera::check_coverage(tess, sub, wi).ok) {
     // A cell reaches past the region where the updated mesh is certified:
     // triangulate from scratch, then check against the full ghost shell.
     build();
     mesh.cells(pts, nlocal, tess);
   }
-  if (incremental == 2 && !fresh) check_against_scratch(pts, lo, hi);
+  if (incremental == 2 && !fresh) check_against_scratch(pts, sub, w);
   // An updated mesh that passed the smaller region passes the full one.
-  if (fresh) cov = tessera::check_coverage(tess, lo, hi);
+  if (fresh) cov = tessera::check_coverage(tess, sub, w);
   double need = cov.needed_margin, need_all;
   MPI_Allreduce(&need, &need_all, 1, MPI_DOUBLE, MPI_MAX, world);
   if (need_all > 0.0) {
@@ -442,10 +459,12 @@ void PairVertexVoronoi::grow_ghost_shell(double cut)
     for (int j = 1; j <= atom->ntypes; j++) cutsq[i][j] = cut * cut;
   if (cutghost_saved < 0.0) cutghost_saved = comm->cutghostuser;
   comm->cutghostuser = MAX(comm->cutghostuser, cut + neighbor->skin);
+  if (domain->triclinic) domain->x2lamda(atom->nlocal);
   domain->pbc();
   comm->setup();
   comm->exchange();
   comm->borders();
+  if (domain->triclinic) domain->lamda2x(atom->nlocal + atom->nghost);
   if (modify->n_pre_neighbor) modify->pre_neighbor();
   neighbor->build(1);
   if (modify->n_post_neighbor) modify->post_neighbor();
@@ -461,14 +480,14 @@ void PairVertexVoronoi::grow_ghost_shell(double cut)
    longer than a round-off threshold must be found by both; areas and
    perimeters must agree.  For tests of the incremental path. */
 
-void PairVertexVoronoi::check_against_scratch(const tessera::Points &pts, const double *lo,
-                                              const double *hi)
+void PairVertexVoronoi::check_against_scratch(const tessera::Points &pts,
+                                              const tessera::Region &sub, double w)
 {
   tessera::Mesh scratch;
   scratch.build(pts);
   tessera::Tessellation ref;
   scratch.cells(pts, tess.n_owned, ref);
-  if (!tessera::check_coverage(ref, lo, hi).ok) return;    // the run stops on this anyway
+  if (!tessera::check_coverage(ref, sub, w).ok) return;    // the shell grows or the run stops
   for (int c = 0; c < tess.n_owned; c++) {
     auto strong = [](const tessera::Tessellation &t, int cell) {
       std::vector<int> nb;

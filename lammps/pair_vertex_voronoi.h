@@ -73,7 +73,8 @@ class PairVertexVoronoi : public Pair {
   void grow_ghost_shell(double);
   int grow;             // widen the ghost shell when a cell needs it (default) or stop
   double cutghost_saved;  // comm->cutghostuser before this style raised it, or -1
-  void check_against_scratch(const tessera::Points &, const double *, const double *);
+  void check_against_scratch(const tessera::Points &, const tessera::Region &, double);
+  tessera::Region subdomain() const;
   double ghost_width() const;
 };
 

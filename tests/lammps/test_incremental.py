@@ -10,14 +10,16 @@ import lmptest
 from lmptest import LammpsTestCase, nprocs
 
 
-def fluid_script(lattice="hex", nx=12, ny=6, steps=1500):
+def fluid_script(lattice="hex", nx=12, ny=6, steps=1500, tilt=None):
+    region = (f"region box block 0 {nx} 0 {ny} -0.5 0.5" if tilt is None else
+              f"region box prism 0 {nx} 0 {ny} -0.5 0.5 {tilt} 0 0")
     return f"""
 dimension 2
 units lj
 atom_style dipole
 boundary p p p
 lattice {lattice} 1.0
-region box block 0 {nx} 0 {ny} -0.5 0.5
+{region}
 create_box 1 box
 create_atoms 1 box
 mass 1 1.0
@@ -50,8 +52,8 @@ def t1_total(run):
 
 class Check(LammpsTestCase):
 
-    def check(self, nprocs, lattice="hex", ny=6):
-        run = self.run_lmp(fluid_script(lattice=lattice, ny=ny), nprocs=nprocs)
+    def check(self, nprocs, lattice="hex", ny=6, tilt=None):
+        run = self.run_lmp(fluid_script(lattice=lattice, ny=ny, tilt=tilt), nprocs=nprocs)
         _, flips, steps = stats(run)
         self.assertGreaterEqual(steps, 1500)
         self.assertGreater(flips, 500, "the run must exercise the flips")
@@ -63,6 +65,10 @@ class Check(LammpsTestCase):
     @nprocs(2)
     def test_fluid_two_ranks(self):
         self.check(2)
+
+    @nprocs(2)
+    def test_fluid_triclinic_two_ranks(self):
+        self.check(2, tilt=3)
 
     def test_from_square_lattice(self):
         # every vertex of the start is four-fold

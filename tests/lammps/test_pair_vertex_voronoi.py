@@ -22,8 +22,10 @@ LAMBDA_12 = 0.1
 
 
 def config_script(nx=8, ny=4, disp=0.25, seed=4821, two_types=True, tension="edge",
-                  cutoff=3.5, extra=""):
-    """A displaced hexagonal lattice (area 1 per cell) in a periodic box."""
+                  cutoff=3.5, extra="", tilt=None):
+    """A displaced hexagonal lattice (area 1 per cell) in a periodic box;
+    tilt (in lattice units: a whole number keeps the lattice periodic) makes
+    it a triclinic box."""
     coeffs = "pair_coeff * * %g %g %g %g\n" % TYPES[1]
     if two_types:
         coeffs += "pair_coeff 2 2 %g %g %g %g\npair_coeff 1 2 %g\n" % (TYPES[2] + (LAMBDA_12,))
@@ -33,7 +35,8 @@ units lj
 atom_style dipole
 boundary p p p
 lattice hex 1.0
-region box block 0 {nx} 0 {ny} -0.5 0.5
+{"region box block 0 %d 0 %d -0.5 0.5" % (nx, ny) if tilt is None else
+ "region box prism 0 %d 0 %d -0.5 0.5 %g 0 0" % (nx, ny, tilt)}
 create_box 2 box
 create_atoms 1 box
 mass * 1.0
@@ -47,12 +50,14 @@ thermo_modify norm no format float %.17g
 """
 
 
-def core_forces(frame, tension="edge"):
-    """Energy, virial and forces from the core library for a dump frame."""
+def core_forces(frame, tension="edge", box=None):
+    """Energy, virial and forces from the core library for a dump frame;
+    box = (xlo, xhi, ylo, yhi, xy), by default the frame's orthogonal box."""
     exe = os.path.join(os.path.dirname(os.path.dirname(Config.lmp)), "tests", "core_forces")
-    box = frame["box"]
-    lines = ["%r %r %r %r %d 2 %s" % (box[0, 0], box[0, 1], box[1, 0], box[1, 1],
-                                      len(frame["id"]), tension)]
+    if box is None:
+        b = frame["box"]
+        box = (b[0, 0], b[0, 1], b[1, 0], b[1, 1], 0.0)
+    lines = ["%r %r %r %r %r %d 2 %s" % (tuple(box) + (len(frame["id"]), tension))]
     for t in (1, 2):
         lines.append("%r %r %r" % TYPES[t][:3])
     lines.append("%r %r" % (TYPES[1][3], LAMBDA_12))
@@ -194,6 +199,69 @@ run 0
     @nprocs(2)
     def test_two_ranks(self):
         self.check(2)
+
+
+class Triclinic(LammpsTestCase):
+    """A tilted (triclinic) box: forces and energy equal the core's for the
+    same tilted box, on 1 and 2 ranks; the shear pressure is the derivative
+    of the energy under change_box xy; fix deform xy shears a tissue."""
+
+    BOXPRINT = 'print "BOX $(xlo:%.17g) $(xhi:%.17g) $(ylo:%.17g) $(yhi:%.17g) $(xy:%.17g)"\n'
+
+    def check_core(self, nprocs):
+        run = self.run_lmp(config_script(tilt=1) + """
+dump d all custom 1 cfg.dump id type x y fx fy
+dump_modify d sort id format float %.17g
+run 0
+print "E $(pe:%.17g)"
+""" + self.BOXPRINT, nprocs=nprocs)
+        box = [float(w) for w in [l for l in run.stdout.splitlines()
+                                  if l.startswith("BOX ")][0].split()[1:]]
+        self.assertGreater(box[4], 1.0)
+        frame = run.dump("cfg.dump")[0]
+        energy, _, forces = core_forces(frame, "edge", box)
+        fl = np.column_stack([frame["fx"], frame["fy"]])
+        np.testing.assert_allclose(fl, forces, rtol=0, atol=1e-10 * np.abs(forces).max())
+        self.assertAlmostEqual(thermo_values(run)[0], energy, delta=1e-10 * abs(energy))
+
+    def test_against_core(self):
+        self.check_core(1)
+
+    @nprocs(2)
+    def test_against_core_two_ranks(self):
+        self.check_core(2)
+
+    def test_shear_pressure(self):
+        # change_box xy delta h remap shears x -> x + (h / ly) (y - ylo):
+        # dE/dh = -W_yx / ly = -pxy V / ly (zero velocities)
+        h = 1e-6
+        run = self.run_lmp(config_script(tilt=1) + "run 0\n" +
+                           'print "P $(pxy:%.17g) $(vol:%.17g) $(ly:%.17g)"\n' + f"""
+change_box all xy delta {h} remap units box
+run 0
+print "E $(pe:%.17g)"
+change_box all xy delta {-2 * h} remap units box
+run 0
+print "E $(pe:%.17g)"
+""")
+        pxy, vol, ly = (float(w) for w in [l for l in run.stdout.splitlines()
+                                           if l.startswith("P ")][0].split()[1:])
+        e = thermo_values(run)
+        dE = (e[0] - e[1]) / (2 * h)
+        self.assertAlmostEqual(dE, -pxy * vol / ly, delta=1e-5 * max(1.0, abs(dE)))
+
+    def test_deform_shear(self):
+        run = self.run_lmp(config_script(tilt=0, two_types=False, disp=0.05) + """
+timestep 0.01
+fix m all brownian 1.0 1 gamma_t 1.0 rng none
+fix d all deform 1 xy erate 0.05 remap x
+run 300
+print "S $(pxy:%.17g) $(xy:%.17g)"
+""")
+        pxy, xy = (float(w) for w in [l for l in run.stdout.splitlines()
+                                      if l.startswith("S ")][0].split()[1:])
+        self.assertGreater(xy, 0.1)
+        self.assertNotEqual(pxy, 0.0)
 
 
 class Hexagonal(LammpsTestCase):

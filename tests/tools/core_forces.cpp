@@ -3,7 +3,7 @@
 // The core library's energy, virial and forces for a periodic configuration,
 // for tests that compare the LAMMPS styles against the core.
 //
-// stdin:  xlo xhi ylo yhi n ntypes tension(edge|cell)
+// stdin:  xlo xhi ylo yhi xy n ntypes tension(edge|cell)
 //         ntypes lines: K A0 Gamma
 //         ntypes lines of ntypes Lambda values
 //         n lines: x y type(1-based)
@@ -16,10 +16,10 @@
 #include <vector>
 
 int main() {
-  double xlo, xhi, ylo, yhi;
+  double xlo, xhi, ylo, yhi, tilt;
   int n, ntypes;
   std::string tension;
-  if (!(std::cin >> xlo >> xhi >> ylo >> yhi >> n >> ntypes >> tension)) return 2;
+  if (!(std::cin >> xlo >> xhi >> ylo >> yhi >> tilt >> n >> ntypes >> tension)) return 2;
   tessera::Model model(ntypes);
   model.tension = tension == "cell" ? tessera::Tension::Cell : tessera::Tension::Edge;
   for (auto &t : model.types) std::cin >> t.K >> t.A0 >> t.Gamma;
@@ -33,7 +33,9 @@ int main() {
   }
   std::vector<double> f;
   try {
-    const auto out = tessera::periodic_forces(tessera::Box::rect(xlo, xhi, ylo, yhi),
+    tessera::Box box = tessera::Box::rect(xlo, xhi, ylo, yhi);
+    box.xy = tilt;
+    const auto out = tessera::periodic_forces(box,
                                               tessera::Points{xy.data(), n, 2}, type.data(),
                                               model, f);
     std::printf("energy %.17g\nvirial %.17g %.17g %.17g\n", out.energy, out.virial[0],

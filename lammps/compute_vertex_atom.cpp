@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 using namespace LAMMPS_NS;
@@ -57,13 +58,25 @@ double edge_floor(const tessera::Tessellation &t, int c)
 
 ComputeVertexAtom::ComputeVertexAtom(LAMMPS *lmp, int narg, char **arg) :
     Compute(lmp, narg, arg), nmax(0), values(nullptr), id_fix(nullptr), fix(nullptr), pair(nullptr),
-    warned_overflow(0)
+    warned_overflow(0), rosette(0.0)
 {
-  if (narg > 3)
-    error->all(FLERR,
-               "Illegal compute vertex/atom command: it takes no arguments after the style "
-               "name ('compute ID group vertex/atom'), got '{}'",
-               arg[3]);
+  int iarg = 3;
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "rosette") == 0) {
+      if (iarg + 2 > narg)
+        error->all(FLERR, "compute vertex/atom: keyword 'rosette' needs a length L");
+      rosette = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(rosette > 0.0))
+        error->all(FLERR, "compute vertex/atom: rosette length must be > 0, got {}",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else {
+      error->all(FLERR,
+                 "Illegal compute vertex/atom command: unknown keyword '{}' (known: rosette L; "
+                 "'compute ID group vertex/atom [rosette L]')",
+                 arg[iarg]);
+    }
+  }
   if (atom->tag_enable == 0)
     error->all(FLERR, "compute vertex/atom requires atom IDs (atom_modify id yes)");
 
@@ -246,20 +259,32 @@ double ComputeVertexAtom::count_multifold()
   const tagint *tag = atom->tag;
 
   // The tessellation lists each multifold vertex around the owned cells with
-  // its complete ring of cells (owned and ghost).  A vertex is counted by the
-  // copy in which the group member with the lowest ID is an owned atom: once
-  // over all ranks and periodic images.
+  // its complete ring of cells (owned and ghost); with 'rosette L' the
+  // clusters of vertices joined by junctions shorter than L take their place.
+  // A vertex is counted by the copy in which the group member with the
+  // lowest ID is an owned atom: once over all ranks and periodic images.
+  const int *offset, *members;
+  int nclusters;
+  if (rosette > 0.0) {
+    t.short_edge_clusters(rosette, cluster_offset, cluster_members);
+    offset = cluster_offset.data();
+    members = cluster_members.data();
+    nclusters = static_cast<int>(cluster_offset.size()) - 1;
+  } else {
+    offset = t.group_offset.data();
+    members = t.group_point.data();
+    nclusters = static_cast<int>(t.group_offset.size()) - 1;
+  }
   bigint count = 0;
-  const int ngroups = static_cast<int>(t.group_offset.size()) - 1;
-  for (int g = 0; g < ngroups; g++) {
-    int members = 0, lowest = -1;
-    for (int k = t.group_offset[g]; k < t.group_offset[g + 1]; k++) {
-      const int j = t.group_point[k];
+  for (int g = 0; g < nclusters; g++) {
+    int in_group = 0, lowest = -1;
+    for (int k = offset[g]; k < offset[g + 1]; k++) {
+      const int j = members[k];
       if (!(mask[j] & groupbit)) continue;
-      members++;
+      in_group++;
       if (lowest < 0 || tag[j] < tag[lowest]) lowest = j;
     }
-    if (members >= 4 && lowest < nlocal) count++;
+    if (in_group >= 4 && lowest < nlocal) count++;
   }
   bigint total;
   MPI_Allreduce(&count, &total, 1, MPI_LMP_BIGINT, MPI_SUM, world);

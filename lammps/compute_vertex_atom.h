@@ -46,6 +46,8 @@ class ComputeVertexAtom : public Compute {
   void check_tessellation();
   void communicate_velocities();
   double count_multifold();
+  double rosette;  // > 0: count clusters of vertices joined by junctions shorter than this
+  std::vector<int> cluster_offset, cluster_members;
   double count_new_neighbors();
   void neighbor_tags(int, std::vector<tagint> &);
 };

@@ -444,6 +444,11 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
 
   // Each seed starts a search over all triangles at that vertex, so that its
   // whole ring of cells is known even where some are not owned here.
+  t.triangle_neighbor.resize(nft);
+  for (int k = 0; k < nft; ++k) {
+    const int m = mesh_of_[k];
+    for (int e = 0; e < 3; ++e) t.triangle_neighbor[k][e] = compact_[nb_[3 * m + e]];
+  }
   t.triangle_group.assign(nft, -1);
   t.group_offset.assign(1, 0);
   t.group_point.clear();

@@ -58,6 +58,48 @@ int Tessellation::count_multifold_vertices() const {
   return static_cast<int>(std::lround(multifold_vertex_share()));
 }
 
+void Tessellation::short_edge_clusters(double min_length, std::vector<int> &offset,
+                                       std::vector<int> &members) const {
+  offset.assign(1, 0);
+  members.clear();
+  const int nt = static_cast<int>(triangles.size());
+  std::vector<char> seen(nt, 0);
+  std::vector<int> stack, tris, pts;
+  const double l2 = min_length * min_length;
+  auto close = [&](int a, int b) {
+    const double dx = vertices[a].x - vertices[b].x, dy = vertices[a].y - vertices[b].y;
+    return dx * dx + dy * dy < l2;
+  };
+  for (int c = 0; c < n_owned; ++c) {
+    for (int k = cell_offset[c]; k < cell_offset[c + 1]; ++k) {
+      const int seed = cell_vertex[k];
+      if (seen[seed]) continue;
+      seen[seed] = 1;
+      tris.assign(1, seed);
+      stack.assign(1, seed);
+      while (!stack.empty()) {
+        const int cur = stack.back();
+        stack.pop_back();
+        for (int e = 0; e < 3; ++e) {
+          const int nb = triangle_neighbor[cur][e];
+          if (nb < 0 || seen[nb] || !close(cur, nb)) continue;
+          seen[nb] = 1;
+          tris.push_back(nb);
+          stack.push_back(nb);
+        }
+      }
+      if (tris.size() < 2) continue;
+      pts.clear();
+      for (int q : tris)
+        for (int p : triangles[q]) pts.push_back(p);
+      std::sort(pts.begin(), pts.end());
+      pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+      members.insert(members.end(), pts.begin(), pts.end());
+      offset.push_back(static_cast<int>(members.size()));
+    }
+  }
+}
+
 Tessellation tessellate_local(const Points &pts, int n_owned, const long *ids,
                               bool throw_if_unbounded) {
   if (n_owned < 0 || n_owned > pts.n) throw Error("tessera: n_owned must be in [0, number of points]");

@@ -270,3 +270,42 @@ TEST(Mesh, FoldOverAsksForRebuild) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Clusters, NearlyFourFoldVerticesOfAJitteredSquareLattice) {
+  // A square lattice jittered by 1e-6: no vertex is exactly four-fold, but
+  // every lattice vertex is two triangles joined by an edge far shorter
+  // than 1e-3; counted once each (by the copy whose lowest point is owned).
+  const int side = 6, n = side * side;
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> u(-1e-6, 1e-6);
+  std::vector<double> xy;
+  for (int i = 0; i < n; ++i) {
+    xy.push_back(i % side + 0.5 + u(rng));
+    xy.push_back(i / side + 0.5 + u(rng));
+  }
+  const tessera::Tessellation t = tessera::tessellate_periodic(
+      tessera::Box::rect(0, side, 0, side), Points{xy.data(), n, 2});
+  EXPECT_EQ(t.count_multifold_vertices(), 0);
+  auto count = [&](double length) {
+    std::vector<int> offset, members;
+    t.short_edge_clusters(length, offset, members);
+    int counted = 0;
+    for (size_t c = 0; c + 1 < offset.size(); ++c) {
+      int lowest = -1;
+      for (int k = offset[c]; k < offset[c + 1]; ++k) {
+        const int p = members[k];
+        if (lowest < 0 || t.origin[p] < t.origin[lowest] ||
+            (t.origin[p] == t.origin[lowest] && p < lowest))
+          lowest = p;
+      }
+      if (offset[c + 1] - offset[c] >= 4 && lowest < n) ++counted;
+    }
+    return counted;
+  };
+  EXPECT_EQ(count(1e-3), n);
+  EXPECT_EQ(count(1e-9), 0);  // shorter than every junction
+}
+
+}  // namespace

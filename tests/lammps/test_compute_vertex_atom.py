@@ -446,7 +446,7 @@ class Errors(LammpsTestCase):
     def test_extra_argument(self):
         script = tissue().replace("compute va all vertex/atom", "compute va all vertex/atom 3")
         self.assertLammpsError(self.run_lmp(script + "run 0\n", ok=False),
-                               "compute vertex/atom", "no arguments", "'3'")
+                               "compute vertex/atom", "unknown keyword", "'3'")
 
     def test_needs_pair_vertex_voronoi(self):
         script = tissue().replace("pair_style vertex/voronoi 3.0", "pair_style zero 3.0")
@@ -467,6 +467,49 @@ class Errors(LammpsTestCase):
         script = tissue() + extra + "fix m all move variable NULL NULL NULL v_vx NULL NULL\nrun 2\n"
         self.assertLammpsError(self.run_lmp(script, nprocs=2, ok=False),
                                "compute vertex/atom va", "timestep when pair vertex/voronoi")
+
+
+class Rosettes(LammpsTestCase):
+    """compute vertex/atom rosette L: a square lattice jittered by 1e-6 has
+    no exactly four-fold vertex, but every vertex is a cluster of vertices
+    joined by a junction far shorter than 1e-3 -- one per cell, counted once
+    over ranks and images."""
+
+    SCRIPT = """
+dimension 2
+units lj
+atom_style dipole
+boundary p p p
+lattice sq 1.0
+region box block 0 10 0 10 -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+mass 1 1.0
+displace_atoms all random 1e-6 1e-6 0 8812 units box
+pair_style vertex/voronoi 3.0
+pair_coeff * * 1.0 1.0 0.1 -0.5
+compute exact all vertex/atom
+compute near all vertex/atom rosette 1e-3
+compute tiny all vertex/atom rosette 1e-9
+thermo_style custom step c_exact[2] c_near[2] c_tiny[2]
+run 0
+"""
+
+    def check(self, nprocs):
+        run = self.run_lmp(self.SCRIPT, nprocs=nprocs)
+        row = run.stdout.split("Step")[1].splitlines()[1].split()
+        self.assertEqual([float(w) for w in row[1:]], [0.0, 100.0, 0.0])
+
+    def test_serial(self):
+        self.check(1)
+
+    @nprocs(2)
+    def test_two_ranks(self):
+        self.check(2)
+
+    def test_bad_length(self):
+        run = self.run_lmp(self.SCRIPT.replace("rosette 1e-3", "rosette -1"), ok=False)
+        self.assertLammpsError(run, "rosette length must be > 0")
 
 
 if __name__ == "__main__":

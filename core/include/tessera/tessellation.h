@@ -120,6 +120,17 @@ struct Tessellation {
   std::vector<int> group_point;
   std::vector<Vec2> group_centre;
 
+  // Neighbour of each triangle across the edge opposite its vertex k (index
+  // into triangles), or -1 on the convex hull.
+  std::vector<std::array<int, 3>> triangle_neighbor;
+
+  // Clusters of Voronoi vertices joined by edges shorter than min_length (the
+  // "rosettes" of a fluid tissue, nearly multifold vertices): for each
+  // cluster of two or more triangles that touches an owned cell, the points
+  // around it.  Cluster c's points are members[offset[c] .. offset[c+1]).
+  void short_edge_clusters(double min_length, std::vector<int> &offset,
+                           std::vector<int> &members) const;
+
   // An owned cell that touches the convex hull of the points (its region is
   // unbounded, so the ghost shell is missing), or -1.  Only set when
   // tessellate_local was asked not to throw; such cells are left empty and

@@ -21,6 +21,25 @@ TYPES = {1: (1.0, 1.0, 0.12, -0.45), 2: (1.4, 0.9, 0.2, -0.6)}
 LAMBDA_12 = 0.1
 
 
+def hex_tissue(nx, ny, ntypes=1, tilt=None):
+    """The start of an input: a hexagonal lattice of cells of area 1 in a
+    periodic 2d box of nx x ny lattice cells (2 cells each), triclinic with
+    a tilt in lattice units."""
+    region = ("region box block 0 %d 0 %d -0.5 0.5" % (nx, ny) if tilt is None else
+              "region box prism 0 %d 0 %d -0.5 0.5 %g 0 0" % (nx, ny, tilt))
+    return f"""
+dimension 2
+units lj
+atom_style dipole
+boundary p p p
+lattice hex 1.0
+{region}
+create_box {ntypes} box
+create_atoms 1 box
+mass * 1.0
+"""
+
+
 def config_script(nx=8, ny=4, disp=0.25, seed=4821, two_types=True, tension="edge",
                   cutoff=3.5, extra="", tilt=None):
     """A displaced hexagonal lattice (area 1 per cell) in a periodic box;
@@ -29,17 +48,7 @@ def config_script(nx=8, ny=4, disp=0.25, seed=4821, two_types=True, tension="edg
     coeffs = "pair_coeff * * %g %g %g %g\n" % TYPES[1]
     if two_types:
         coeffs += "pair_coeff 2 2 %g %g %g %g\npair_coeff 1 2 %g\n" % (TYPES[2] + (LAMBDA_12,))
-    return f"""
-dimension 2
-units lj
-atom_style dipole
-boundary p p p
-lattice hex 1.0
-{"region box block 0 %d 0 %d -0.5 0.5" % (nx, ny) if tilt is None else
- "region box prism 0 %d 0 %d -0.5 0.5 %g 0 0" % (nx, ny, tilt)}
-create_box 2 box
-create_atoms 1 box
-mass * 1.0
+    return hex_tissue(nx, ny, 2, tilt) + f"""
 {"set type 1 type/fraction 2 0.4 7731" if two_types else ""}
 displace_atoms all random {disp} {disp} 0 {seed} units box
 pair_style vertex/voronoi {cutoff} tension {tension}
@@ -270,16 +279,7 @@ class Hexagonal(LammpsTestCase):
 
     def check(self, tension, weight):
         K, A0, G, L = 1.0, 1.0, 0.1, -0.5
-        run = self.run_lmp(f"""
-dimension 2
-units lj
-atom_style dipole
-boundary p p p
-lattice hex 1.0
-region box block 0 10 0 5 -0.5 0.5
-create_box 1 box
-create_atoms 1 box
-mass 1 1.0
+        run = self.run_lmp(hex_tissue(10, 5) + f"""
 pair_style vertex/voronoi 3.0 tension {tension}
 pair_coeff * * {K} {A0} {G} {L}
 compute fm all reduce max fx fy
@@ -338,16 +338,7 @@ class Minimize(LammpsTestCase):
 
     def check(self, style):
         K, A0, G, L = 1.0, 1.0, 0.18, -0.1       # thesis 5.1.1: p0 = 0.28, solid
-        run = self.run_lmp(f"""
-dimension 2
-units lj
-atom_style dipole
-boundary p p p
-lattice hex 1.0
-region box block 0 6 0 3 -0.5 0.5
-create_box 1 box
-create_atoms 1 box
-mass 1 1.0
+        run = self.run_lmp(hex_tissue(6, 3) + f"""
 displace_atoms all random 0.05 0.05 0 9117 units box
 pair_style vertex/voronoi 3.0
 pair_coeff * * {K} {A0} {G} {L}
@@ -393,17 +384,7 @@ print "E1 $(pe:%.17g) $(pxx:%.17g)"
 class Errors(LammpsTestCase):
     """Bad input stops with a message that names the problem."""
 
-    BASE = """
-dimension 2
-units lj
-atom_style dipole
-boundary p p p
-lattice hex 1.0
-region box block 0 6 0 3 -0.5 0.5
-create_box 1 box
-create_atoms 1 box
-mass 1 1.0
-"""
+    BASE = hex_tissue(6, 3)
 
     def test_missing_pair_coeff(self):
         run = self.run_lmp(self.BASE + "pair_style vertex/voronoi 3.0\nrun 0\n", ok=False)
@@ -435,7 +416,7 @@ delete_atoms region hole
 
     def test_cutoff_too_small_names_needed_value(self):
         # A hole: the circumcircles around it need more than the cutoff.
-        run = self.run_lmp(self.BASE.replace("0 6 0 3", "0 12 0 6") + self.HOLE + """
+        run = self.run_lmp(hex_tissue(12, 6) + self.HOLE + """
 pair_style vertex/voronoi 1.6 grow no
 pair_coeff * * 1 1 0.1 -0.5
 run 0
@@ -483,7 +464,7 @@ class Grow(LammpsTestCase):
     during the step, and the forces and energy are those of a run with a
     wide enough cutoff from the start."""
 
-    SCRIPT = Errors.BASE.replace("0 6 0 3", "0 12 0 6") + Errors.HOLE + """
+    SCRIPT = hex_tissue(12, 6) + Errors.HOLE + """
 pair_style vertex/voronoi {cut}
 pair_coeff * * 1 1 0.1 -0.5
 thermo_modify norm no

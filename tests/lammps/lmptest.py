@@ -109,6 +109,25 @@ class Run:
         return frames
 
 
+def tissue(nx, ny, lattice="hex", ntypes=1, tilt=None):
+    """The start of an input script: a lattice ('hex' or 'sq') of cells of
+    area 1 filling a periodic 2d box of nx x ny lattice cells, triclinic with
+    a tilt (in lattice units) if given, atom style dipole."""
+    region = ("region box block 0 %d 0 %d -0.5 0.5" % (nx, ny) if tilt is None else
+              "region box prism 0 %d 0 %d -0.5 0.5 %g 0 0" % (nx, ny, tilt))
+    return f"""
+dimension 2
+units lj
+atom_style dipole
+boundary p p p
+lattice {lattice} 1.0
+{region}
+create_box {ntypes} box
+create_atoms 1 box
+mass * 1.0
+"""
+
+
 class LammpsTestCase(unittest.TestCase):
     """Base class: self.run_lmp() runs an input script in a fresh directory."""
 

@@ -475,16 +475,7 @@ class Rosettes(LammpsTestCase):
     joined by a junction far shorter than 1e-3 -- one per cell, counted once
     over ranks and images."""
 
-    SCRIPT = """
-dimension 2
-units lj
-atom_style dipole
-boundary p p p
-lattice sq 1.0
-region box block 0 10 0 10 -0.5 0.5
-create_box 1 box
-create_atoms 1 box
-mass 1 1.0
+    SCRIPT = lmptest.tissue(10, 10, "sq") + """
 displace_atoms all random 1e-6 1e-6 0 8812 units box
 pair_style vertex/voronoi 3.0
 pair_coeff * * 1.0 1.0 0.1 -0.5

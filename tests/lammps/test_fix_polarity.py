@@ -22,16 +22,9 @@ create_box 1 box
 mass 1 1.0
 """
 
-HEX = """
-dimension 2
-units lj
-atom_style dipole
-boundary p p p
-lattice hex 1.0
-region box block 0 {nx} 0 {ny} -0.5 0.5
-create_box 1 box
-create_atoms 1 box
-mass 1 1.0
+def hex_vertex_model(nx, ny):
+    """A hexagonal tissue of nx x ny lattice cells with the vertex model."""
+    return lmptest.tissue(nx, ny) + """
 pair_style vertex/voronoi 3.0
 pair_coeff * * 1.0 1.0 0.1 -0.5
 """
@@ -117,7 +110,7 @@ class Neighbours(LammpsTestCase):
 
     def test_one_step(self):
         dt, JS, gR = 0.01, 1.5, 0.8
-        run = self.run_lmp(HEX.format(nx=6, ny=3) + f"""
+        run = self.run_lmp(hex_vertex_model(6, 3) + f"""
 set group all dipole/random 5531 1.0
 timestep {dt}
 fix p all polarity 0.0 {gR} neighbor {JS}
@@ -236,7 +229,7 @@ thermo 50
 """
 
     def data(self):
-        make = self.run_lmp(HEX.format(nx=10, ny=5) +
+        make = self.run_lmp(hex_vertex_model(10, 5) +
                             "displace_atoms all random 0.1 0.1 0 4821 units box\n"
                             "write_data cfg.data\n")
         return make.text("cfg.data")

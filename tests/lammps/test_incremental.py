@@ -11,18 +11,7 @@ from lmptest import LammpsTestCase, nprocs
 
 
 def fluid_script(lattice="hex", nx=12, ny=6, steps=1500, tilt=None):
-    region = (f"region box block 0 {nx} 0 {ny} -0.5 0.5" if tilt is None else
-              f"region box prism 0 {nx} 0 {ny} -0.5 0.5 {tilt} 0 0")
-    return f"""
-dimension 2
-units lj
-atom_style dipole
-boundary p p p
-lattice {lattice} 1.0
-{region}
-create_box 1 box
-create_atoms 1 box
-mass 1 1.0
+    return lmptest.tissue(nx, ny, lattice, 1, tilt) + f"""
 pair_style vertex/voronoi 4.0 incremental check
 pair_coeff * * quadratic 1.0 1.0 1.0 4.2
 timestep 0.01

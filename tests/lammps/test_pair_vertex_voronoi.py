@@ -22,22 +22,7 @@ LAMBDA_12 = 0.1
 
 
 def hex_tissue(nx, ny, ntypes=1, tilt=None):
-    """The start of an input: a hexagonal lattice of cells of area 1 in a
-    periodic 2d box of nx x ny lattice cells (2 cells each), triclinic with
-    a tilt in lattice units."""
-    region = ("region box block 0 %d 0 %d -0.5 0.5" % (nx, ny) if tilt is None else
-              "region box prism 0 %d 0 %d -0.5 0.5 %g 0 0" % (nx, ny, tilt))
-    return f"""
-dimension 2
-units lj
-atom_style dipole
-boundary p p p
-lattice hex 1.0
-{region}
-create_box {ntypes} box
-create_atoms 1 box
-mass * 1.0
-"""
+    return lmptest.tissue(nx, ny, "hex", ntypes, tilt)
 
 
 def config_script(nx=8, ny=4, disp=0.25, seed=4821, two_types=True, tension="edge",

@@ -324,56 +324,6 @@ TEST(Lattice, SquareMultifoldVertexCount) {
 
 namespace {
 
-// Energy of the triangulation t held fixed (its triangles, its cells' vertex
-// lists), with every point of t placed at its owner's position in xy plus the
-// image shift t used; circumcentres, areas (shoelace) and side lengths are
-// recomputed here.  Off a multifold vertex this is the true energy; at one it
-// is the energy the zero-length-edge convention differentiates: a short side
-// of this topology has length |M delta|, even in the displacement, so the
-// central difference drops exactly the terms whose unit vector is set to 0.
-double fixed_topology_energy(const tessera::Tessellation &t, const std::vector<double> &xy,
-                             const std::vector<int> &type, const reftess::RefParams &p) {
-  const int np = t.n_points;
-  std::vector<double> P(2 * np);
-  for (int k = 0; k < np; ++k) {
-    const int o = t.origin[k];
-    P[2 * k] = xy[2 * o] + (t.position[k].x - t.position[o].x);
-    P[2 * k + 1] = xy[2 * o + 1] + (t.position[k].y - t.position[o].y);
-  }
-  std::vector<double> H(2 * t.triangles.size());
-  for (size_t q = 0; q < t.triangles.size(); ++q) {
-    const auto &tr = t.triangles[q];
-    const double ax = P[2 * tr[0]], ay = P[2 * tr[0] + 1];
-    const double bx = P[2 * tr[1]] - ax, by = P[2 * tr[1] + 1] - ay;
-    const double cx = P[2 * tr[2]] - ax, cy = P[2 * tr[2] + 1] - ay;
-    const double d = 2 * (bx * cy - by * cx);
-    H[2 * q] = ax + (cy * (bx * bx + by * by) - by * (cx * cx + cy * cy)) / d;
-    H[2 * q + 1] = ay + (bx * (cx * cx + cy * cy) - cx * (bx * bx + by * by)) / d;
-  }
-  const int nt = p.ntypes();
-  double e = 0;
-  for (int c = 0; c < t.n_owned; ++c) {
-    const int m = t.cell_size(c);
-    double a2 = 0, per = 0, lam = 0;
-    for (int v = 0; v < m; ++v) {
-      const int k = t.cell_offset[c] + v, k1 = t.cell_offset[c] + (v + 1) % m;
-      const double px = H[2 * t.cell_vertex[k]] - xy[2 * c];
-      const double py = H[2 * t.cell_vertex[k] + 1] - xy[2 * c + 1];
-      const double qx = H[2 * t.cell_vertex[k1]] - xy[2 * c];
-      const double qy = H[2 * t.cell_vertex[k1] + 1] - xy[2 * c + 1];
-      a2 += px * qy - py * qx;
-      const double l = std::hypot(qx - px, qy - py);
-      per += l;
-      lam += p.Lambda[type[c] * nt + type[t.origin[t.cell_neighbor[k]]]] * l;
-    }
-    const int ti = type[c];
-    const double da = 0.5 * a2 - p.A0[ti];
-    e += 0.5 * p.K[ti] * da * da + 0.5 * p.Gamma[ti] * per * per +
-         (p.cell_tension ? 1.0 : 0.5) * lam;
-  }
-  return e;
-}
-
 Config typed_square_lattice(uint64_t seed) {
   Config cfg = square_lattice(8, 8, -1.0, 3.0);
   testutil::Rng rng(seed);

@@ -124,7 +124,7 @@ inline void sincos_small(double x, double &s, double &c)
 ------------------------------------------------------------------------- */
 
 FixPolarity::FixPolarity(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), groove_deg(0.0), d_rot(0.0), seed(0), pair(nullptr)
+    Fix(lmp, narg, arg), d_rot(0.0), seed(0), pair(nullptr)
 {
   if (narg < 5)
     error->all(FLERR,
@@ -151,8 +151,7 @@ FixPolarity::FixPolarity(LAMMPS *lmp, int narg, char **arg) :
     } else if (strcmp(arg[iarg], "groove") == 0) {
       need(2, "'groove' needs two values: groove J_G phi (phi in degrees from the x axis)");
       params.J_G = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
-      groove_deg = utils::numeric(FLERR, arg[iarg + 2], false, lmp);
-      params.phi_G = groove_deg * MathConst::MY_PI / 180.0;
+      params.phi_G = utils::numeric(FLERR, arg[iarg + 2], false, lmp) * MathConst::MY_PI / 180.0;
       iarg += 3;
     } else if (strcmp(arg[iarg], "velocity") == 0) {
       need(1, "'velocity' needs a value: velocity J_V");

@@ -35,7 +35,6 @@ class FixPolarity : public Fix {
  protected:
   double f_active, gamma_r;
   tessera::PolarityParams params;
-  double groove_deg;
   double d_rot;
   int seed;
   class PairVertexVoronoi *pair;

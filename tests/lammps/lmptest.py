@@ -169,11 +169,7 @@ class LammpsTestCase(unittest.TestCase):
         cmd += list(args or [])
         proc = subprocess.run(cmd, cwd=d, input=stdin, capture_output=True, text=True,
                               timeout=timeout)
-        run = Run(d, proc)
-        if ok and run.returncode != 0:
-            self.fail("tessera-lmp failed (exit %d): %s\n--- output ---\n%s"
-                      % (run.returncode, " ".join(cmd), run.output[-4000:]))
-        return run
+        return self._checked(Run(d, proc), cmd, "tessera-lmp", ok)
 
     def run_python(self, code=None, nprocs=1, script=None, args=(), timeout=240, ok=True):
         """Runs Python `code` (or the file `script` with `args`) under the
@@ -189,10 +185,13 @@ class LammpsTestCase(unittest.TestCase):
         cmd = mpiexec_command(nprocs) + [sys.executable, script] + list(args)
         proc = subprocess.run(cmd, cwd=d, capture_output=True, text=True, env=env,
                               timeout=timeout)
-        run = Run(d, proc)
+        return self._checked(Run(d, proc), cmd, "python", ok)
+
+    def _checked(self, run, cmd, what, ok):
+        """With ok=True a failing run fails the test and shows its output."""
         if ok and run.returncode != 0:
-            self.fail("python failed (exit %d): %s\n--- output ---\n%s"
-                      % (run.returncode, " ".join(cmd), run.output[-4000:]))
+            self.fail("%s failed (exit %d): %s\n--- output ---\n%s"
+                      % (what, run.returncode, " ".join(cmd), run.output[-4000:]))
         return run
 
     def assertLammpsError(self, run, *fragments):

@@ -13,6 +13,7 @@
 
 // One include per style in the table below.
 #include "compute_vertex_atom.h"
+#include "compute_vertex_local.h"
 #include "fix_brownian.h"
 #include "fix_polarity.h"
 #include "pair_vertex_voronoi.h"
@@ -84,6 +85,7 @@ const std::vector<Entry> &style_table()
       fix_style<FixPolarity>("polarity"),
       fix_style<FixBrownianTessera>("brownian", Policy::IF_MISSING),
       compute_style<ComputeVertexAtom>("vertex/atom"),
+      compute_style<ComputeVertexLocal>("vertex/local"),
   };
   return table;
 }

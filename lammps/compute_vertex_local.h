@@ -1,0 +1,36 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+------------------------------------------------------------------------- */
+
+#ifdef COMPUTE_CLASS
+// clang-format off
+ComputeStyle(vertex/local,ComputeVertexLocal);
+// clang-format on
+#else
+
+#ifndef LMP_COMPUTE_VERTEX_LOCAL_H
+#define LMP_COMPUTE_VERTEX_LOCAL_H
+
+#include "compute.h"
+
+namespace LAMMPS_NS {
+
+class ComputeVertexLocal : public Compute {
+ public:
+  ComputeVertexLocal(class LAMMPS *, int, char **);
+  ~ComputeVertexLocal() override;
+  void init() override;
+  void compute_local() override;
+  double memory_usage() override;
+
+ protected:
+  int nmax;          // rows allocated
+  double **rows;     // nmax x 7: cell ID, neighbour ID, x1 y1 x2 y2, length
+  class PairVertexVoronoi *pair;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -9,6 +9,9 @@ and square with its four-fold vertices); 2 ranks give the same rows as 1
 rank from one data file; compute reduce over the rows; errors."""
 
 import math
+import os
+import subprocess
+import sys
 
 import numpy as np
 
@@ -191,6 +194,35 @@ mass * 1.0
         atoms, local = run.dump("cells.dump")[-1], run.dump("junctions.dump")[-1]
         self.assertEqual(local["step"], 40)
         self.check_polygons(atoms, junction_rows(local))
+
+
+class ToVTK(LammpsTestCase):
+    """tessera-tools vtk on LAMMPS's dumps: the polygons read back from the .vtu files
+    (meshio) have the areas compute vertex/atom reports."""
+
+    @nprocs(2)
+    def test_vtk_areas(self):
+        try:
+            import meshio
+        except ImportError:
+            self.skipTest("meshio (Debian python3-meshio) is not installed")
+        start = lmptest.tissue(10, 5, ntypes=2) + ("displace_atoms all random 0.3 0.3 0 6553\n"
+                                                   "set type 1 type/fraction 2 0.5 4417\n")
+        run = self.run_lmp(script(start), nprocs=2)
+        (atoms,) = run.dump("cells.dump")
+        tools = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools", "tessera-tools")
+        proc = subprocess.run([sys.executable, tools, "vtk", "cells.dump", "--local", "junctions.dump",
+                               "-o", "vtk/cells", "-q"], cwd=run.dir, capture_output=True, text=True)
+        self.assertEqual(proc.returncode, 0, proc.stdout + proc.stderr)
+        mesh = meshio.read(run.path("vtk/cells_0.vtu"))
+        area = {}
+        for block, ids, types in zip(mesh.cells, mesh.cell_data["id"], mesh.cell_data["type"]):
+            for conn, i, t in zip(block.data, ids, types):
+                p = mesh.points[conn]
+                area[int(i)] = 0.5 * np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1])
+                self.assertEqual(t, atoms["type"][int(i) - 1])
+        self.assertEqual(sorted(area), atoms["id"].tolist())
+        np.testing.assert_allclose([area[i] for i in atoms["id"]], atoms["c_va[1]"], rtol=1e-10)
 
 
 def atoms_box(run):

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
-"""Command line: ``tessera-tools {info,render,traj,log} ...`` (each has --help)."""
+"""Command line: ``tessera-tools {info,render,vtk,traj,log} ...`` (each has --help)."""
 
 import argparse
 import itertools
@@ -67,6 +67,37 @@ def cmd_info(args):
               f"mean shape index {tess.shape_index.mean():.6g}, sides {np.bincount(tess.sides).tolist()}")
 
 
+def _progress(enabled=True):
+    """tqdm progress bars on stderr when tqdm is installed (Debian: python3-tqdm) and wanted."""
+    if not enabled:
+        return None
+    try:
+        from tqdm import tqdm
+    except ImportError:
+        return None
+    return lambda it, desc=None, **kw: tqdm(it, desc=desc, unit="frame", leave=False, **kw)
+
+
+def _local_frames(args):
+    """(atom frames, tessellations) of the frames selected by --frame/--timestep/--frames that
+    both the atom dump and the --local dump hold, cells from the local dump's polygons."""
+    from .junctions import junction_tessellation, paired_frames
+
+    pairs = paired_frames(args.dump, args.local)
+    if args.frames is not None:
+        pairs = pairs[args.frames]
+    elif args.timestep is not None:
+        pairs = [p for p in pairs if p[0].timestep == args.timestep]
+        if not pairs:
+            raise SystemExit(f"tessera-tools render: no frame at timestep {args.timestep} in both dumps")
+    else:
+        pairs = [pairs[args.frame]]
+    if not pairs:
+        raise SystemExit("tessera-tools render: no frames selected by the slice")
+    frames = [a for a, _ in pairs]
+    return frames, [junction_tessellation(a, l, args.junction_compute) for a, l in pairs]
+
+
 def cmd_render(args):
     _matplotlib()
     from .dump import read_frame
@@ -74,29 +105,53 @@ def cmd_render(args):
 
     opts = dict(cmap=args.cmap, vmin=args.vmin, vmax=args.vmax, centres=args.centres,
                 arrows=tuple(args.arrows) if args.arrows else None, highlight=args.highlight or (),
-                colorbar=not args.no_colorbar, label=args.label)
-    if args.frames is not None:
+                colorbar=not args.no_colorbar, label=args.label,
+                categorical=True if args.categorical else None)
+    tessellations = None
+    if args.local:
+        frames, tessellations = _local_frames(args)
+    elif args.frames is not None:
         frames = _select_frames(args.dump, args.frames)
-        series = args.output.lower().endswith((".gif", ".mp4", ".m4v", ".mkv", ".webm")) or "{" in args.output
-        if series:
-            try:
-                written = render_series(frames, args.output, field=args.field, view=args.view,
-                                        dpi=args.dpi or 100, fps=args.fps, title=args.title, **opts)
-            except RuntimeError as err:
-                raise SystemExit(f"tessera-tools render: {err}") from None
-            print(f"wrote {len(written)} file(s)" + (f": {written[0]}" if len(written) == 1 else
-                                                     f", {written[0]} .. {written[-1]}"))
-            return
-        if len(frames) > 1:
-            raise SystemExit("tessera-tools render: several frames selected but the output is a single "
-                             "picture; use a .gif/.mp4 output or a pattern like 'frame_{index:04d}.png'")
-        frame = frames[0]
     else:
-        frame = read_frame(args.dump, index=args.frame, timestep=args.timestep)
-    tess = render_frame(frame, args.output, field=args.field, view=args.view, dpi=args.dpi or 150,
-                        title=args.title, **opts)
+        frames = [read_frame(args.dump, index=args.frame, timestep=args.timestep)]
+    series = args.output.lower().endswith((".gif", ".mp4", ".m4v", ".mkv", ".webm")) or "{" in args.output
+    if series:
+        try:
+            written = render_series(frames, args.output, field=args.field, view=args.view,
+                                    dpi=args.dpi or 100, fps=args.fps, title=args.title,
+                                    tessellations=tessellations, progress=_progress(not args.quiet), **opts)
+        except RuntimeError as err:
+            raise SystemExit(f"tessera-tools render: {err}") from None
+        print(f"wrote {len(written)} file(s)" + (f": {written[0]}" if len(written) == 1 else
+                                                 f", {written[0]} .. {written[-1]}"))
+        return
+    if len(frames) > 1:
+        raise SystemExit("tessera-tools render: several frames selected but the output is a single "
+                         "picture; use a .gif/.mp4 output or a pattern like 'frame_{index:04d}.png'")
+    frame = frames[0]
+    tess = render_frame(frame, args.output, field=args.field, view=args.view, dpi=args.dpi or 300,
+                        title=args.title, tess=tessellations[0] if tessellations else None,
+                        vector=args.vector, **opts)
+    if args.vector:
+        from .render import vector_path
+
+        print(f"wrote {vector_path(args.output, args.vector)}")
     print(f"wrote {args.output}: timestep {frame.timestep}, {len(tess)} cells, "
           f"mean area {tess.area.mean():.6g}, mean shape index {tess.shape_index.mean():.6g}")
+
+
+def cmd_vtk(args):
+    from .vtk import write_vtk
+
+    try:
+        written = write_vtk(args.dump, args.output, local_path=args.local, frames=args.frames or slice(None),
+                            dt=args.dt, compute=args.junction_compute, progress=_progress(not args.quiet))
+    except RuntimeError as err:
+        raise SystemExit(f"tessera-tools vtk: {err}") from None
+    source = "the polygons of " + args.local if args.local else "the Voronoi tessellation of the centres"
+    print(f"wrote {len(written)} frame(s) from {source}: {written[0]}" +
+          (f" .. {written[-1]}" if len(written) > 1 else "") +
+          f"; time series {args.output}.pvd and {args.output}.vtu.series")
 
 
 def cmd_traj(args):
@@ -175,7 +230,7 @@ def build_parser():
     p = argparse.ArgumentParser(
         prog="tessera-tools",
         description="Post-processing for Tessera (active Voronoi vertex model in LAMMPS): "
-                    "tessellation pictures, trajectory plots, thermo plots.")
+                    "tessellation pictures, VTK polygon files, trajectory plots, thermo plots.")
     sub = p.add_subparsers(dest="command", metavar="COMMAND")
     sub.required = True
 
@@ -212,9 +267,39 @@ def build_parser():
     r.add_argument("--label", help="colour bar label")
     r.add_argument("--no-colorbar", action="store_true")
     r.add_argument("--title", help="title; may use {timestep} {time} {field} {n}")
-    r.add_argument("--dpi", type=int, help="resolution (default 150 for pictures, 100 for series)")
+    r.add_argument("--dpi", type=int, help="resolution (default 300 for pictures, print quality; 100 for series)")
+    r.add_argument("--vector", choices=("pdf", "svg", "eps"),
+                   help="also write a vector copy of a single picture (same name, this extension)")
     r.add_argument("--fps", type=float, default=5, help="frames per second of an animation (default 5)")
+    r.add_argument("--local", metavar="DUMP",
+                   help="dump local of compute vertex/local: draw LAMMPS's own polygons instead of "
+                        "re-tessellating the dumped (rounded) centres")
+    r.add_argument("--junction-compute", metavar="ID",
+                   help="which compute's columns c_ID[1..7] of the local dump to use (if it has several)")
+    r.add_argument("--categorical", action="store_true",
+                   help="one colour per distinct value with a legend (default for type, mol, proc)")
+    r.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     r.set_defaults(func=cmd_render)
+
+    v = sub.add_parser("vtk", help="VTK polygon files (.vtu per frame, .pvd time series) for ParaView/OVITO",
+                       description="Write one .vtu file per frame: each cell a polygon, every numeric per-atom "
+                                   "column as cell data (plus area, perimeter, shape_index, sides, and the "
+                                   "vectors velocity and polarity when vx vy / mux muy are dumped), and a "
+                                   "ParaView time series (PREFIX.pvd, PREFIX.vtu.series).",
+                       epilog="With --local (a dump local of compute vertex/local) the polygons are LAMMPS's "
+                              "own; without it they are the periodic Voronoi tessellation of the dumped "
+                              "centres. Needs meshio (Debian: python3-meshio).")
+    v.add_argument("dump", help="LAMMPS dump custom file of the cells (id, x y, any per-cell columns)")
+    v.add_argument("-o", "--output", required=True, metavar="PREFIX",
+                   help="output prefix: writes PREFIX_<timestep>.vtu, PREFIX.pvd, PREFIX.vtu.series")
+    v.add_argument("--local", metavar="DUMP", help="dump local of compute vertex/local (the cell polygons)")
+    v.add_argument("--junction-compute", metavar="ID",
+                   help="which compute's columns c_ID[1..7] of the local dump to use (if it has several)")
+    v.add_argument("--frames", type=_slice, help="slice of frames, e.g. '::10' (default: all)")
+    v.add_argument("--dt", type=float,
+                   help="timestep, for the time of each frame (default: the dump's TIME item, else the step)")
+    v.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    v.set_defaults(func=cmd_vtk)
 
     t = sub.add_parser("traj", help="trajectories coloured by coordination / orientation, velocity-angle histogram",
                        description="Draw each cell's unwrapped trajectory as segments coloured by coordination "

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
-"""Reader for LAMMPS ``dump custom`` text files (also ``dump atom``).
+"""Reader for LAMMPS ``dump custom`` text files (also ``dump atom`` and ``dump local``).
 
 A file holds one or more frames.  Each frame becomes a :class:`Frame` with
 numpy arrays keyed by column name exactly as written in the ``ITEM: ATOMS``
@@ -8,7 +8,8 @@ header (``id``, ``x``, ``mux``, ``c_v[1]`` ...), the timestep and a
 same index means the same cell in every frame.
 
 Only the x-y plane matters here (``dimension 2``); z columns are kept but
-never used for geometry.
+never used for geometry.  A ``dump local`` frame (``ITEM: ENTRIES``) is read
+the same way, one row per entry in file order.
 """
 
 import gzip
@@ -263,13 +264,15 @@ def iter_dump(path):
                 where = f"{path}:{lineno}"
                 if item.startswith("TIMESTEP"):
                     timestep = int(next_line().split()[0])
-                elif item.startswith("NUMBER OF ATOMS"):
+                elif item.startswith("NUMBER OF ATOMS") or item.startswith("NUMBER OF ENTRIES"):
                     natoms = int(next_line().split()[0])
                 elif item.startswith("BOX BOUNDS"):
                     box = _parse_box(line.strip(), [next_line() for _ in range(3)], where)
                 elif item.startswith("TIME"):
                     time = float(next_line().split()[0])
-                elif item.startswith("ATOMS"):
+                elif item.startswith("ATOMS") or item.startswith("ENTRIES"):
+                    # ENTRIES: a dump local (e.g. of compute vertex/local), rows kept in file order
+                    local = item.startswith("ENTRIES")
                     names = item.split()[1:]
                     break
                 else:
@@ -284,7 +287,7 @@ def iter_dump(path):
             if len(rows) != natoms:
                 raise DumpFormatError(f"{path}: frame at timestep {timestep} has {len(rows)} of {natoms} rows")
             columns = _columns(names, rows, f"{path} timestep {timestep}")
-            if "id" in columns:
+            if "id" in columns and not local:
                 order = np.argsort(columns["id"], kind="stable")
                 columns = {k: v[order] for k, v in columns.items()}
             yield Frame(timestep, box, columns, names, time)

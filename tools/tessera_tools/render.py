@@ -12,6 +12,7 @@ wrapped centre, so boundary cells stick out of the drawn box.
 """
 
 import math
+import os
 
 import numpy as np
 
@@ -32,6 +33,7 @@ FIELDS = {
     "elongation": ("elongation (aspect ratio)", "viridis", 1.0, None),
     "none": ("", None, None, None),
 }
+CATEGORICAL = {"type", "mol", "proc"}
 ALIASES = {"q": "shape", "shape_index": "shape", "z": "sides", "A": "area", "P": "perimeter",
            "theta": "polarity", "angle": "polarity"}
 ANGLE_FIELDS = {"polarity": ([-math.pi, -math.pi / 2, 0, math.pi / 2, math.pi], ["-π", "-π/2", "0", "π/2", "π"]),
@@ -111,24 +113,35 @@ def _tiles(tess, view):
 
 def draw_tessellation(ax, frame, tess, field="area", view="box", cmap=None, vmin=None, vmax=None,
                       centres=False, arrows=None, highlight=(), edgecolor="k", linewidth=None,
-                      colorbar=True, label=None, norm_from=None):
+                      colorbar=True, label=None, norm_from=None, categorical=None):
     """Draw one frame's cells on ``ax``; returns the PolyCollection.
 
     ``arrows``: None, or a pair of column names (e.g. ("mux", "muy")) drawn as unit arrows.
     ``norm_from``: values fixing the colour range (for series with a common scale).
+    ``categorical``: colour by distinct values (one colour and one legend entry each, beside the
+    picture) instead of a colour scale; default for ``type``, ``mol`` and ``proc``.
     """
     import matplotlib.pyplot as plt
     from matplotlib.collections import PolyCollection
     from matplotlib.patches import Polygon
 
     values, (default_label, default_cmap, lo, hi) = cell_field(frame, tess, field)
+    if categorical is None:
+        categorical = field in CATEGORICAL
     n = len(tess)
     if linewidth is None:
         linewidth = float(np.clip(8.0 / math.sqrt(n), 0.15, 1.0))
     polys, owner = _tiles(tess, view)
     coll = PolyCollection(polys, edgecolors=edgecolor, linewidths=linewidth)
+    categories = None
     if values is None:
         coll.set_facecolor("#cfe3f2")
+    elif categorical:
+        ref = np.asarray(values if norm_from is None else norm_from, dtype=float)
+        categories = np.unique(ref[np.isfinite(ref)])
+        palette = plt.get_cmap(cmap or ("tab10" if len(categories) <= 10 else "tab20"))
+        colours = {c: palette(k % palette.N) for k, c in enumerate(categories)}
+        coll.set_facecolor([colours.get(v, (0.75, 0.75, 0.75, 1.0)) for v in values[owner]])
     else:
         cm = plt.get_cmap(cmap or default_cmap).copy()
         cm.set_bad("0.75")
@@ -172,7 +185,16 @@ def draw_tessellation(ax, frame, tess, field="area", view="box", cmap=None, vmin
                   scale_units="xy", scale=1.0, width=0.004, color="k", pivot="middle")
     frame_axes(ax, np.vstack([tess.box.corners()] + ([np.vstack(polys)] if view == "cells" else [])),
                0.01)
-    if colorbar and values is not None:
+    if colorbar and categories is not None:
+        from matplotlib.patches import Patch
+
+        name = label or default_label
+        handles = [Patch(facecolor=colours[c], edgecolor="k", linewidth=0.5,
+                         label=f"{name} {int(c) if float(c).is_integer() else c:g}") for c in categories]
+        # outside the axes, so it covers no cell
+        ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0,
+                  frameon=False)
+    elif colorbar and values is not None:
         attach_colorbar(ax, coll, label or default_label, ANGLE_FIELDS.get(ALIASES.get(field, field)))
     return coll
 
@@ -194,18 +216,33 @@ def _title(frame, field, title):
     return f"{frame.natoms} cells, {when}"
 
 
-def render_frame(frame, out, field="area", view="box", dpi=150, title=None, **kwargs):
-    """Write one PNG (or any format matplotlib knows from the extension) of ``frame``."""
+def render_frame(frame, out, field="area", view="box", dpi=300, title=None, tess=None, vector=None, **kwargs):
+    """Write one PNG (or any format matplotlib knows from the extension) of ``frame``.
+
+    ``tess``: the cells to draw (e.g. from :func:`tessera_tools.junctions.junction_tessellation`,
+    LAMMPS's own polygons); by default the periodic Voronoi tessellation of the dumped centres.
+    ``vector``: also write a vector copy next to ``out`` with this extension ('pdf' or 'svg')."""
     import matplotlib.pyplot as plt
 
-    tess = tessellate_frame(frame)
+    if tess is None:
+        tess = tessellate_frame(frame)
     fig, ax = _figure(frame.box, view)
     draw_tessellation(ax, frame, tess, field=field, view=view, **kwargs)
     ax.set_title(_title(frame, field, title))
     fig.tight_layout()
     fig.savefig(out, dpi=dpi)
+    if vector:
+        fig.savefig(vector_path(out, vector))
     plt.close(fig)
     return tess
+
+
+def vector_path(out, ext):
+    """``out`` with its extension replaced by ``ext`` ('pdf' or 'svg')."""
+    ext = ext.lower().lstrip(".")
+    if ext not in ("pdf", "svg", "eps"):
+        raise ValueError(f"vector format must be pdf, svg or eps, not '{ext}'")
+    return os.path.splitext(out)[0] + "." + ext
 
 
 def animation_writer(out, fps):
@@ -228,18 +265,22 @@ def animation_writer(out, fps):
     raise RuntimeError(f"unknown animation format '.{ext}': use .gif or .mp4")
 
 
-def render_series(frames, out, field="area", view="box", dpi=100, fps=5, title=None, common_scale=True, **kwargs):
+def render_series(frames, out, field="area", view="box", dpi=100, fps=5, title=None, common_scale=True,
+                  tessellations=None, progress=None, **kwargs):
     """An animation (.gif/.mp4) of several frames, or one file per frame when ``out``
-    contains a ``{timestep}`` / ``{index}`` pattern."""
+    contains a ``{timestep}`` / ``{index}`` pattern.  ``tessellations``: the cells of each frame
+    (default: Voronoi of the centres); ``progress``: a callable wrapping an iterable (e.g. tqdm)."""
     import matplotlib.pyplot as plt
 
-    tessellations = [tessellate_frame(f) for f in frames]
+    wrap = progress or (lambda it, **kw: it)
+    if tessellations is None:
+        tessellations = [tessellate_frame(f) for f in wrap(frames, desc="tessellating")]
     norm_from = None
     if common_scale and ALIASES.get(field, field) != "none":
         norm_from = np.concatenate([cell_field(f, t, field)[0] for f, t in zip(frames, tessellations)])
     if "{" in out:
         written = []
-        for k, (frame, tess) in enumerate(zip(frames, tessellations)):
+        for k, (frame, tess) in enumerate(wrap(list(zip(frames, tessellations)), desc="drawing")):
             path = out.format(index=k, timestep=frame.timestep)
             fig, ax = _figure(frame.box, view)
             draw_tessellation(ax, frame, tess, field=field, view=view, norm_from=norm_from, **kwargs)
@@ -256,7 +297,7 @@ def render_series(frames, out, field="area", view="box", dpi=100, fps=5, title=N
     fig.tight_layout()
     kwargs_nobar = dict(kwargs, colorbar=False)
     with writer.saving(fig, out, dpi):
-        for frame, tess in zip(frames, tessellations):
+        for frame, tess in wrap(list(zip(frames, tessellations)), desc="drawing"):
             ax.clear()
             draw_tessellation(ax, frame, tess, field=field, view=view, norm_from=norm_from, **kwargs_nobar)
             ax.set_title(_title(frame, field, title))

@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """Cell trajectories coloured by coordination or orientation (thesis Figs. 18-23).
 
-Definitions (SPEC section 5, velocities v_i, unit vectors u_i = v_i / |v_i|):
+Definitions (doc/model.md, Observables; velocities v_i, unit vectors u_i = v_i / |v_i|):
   coordination  C_i = mean over Voronoi neighbours j of u_i . u_j, in [-1, 1]
   orientation   O_i = arccos(u_i . x_hat), in [0, pi]
 A cell at rest has no direction: its values are NaN (drawn grey) and it is left
@@ -103,8 +103,12 @@ def frame_axes(ax, points, pad_fraction):
     ax.set_xlim(lo_xy[0] - pad, hi_xy[0] + pad)
     ax.set_ylim(lo_xy[1] - pad, hi_xy[1] + pad)
     ax.set_aspect("equal")
-    ax.set_xlabel("x")
-    ax.set_ylabel("y")
+    ax.set_xlabel(LENGTH_LABEL.format("x"))
+    ax.set_ylabel(LENGTH_LABEL.format("y"))
+
+
+#: axis label of a position in the model's reduced length unit
+LENGTH_LABEL = r"${}$ ($\sqrt{{A_0}}$)"
 
 
 def attach_colorbar(ax, mappable, label=None, ticks=None):

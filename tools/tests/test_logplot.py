@@ -101,5 +101,30 @@ class LogParsing(unittest.TestCase):
             plot_logs([log], out, columns=[("nosuch", None)])
 
 
+class AgainstLammpsLogFile(unittest.TestCase):
+    """parse_log agrees with python3-lammps's own reader (lammps.formats.LogFile) on the
+    examples' reference logs.  The tools keep their own parser because LogFile drops a run
+    that died before 'Loop time' and the rows of a run whose values print as nan."""
+
+    def test_reference_logs(self):
+        try:
+            from lammps.formats import LogFile
+        except ImportError:
+            self.skipTest("python3-lammps is not installed")
+        examples = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples")
+        logs = sorted(os.path.join(examples, d, f) for d in os.listdir(examples)
+                      if os.path.isdir(os.path.join(examples, d))
+                      for f in os.listdir(os.path.join(examples, d)) if f.startswith("log."))
+        self.assertGreater(len(logs), 3)
+        for path in logs:
+            with self.subTest(log=os.path.relpath(path, examples)):
+                ours, theirs = parse_log(path), LogFile(path)
+                self.assertEqual(len(ours.runs), len(theirs.runs))
+                for run, ref in zip(ours.runs, theirs.runs):
+                    self.assertEqual(run.names, list(ref))
+                    for name in run.names:
+                        np.testing.assert_array_equal(run[name], np.array(ref[name], dtype=float))
+
+
 if __name__ == "__main__":
     unittest.main()

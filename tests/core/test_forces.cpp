@@ -307,7 +307,7 @@ TEST(Lattice, SquareUniformIsForceFree) {
 
 TEST(Lattice, SquareMultifoldVertexCount) {
   // An n x n periodic square lattice has n^2 Voronoi vertices, all 4-fold,
-  // wherever the box puts them (SPEC 5: global number of multifold vertices).
+  // wherever the box puts them (the global number of multifold vertices).
   for (double off : {0.0, 0.25}) {
     SCOPED_TRACE("offset " + std::to_string(off));
     Config cfg = square_lattice(8, 8, 0.0, 0.0);

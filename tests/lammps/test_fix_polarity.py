@@ -83,7 +83,7 @@ fix b all brownian 1.0 1 gamma_t 1.0 rng none
 
 class ActiveDrift(LammpsTestCase):
     """Without torques the polarity is fixed and every cell moves with
-    v0 = f_a / gamma_T along it (SPEC erratum: not f_a / gamma_R)."""
+    v0 = f_a / gamma_T along it (thesis erratum: not f_a / gamma_R)."""
 
     def test_drift(self):
         fa, gT, gR, dt, steps = 0.7, 2.0, 5.0, 0.01, 40

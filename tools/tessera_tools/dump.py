@@ -319,11 +319,21 @@ def read_frame(path, index=-1, timestep=None):
     return frames[index]
 
 
-def write_dump(path, frames, columns=None):
-    """Write frames in ``dump custom`` format (used by the tests and for conversions)."""
+def write_dump(path, frames, columns=None, include_z=True):
+    """Write frames in ``dump custom`` format (used by the tests and for conversions).
+
+    With ``include_z`` a frame with x y (or xs ys, xu yu) but no matching z column gets one of
+    zeros after y: the tissue is 2d, but readers such as ASE require z."""
     with open(path, "w") as f:
         for frame in frames:
-            names = columns or frame.names
+            names = list(columns or frame.names)
+            extra = {}
+            if include_z:
+                for xname, yname, zname in (("x", "y", "z"), ("xs", "ys", "zs"), ("xu", "yu", "zu"),
+                                            ("xsu", "ysu", "zsu")):
+                    if xname in names and yname in names and zname not in names:
+                        names.insert(names.index(yname) + 1, zname)
+                        extra[zname] = np.zeros(frame.natoms)
             box = frame.box
             f.write(f"ITEM: TIMESTEP\n{frame.timestep}\n")
             f.write(f"ITEM: NUMBER OF ATOMS\n{frame.natoms}\n")
@@ -342,7 +352,7 @@ def write_dump(path, frames, columns=None):
                 f.write(f"{box.xlo:.16g} {box.xhi:.16g}\n{box.ylo:.16g} {box.yhi:.16g}\n"
                         f"{box.zlo:.16g} {box.zhi:.16g}\n")
             f.write("ITEM: ATOMS " + " ".join(names) + "\n")
-            cols = [frame[n] for n in names]
+            cols = [extra[n] if n in extra else frame[n] for n in names]
             for row in zip(*cols):
                 f.write(" ".join(_format_value(v) for v in row) + "\n")
 

@@ -138,5 +138,21 @@ class DumpReading(unittest.TestCase):
         np.testing.assert_allclose(d, [[-0.1, 0.0], [-1.0, -0.1]], atol=1e-12)
 
 
+class WritingZ(unittest.TestCase):
+    """Dumps written by the tools carry z (ASE and other readers require it)."""
+
+    def test_z_added_after_y(self):
+        frame = helpers.frame_from(np.array([[0.5, 0.5], [1.5, 0.5]]), Box(0, 2, 0, 1))
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "z.dump")
+            write_dump(path, [frame])
+            (back,) = read_dump(path)
+            self.assertEqual(back.names, ["id", "type", "x", "y", "z"])
+            np.testing.assert_array_equal(back["z"], 0.0)
+            np.testing.assert_array_equal(back["x"], frame["x"])
+            write_dump(path, [frame], include_z=False)
+            self.assertNotIn("z", read_dump(path)[0].names)
+
+
 if __name__ == "__main__":
     unittest.main()

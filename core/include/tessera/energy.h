@@ -10,7 +10,7 @@
 
 namespace tessera {
 
-// How the junction tension enters the energy (SPEC section 7).
+// How the junction tension enters the energy (doc/model.md, "Energy: the junction term").
 //   Edge: sum over junctions of Lambda_IJ * l_ij, each junction once
 //         (Farhadifar 2007; consistent with p0 = -Lambda_bar / (2 Gamma_bar)).
 //   Cell: sum over cells of sum over the cell's junctions Lambda_IJ * l_ij, so

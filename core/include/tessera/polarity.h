@@ -1,6 +1,6 @@
 // Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
 //
-// Polarity dynamics (SPEC section 4) and velocity observables (section 5).
+// Polarity dynamics and velocity observables (doc/model.md, Dynamics and Observables).
 #pragma once
 
 #include "tessera/tessellation.h"

@@ -32,8 +32,74 @@ import matplotlib.pyplot as plt  # noqa: E402,F401
 
 from tessera_tools.logplot import parse_log  # noqa: E402,F401
 
-#: committed PNGs stay below this size (README gallery; the limit is 200 KB)
+#: committed PNGs should stay below this size (README gallery; the limit is 200 KB)
 MAX_PNG_BYTES = 180 * 1024
+#: resolution of the raster parts of the vector (PDF) copies
+PRINT_DPI = 300
+
+#: axis labels with the model's reduced units (doc/model.md, Units)
+TIME = r"time $t$ ($\gamma_T/(K A_0)$)"
+ENERGY_UNIT = r"($K A_0^2$)"
+LENGTH_UNIT = r"($\sqrt{A_0}$)"
+AREA_UNIT = r"($A_0$)"
+
+
+def _data_axes(fig):
+    """The axes that show data: not colour bars, not switched off."""
+    return [ax for ax in fig.axes if ax.axison and ax.get_visible() and ax.get_label() != "<colorbar>"
+            and not hasattr(ax, "_colorbar") and ax.get_navigate()]
+
+
+def panel_letters(fig):
+    """Bold a, b, c ... at the top left of each data panel of a figure with several panels."""
+    axes = [ax for ax in _data_axes(fig) if getattr(ax, "get_subplotspec", lambda: None)() is not None]
+    if len(axes) < 2:
+        return
+    for k, ax in enumerate(axes):
+        ax.text(-0.02, 1.02, "abcdefghijklmnopqrstuvwxyz"[k], transform=ax.transAxes, fontweight="bold",
+                fontsize=12, ha="right", va="bottom")
+
+
+def _overlap(ax, legend, renderer):
+    """How many sampled points of the axes' lines fall inside the legend's box."""
+    box = legend.get_window_extent(renderer)
+    count = 0
+    for line in ax.get_lines():
+        xy = line.get_transform().transform(np.column_stack([line.get_xdata(orig=False),
+                                                             line.get_ydata(orig=False)]).astype(float))
+        xy = xy[np.all(np.isfinite(xy), axis=1)]
+        if len(xy) > 1:    # sample each segment, so lines crossing the box count
+            t = np.linspace(0.0, 1.0, 12)[:, None, None]
+            xy = (xy[:-1][None] * (1 - t) + xy[1:][None] * t).reshape(-1, 2)
+        inside = ((xy[:, 0] > box.x0) & (xy[:, 0] < box.x1) & (xy[:, 1] > box.y0) & (xy[:, 1] < box.y1))
+        count += int(np.count_nonzero(inside))
+    return count
+
+
+def place_legends(fig):
+    """Each legend where it covers no line: matplotlib's 'best' spot inside the axes if that is
+    free, otherwise outside, below the axes."""
+    renderer = fig.canvas.get_renderer()
+    for ax in fig.axes:
+        legend = ax.get_legend()
+        if legend is None:
+            continue
+        legend._loc = 0    # 'best' (matplotlib 3.6 has no Legend.set_loc)
+        fig.canvas.draw()
+        if _overlap(ax, legend, renderer) == 0:
+            continue
+        # below the axes' tick labels and x label
+        legend.set_visible(False)
+        bottom = ax.get_tightbbox(renderer).y0
+        legend.set_visible(True)
+        y = ax.transAxes.inverted().transform((0.0, bottom))[1]
+        legend.set_bbox_to_anchor((0.5, y - 0.02), transform=ax.transAxes)
+        legend._loc = 9    # 'upper center'
+        moved = True
+    if locals().get("moved"):
+        # make room for the legends now below their axes
+        fig.tight_layout()
+    fig.canvas.draw()
 
 
 def find_lmp(explicit=None):
@@ -129,15 +195,24 @@ class Study:
         return logs
 
     # -------------------------------------------------------------- output
-    def savefig(self, fig, filename, dpi=110, commit=True):
-        """Save into figures/ (committed) or out/; committed PNGs are kept below 200 KB
-        by lowering the resolution."""
+    def savefig(self, fig, filename, dpi=150, commit=True, letters=True):
+        """Save into figures/ (committed) or out/: the PNG at ``dpi`` (the gallery's picture;
+        never lowered behind the caller's back: a PNG over the gallery's size limit is reported)
+        and a vector PDF next to it for print (rasterised parts at PRINT_DPI).  Before saving,
+        multi-panel figures get panel letters and legends are moved off the data."""
         path = os.path.join(self.figures if commit else self.out, filename)
-        while True:
-            fig.savefig(path, dpi=dpi)
-            if not commit or os.path.getsize(path) <= MAX_PNG_BYTES or dpi <= 40:
-                break
-            dpi = int(dpi * 0.8)
+        if letters:
+            panel_letters(fig)
+        place_legends(fig)
+        fig.savefig(path, dpi=dpi, bbox_inches="tight", pad_inches=0.05)
+        vector = os.path.splitext(path)[0] + ".pdf"
+        fig.savefig(vector, dpi=PRINT_DPI, bbox_inches="tight", pad_inches=0.05)
+        size = os.path.getsize(path)
+        note = ""
+        if commit and size > MAX_PNG_BYTES:
+            note = f" (over the gallery's {MAX_PNG_BYTES // 1024} KB: pass a lower dpi explicitly)"
+        print(f"[{self.name}] {os.path.basename(path)}: {dpi} dpi, {size // 1024} KB{note}; "
+              f"{os.path.basename(vector)}: {os.path.getsize(vector) // 1024} KB")
         plt.close(fig)
         return path
 

@@ -209,8 +209,20 @@ class Study:
         fig.savefig(vector, dpi=PRINT_DPI, bbox_inches="tight", pad_inches=0.05)
         size = os.path.getsize(path)
         note = ""
+        if commit and size > MAX_PNG_BYTES and path.endswith(".png"):
+            # same pixels, fewer bytes: a 256-colour palette (plots have few colours)
+            try:
+                from PIL import Image
+
+                with Image.open(path) as im:
+                    small = im.convert("RGB").quantize(colors=256, method=Image.Quantize.MEDIANCUT)
+                small.save(path, optimize=True)
+                size = os.path.getsize(path)
+                note = " (256-colour palette)"
+            except ImportError:
+                pass
         if commit and size > MAX_PNG_BYTES:
-            note = f" (over the gallery's {MAX_PNG_BYTES // 1024} KB: pass a lower dpi explicitly)"
+            note += f" (over the gallery's {MAX_PNG_BYTES // 1024} KB: pass a lower dpi explicitly)"
         print(f"[{self.name}] {os.path.basename(path)}: {dpi} dpi, {size // 1024} KB{note}; "
               f"{os.path.basename(vector)}: {os.path.getsize(vector) // 1024} KB")
         plt.close(fig)

@@ -21,8 +21,8 @@ from .voronoi import tessellate_frame
 
 FIELDS = {
     # name: (label, colormap, vmin, vmax); None = from the data
-    "area": ("cell area $A$", "viridis", None, None),
-    "perimeter": ("perimeter $P$", "viridis", None, None),
+    "area": ("cell area $A$ ($A_0$)", "viridis", None, None),
+    "perimeter": (r"perimeter $P$ ($\sqrt{A_0}$)", "viridis", None, None),
     "shape": (r"shape index $q = P/\sqrt{A}$", "plasma", None, None),
     "sides": ("number of sides $z$", "coolwarm", 3, 9),
     "polarity": (r"polarity angle $\theta = $ atan2($\mu_y, \mu_x$)", "twilight", -math.pi, math.pi),

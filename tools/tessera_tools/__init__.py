@@ -7,6 +7,8 @@ Modules:
   render        pictures of the tessellation coloured by a per-cell field
   trajectories  trajectories coloured by coordination / orientation, angle histograms
   logplot       thermo blocks of LAMMPS log files, quantities against time
+  junctions     cell polygons from a dump local of compute vertex/local
+  vtk           VTK polygon files (.vtu per frame, .pvd time series) for ParaView / OVITO
 """
 
 __version__ = "0.1.0"

@@ -183,6 +183,15 @@ mass * 1.0
                           if int(r[0]) in set(atoms["id"][mine].tolist()))
         self.assertEqual(sorted(tuple(r[:2].astype(int)) for r in rows), expected)
 
+    @nprocs(2)
+    def test_one_cell_group(self):
+        """A group of one cell: the other rank has no rows at all."""
+        data = self.disordered_data()
+        _, atoms, rows = self.run_disordered(data, 2, group="one", before="group one id 37\n")
+        self.assertEqual(set(rows[:, 0].astype(int)), {37})
+        i = int(np.searchsorted(atoms["id"], 37))
+        self.assertEqual(len(rows), atoms["c_va[4]"][i])
+
     def test_after_motion(self):
         """After steps with reneighbouring, cells that moved out of the box
         still get their polygon around their own position."""

@@ -59,6 +59,16 @@ def cmd_info(args):
     print(f"box (first frame): {first.box!r}, area {first.box.area:g}")
     print(f"columns: {' '.join(first.names)}")
     print(f"unwrapped positions: {'yes' if first.has_unwrapped() else 'no'}")
+    if args.local:
+        from .junctions import contact_lengths, paired_frames
+
+        atoms, local = paired_frames(args.dump, args.local)[-1]
+        contacts = contact_lengths(atoms, local)
+        total = sum(contacts.values())
+        hetero = sum(v for (a, b), v in contacts.items() if a != b)
+        print(f"timestep {atoms.timestep}: junction length by type pair "
+              + ", ".join(f"{a}-{b} {v:.6g}" for (a, b), v in sorted(contacts.items()))
+              + f"; heterotypic fraction {hetero / total if total else float('nan'):.4f}")
     if args.stats:
         from .voronoi import tessellate_frame
 
@@ -238,6 +248,9 @@ def build_parser():
                        description="Print frames, atoms, box and columns of a LAMMPS dump file.")
     q.add_argument("dump")
     q.add_argument("--stats", action="store_true", help="also tessellate the last frame and print cell statistics")
+    q.add_argument("--local", metavar="DUMP",
+                   help="dump local of compute vertex/local: also print the junction length between each pair "
+                        "of cell types and the heterotypic fraction, at the last common timestep")
     q.set_defaults(func=cmd_info)
 
     r = sub.add_parser("render", help="picture of the Voronoi tessellation of a frame (PNG), or a series (GIF/MP4)",

@@ -108,3 +108,24 @@ def paired_frames(atoms_path, local_path, frames=None):
     if not pairs:
         raise ValueError(f"{atoms_path} and {local_path} have no timestep in common")
     return pairs[frames] if frames is not None else pairs
+
+
+def contact_lengths(atoms, local, compute=None, column="type"):
+    """Total junction length between cells of each pair of values of ``column`` (default the
+    cell type), from the rows of a compute vertex/local dump: {(a, b): length} with a <= b,
+    each junction counted once (the dump lists it from both of its cells).  The fraction of
+    heterotypic contacts is the sum over a != b divided by the sum over all pairs."""
+    names = junction_columns(local, compute)
+    cell = np.asarray(local[names[0]]).astype(np.int64)
+    other = np.asarray(local[names[1]]).astype(np.int64)
+    length = np.asarray(local[names[6]], dtype=float)
+    value = dict(zip(np.asarray(atoms.ids).astype(np.int64).tolist(), np.asarray(atoms[column]).tolist()))
+    missing = sorted({int(j) for j in other if int(j) not in value})
+    if missing:
+        raise ValueError(f"timestep {atoms.timestep}: neighbours {missing[:5]} are not in the atom dump "
+                         "(dump every cell, 'dump ... all custom')")
+    out = {}
+    for c, j, l in zip(cell.tolist(), other.tolist(), length.tolist()):
+        a, b = sorted((value[c], value[j]))
+        out[(a, b)] = out.get((a, b), 0.0) + 0.5 * l
+    return out

@@ -77,6 +77,22 @@ class Junctions(unittest.TestCase):
             for j in nb:
                 self.assertIn(i, tess.neighbours[j])
 
+    def test_contact_lengths_of_striped_types(self):
+        """Rows of alternating types: each cell has 2 same-type neighbours in its row and 4 of
+        the other type, every junction of length a/sqrt 3, so 2/3 of the contacts are heterotypic."""
+        from tessera_tools.junctions import contact_lengths
+
+        n = len(self.points)
+        row = np.round((self.points[:, 1] - self.points[:, 1].min()) / (self.a * math.sqrt(3) / 2)).astype(int)
+        atoms = frame_from(self.points, self.box, type=(row % 2) + 1)
+        cols = hex_junctions(self.points, self.box, self.a, shuffle=np.random.default_rng(2))
+        side = self.a / math.sqrt(3.0)
+        got = contact_lengths(atoms, local_frame(self.box, cols))
+        self.assertEqual(sorted(got), [(1, 1), (1, 2), (2, 2)])
+        self.assertAlmostEqual(got[(1, 1)], n / 2 * side, places=10)
+        self.assertAlmostEqual(got[(2, 2)], n / 2 * side, places=10)
+        self.assertAlmostEqual(got[(1, 2)], 2 * n * side, places=10)
+
     def test_missing_cell_is_an_error(self):
         cols = hex_junctions(self.points, self.box, self.a)
         keep = cols["c_junc[1]"] != 3

@@ -42,6 +42,10 @@ PairVertexVoronoi::PairVertexVoronoi(LAMMPS *lmp) : Pair(lmp)
   lambda = nullptr;
   lambda_set = nullptr;
   type_set = nullptr;
+  lambda_extra = adapt_kappa = adapt_area0 = adapt_gamma = lambda_built = nullptr;
+  close_i = close_j = 0;
+  close_d = -1.0;
+  close_step = -1;
   tess_step = -1;
   incremental = 1;
   mesh_ncalls = -1;
@@ -65,6 +69,11 @@ PairVertexVoronoi::~PairVertexVoronoi()
     memory->destroy(lambda);
     memory->destroy(lambda_set);
     memory->destroy(type_set);
+    memory->destroy(lambda_extra);
+    memory->destroy(adapt_kappa);
+    memory->destroy(adapt_area0);
+    memory->destroy(adapt_gamma);
+    memory->destroy(lambda_built);
   }
 }
 
@@ -80,6 +89,11 @@ void PairVertexVoronoi::allocate()
   memory->create(lambda, n + 1, n + 1, "pair:lambda");
   memory->create(lambda_set, n + 1, n + 1, "pair:lambda_set");
   memory->create(type_set, n + 1, "pair:type_set");
+  memory->create(lambda_extra, n + 1, n + 1, "pair:lambda_extra");
+  memory->create(adapt_kappa, n + 1, n + 1, "pair:adapt_kappa");
+  memory->create(adapt_area0, n + 1, n + 1, "pair:adapt_area0");
+  memory->create(adapt_gamma, n + 1, n + 1, "pair:adapt_gamma");
+  memory->create(lambda_built, n + 1, n + 1, "pair:lambda_built");
   for (int i = 0; i <= n; i++) {
     kappa[i] = area0[i] = gamma[i] = 0.0;
     type_set[i] = 0;
@@ -88,6 +102,8 @@ void PairVertexVoronoi::allocate()
       lambda[i][j] = 0.0;
       lambda_set[i][j] = 0;
       cutsq[i][j] = 0.0;
+      lambda_extra[i][j] = adapt_kappa[i][j] = adapt_area0[i][j] = adapt_gamma[i][j] = 0.0;
+      lambda_built[i][j] = 0.0;
     }
   }
 }
@@ -194,22 +210,37 @@ void PairVertexVoronoi::coeff(int narg, char **arg)
   const bool same = (ilo == jlo && ihi == jhi);
   const std::string where = fmt::format("pair_coeff {} {}", arg[0], arg[1]);
 
-  if (narg == 3) {
-    const double lam = utils::numeric(FLERR, arg[2], false, lmp);
-    if (!std::isfinite(lam)) error->all(FLERR, "{}: Lambda must be finite, got {}", where, arg[2]);
+  // pair_coeff I J Lambda_IJ, or pair_coeff I J quadratic sigma: the extra
+  // tension sigma of a heterotypic junction on top of the default mean
+  // (energy sigma * l per junction, in either tension convention).
+  const bool het_quadratic = narg == 4 && strcmp(arg[2], "quadratic") == 0;
+  if (narg == 3 || het_quadratic) {
+    const char *value = arg[narg - 1];
+    const double lam = utils::numeric(FLERR, value, false, lmp);
+    if (!std::isfinite(lam))
+      error->all(FLERR, "{}: {} must be finite, got {}", where,
+                 het_quadratic ? "the heterotypic tension sigma" : "Lambda", value);
+    const int how = het_quadratic ? 2 : 1;
     int count = 0;
+    auto set = [&](int i, int j) {
+      lambda_set[i][j] = lambda_set[j][i] = how;
+      if (how == 1) {
+        lambda[i][j] = lambda[j][i] = lam;
+      } else {
+        lambda_extra[i][j] = lambda_extra[j][i] = lam;
+      }
+      count++;
+    };
     for (int i = ilo; i <= ihi; i++)
-      for (int j = MAX(jlo, i + 1); j <= jhi; j++) {
-        lambda[i][j] = lambda[j][i] = lam;
-        lambda_set[i][j] = lambda_set[j][i] = 1;
-        count++;
-      }
+      for (int j = MAX(jlo, i + 1); j <= jhi; j++) set(i, j);
     for (int i = jlo; i <= jhi; i++)
-      for (int j = MAX(ilo, i + 1); j <= ihi; j++) {
-        lambda[i][j] = lambda[j][i] = lam;
-        lambda_set[i][j] = lambda_set[j][i] = 1;
-        count++;
-      }
+      for (int j = MAX(ilo, i + 1); j <= ihi; j++) set(i, j);
+    if (count == 0 && het_quadratic)
+      error->all(FLERR,
+                 "{}: 'quadratic sigma' with one value sets the extra tension between two "
+                 "different types; for type I's own cells use 'pair_coeff I I quadratic KA A0 KP "
+                 "P0'",
+                 where);
     if (count == 0)
       error->all(FLERR,
                  "{}: a single value sets Lambda between two different types; for type I's own "
@@ -304,17 +335,114 @@ void PairVertexVoronoi::init_style()
   }
   neighbor->delay = 0;
 
+  build_model();
+  print_model();
+  // No neighbor list is requested: the tessellation needs only the ghost atoms.
+  for (double &v : stats) v = 0.0;
+  close_d = -1.0;
+}
+
+/* The core's model from the per-type values and the junction tensions:
+   Lambda_IJ given (lambda_set 1), the mean of the two same-type values
+   (0), or that mean plus the heterotypic sigma (2).  Fills the type-pair
+   arrays that extract() gives fix adapt with the values in use, so that
+   reinit() can tell what fix adapt changed. */
+
+void PairVertexVoronoi::build_model()
+{
   const int n = atom->ntypes;
   model = tessera::Model(n);
   model.tension = tension;
   for (int i = 1; i <= n; i++) model.types[i - 1] = tessera::CellType{kappa[i], area0[i], gamma[i]};
+  // sigma is the energy per junction length; Tension::Cell counts Lambda_IJ twice.
+  const double per_junction = tension == tessera::Tension::Edge ? 1.0 : 0.5;
   for (int i = 1; i <= n; i++)
     for (int j = i; j <= n; j++) {
-      const double lam = lambda_set[i][j] ? lambda[i][j] : 0.5 * (lambda[i][i] + lambda[j][j]);
+      double lam = lambda[i][j];
+      if (i != j && lambda_set[i][j] != 1) {
+        lam = 0.5 * (lambda[i][i] + lambda[j][j]);
+        if (lambda_set[i][j] == 2) lam += per_junction * lambda_extra[i][j];
+      }
       model.set_lambda(i - 1, j - 1, lam);
+      lambda[i][j] = lambda[j][i] = lam;
+      lambda_built[i][j] = lambda_built[j][i] = lam;
     }
-  // No neighbor list is requested: the tessellation needs only the ghost atoms.
-  for (double &v : stats) v = 0.0;
+  for (int i = 1; i <= n; i++)
+    for (int j = 1; j <= n; j++) {
+      const int t = i <= j ? i : j;
+      adapt_kappa[i][j] = kappa[t];
+      adapt_area0[i][j] = area0[t];
+      adapt_gamma[i][j] = gamma[t];
+    }
+  try {
+    model.validate();
+  } catch (tessera::Error &e) {
+    error->all(FLERR, "pair_style vertex/voronoi: {}", e.what());
+  }
+}
+
+/* The per-type parameters and the effective junction tension matrix, in
+   the model's reduced units, once per run. */
+
+void PairVertexVoronoi::print_model() const
+{
+  if (comm->me != 0) return;
+  const int n = atom->ntypes;
+  static const char *inc_name[] = {"no", "yes", "check"};
+  std::string msg = fmt::format(
+      "pair_style vertex/voronoi: cutoff {:.6g} tension {} incremental {} grow {} reference {}\n",
+      cut_global, tension == tessera::Tension::Edge ? "edge" : "cell", inc_name[incremental],
+      grow ? "yes" : "no", reference_every);
+  msg += fmt::format(
+      "  junction energy = {} Lambda_IJ * length; reduced units: length sqrt(A0), "
+      "energy K A0^2\n"
+      "  type          K         A0      Gamma     Lambda_II         p0\n",
+      tension == tessera::Tension::Edge ? "1 x" : "2 x");
+  const double c = tension == tessera::Tension::Edge ? 2.0 : 1.0;
+  for (int i = 1; i <= n; i++) {
+    const double lam = model.lambda_of(i - 1, i - 1);
+    const double p0 = gamma[i] != 0.0 ? -lam / (c * gamma[i] * std::sqrt(area0[i])) : 0.0;
+    msg += fmt::format("  {:4d} {:10.4g} {:10.4g} {:10.4g} {:13.4g} {:>10}\n", i, kappa[i],
+                       area0[i], gamma[i], lam, gamma[i] != 0.0 ? fmt::format("{:.4g}", p0) : "-");
+  }
+  msg += "  effective junction tension Lambda_IJ:\n      ";
+  for (int j = 1; j <= n; j++) msg += fmt::format(" {:>10d}", j);
+  msg += "\n";
+  for (int i = 1; i <= n; i++) {
+    msg += fmt::format("  {:4d}", i);
+    for (int j = 1; j <= n; j++) msg += fmt::format(" {:10.4g}", model.lambda_of(i - 1, j - 1));
+    msg += "\n";
+  }
+  utils::logmesg(lmp, msg);
+}
+
+/* fix adapt changed the arrays of extract(): take the per-type values from
+   the diagonal, mark junction tensions it changed as given, and rebuild the
+   model for the next force computation. */
+
+void PairVertexVoronoi::reinit()
+{
+  Pair::reinit();
+  const int n = atom->ntypes;
+  for (int i = 1; i <= n; i++) {
+    if (!(adapt_kappa[i][i] > 0.0) || !std::isfinite(adapt_kappa[i][i]))
+      error->all(FLERR, "pair_style vertex/voronoi (fix adapt): kappa of type {} must be > 0, got {}",
+                 i, adapt_kappa[i][i]);
+    if (!(adapt_area0[i][i] > 0.0) || !std::isfinite(adapt_area0[i][i]))
+      error->all(FLERR, "pair_style vertex/voronoi (fix adapt): area0 of type {} must be > 0, got {}",
+                 i, adapt_area0[i][i]);
+    kappa[i] = adapt_kappa[i][i];
+    area0[i] = adapt_area0[i][i];
+    gamma[i] = adapt_gamma[i][i];
+  }
+  // fix adapt writes the upper triangle (j >= i).
+  for (int i = 1; i <= n; i++)
+    for (int j = i + 1; j <= n; j++)
+      if (lambda[i][j] != lambda_built[i][j]) {
+        lambda_set[i][j] = lambda_set[j][i] = 1;
+        lambda[j][i] = lambda[i][j];
+      }
+  build_model();
 }
 
 double PairVertexVoronoi::init_one(int i, int j)
@@ -559,6 +687,11 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
   if (vflag_fdotr) virial_fdotr_compute();
 }
 
+// The restart layout: settings, then per type and type pair.  Files of the
+// first layout (cutoff and tension only) store tension as 0 or 1; later ones
+// add RESTART_V2 to it and carry every keyword and the heterotypic sigma.
+static constexpr int RESTART_V2 = 16;
+
 void PairVertexVoronoi::write_restart(FILE *fp)
 {
   write_restart_settings(fp);
@@ -571,13 +704,14 @@ void PairVertexVoronoi::write_restart(FILE *fp)
     for (int j = 1; j <= n; j++) {
       fwrite(&lambda_set[i][j], sizeof(int), 1, fp);
       fwrite(&lambda[i][j], sizeof(double), 1, fp);
+      fwrite(&lambda_extra[i][j], sizeof(double), 1, fp);
     }
   }
 }
 
 void PairVertexVoronoi::read_restart(FILE *fp)
 {
-  read_restart_settings(fp);
+  const int version = read_restart_settings_version(fp);
   allocate();
   const int n = atom->ntypes;
   const int me = comm->me;
@@ -598,20 +732,31 @@ void PairVertexVoronoi::read_restart(FILE *fp)
         utils::sfread(FLERR, &lambda_set[i][j], sizeof(int), 1, fp, nullptr, error);
         utils::sfread(FLERR, &lambda[i][j], sizeof(double), 1, fp, nullptr, error);
       }
+      if (me == 0 && version >= 2)
+        utils::sfread(FLERR, &lambda_extra[i][j], sizeof(double), 1, fp, nullptr, error);
       MPI_Bcast(&lambda_set[i][j], 1, MPI_INT, 0, world);
       MPI_Bcast(&lambda[i][j], 1, MPI_DOUBLE, 0, world);
+      MPI_Bcast(&lambda_extra[i][j], 1, MPI_DOUBLE, 0, world);
     }
   }
 }
 
 void PairVertexVoronoi::write_restart_settings(FILE *fp)
 {
-  int t = tension == tessera::Tension::Edge ? 0 : 1;
+  int t = (tension == tessera::Tension::Edge ? 0 : 1) + RESTART_V2;
   fwrite(&cut_global, sizeof(double), 1, fp);
   fwrite(&t, sizeof(int), 1, fp);
+  fwrite(&incremental, sizeof(int), 1, fp);
+  fwrite(&grow, sizeof(int), 1, fp);
+  fwrite(&reference_every, sizeof(int), 1, fp);
 }
 
 void PairVertexVoronoi::read_restart_settings(FILE *fp)
+{
+  read_restart_settings_version(fp);
+}
+
+int PairVertexVoronoi::read_restart_settings_version(FILE *fp)
 {
   int t = 0;
   if (comm->me == 0) {
@@ -620,16 +765,28 @@ void PairVertexVoronoi::read_restart_settings(FILE *fp)
   }
   MPI_Bcast(&cut_global, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&t, 1, MPI_INT, 0, world);
+  const int version = t >= RESTART_V2 ? 2 : 1;
+  if (version >= 2) {
+    t -= RESTART_V2;
+    int v[3] = {incremental, grow, reference_every};
+    if (comm->me == 0) utils::sfread(FLERR, v, sizeof(int), 3, fp, nullptr, error);
+    MPI_Bcast(v, 3, MPI_INT, 0, world);
+    incremental = v[0];
+    grow = v[1];
+    reference_every = v[2];
+  }
   tension = t == 0 ? tessera::Tension::Edge : tessera::Tension::Cell;
+  return version;
 }
 
 void *PairVertexVoronoi::extract(const char *str, int &dim)
 {
-  dim = 1;
-  if (strcmp(str, "kappa") == 0) return kappa;
-  if (strcmp(str, "area0") == 0) return area0;
-  if (strcmp(str, "gamma") == 0) return gamma;
+  // Type-pair arrays, the form fix adapt needs; the per-type parameters are
+  // read from the diagonal (I I) in reinit().
   dim = 2;
+  if (strcmp(str, "kappa") == 0) return adapt_kappa;
+  if (strcmp(str, "area0") == 0) return adapt_area0;
+  if (strcmp(str, "gamma") == 0) return adapt_gamma;
   if (strcmp(str, "lambda") == 0) return lambda;
   return nullptr;
 }

@@ -36,6 +36,7 @@ class PairVertexVoronoi : public Pair {
   void write_restart_settings(FILE *) override;
   void read_restart_settings(FILE *) override;
   void *extract(const char *, int &) override;
+  void reinit() override;
   double memory_usage() override;
 
   // The tessellation of the last force computation: owned cells are the local
@@ -56,6 +57,14 @@ class PairVertexVoronoi : public Pair {
   int **lambda_set;               // 1 if pair_coeff I J gave Lambda_IJ explicitly
   int *type_set;                  // 1 if pair_coeff I I gave the cell parameters
   tessera::Model model;
+  // Model-parameter plumbing for fix adapt and the quadratic heterotypic
+  // tension (see build_model() and reinit()).
+  double **lambda_extra;  // lambda_set == 2: Lambda_IJ = mean + this (pair_coeff I J quadratic)
+  double **adapt_kappa, **adapt_area0, **adapt_gamma;  // type-pair views of the per-type values
+  double **lambda_built;  // lambda as build_model() left it: what fix adapt changed since
+  void build_model();
+  int read_restart_settings_version(FILE *);
+  void print_model() const;
 
   tessera::Tessellation tess;
   bigint tess_step;
@@ -73,6 +82,12 @@ class PairVertexVoronoi : public Pair {
   void grow_ghost_shell(double);
   int grow;             // widen the ghost shell when a cell needs it (default) or stop
   double cutghost_saved;  // comm->cutghostuser before this style raised it, or -1
+  // Closest pair of centres among the owned cells' Voronoi neighbours at the
+  // last force computation (atom IDs, distance, step), to name in errors.
+  tagint close_i, close_j;
+  double close_d;
+  bigint close_step;
+  void check_collisions();
   void check_against_scratch(const tessera::Points &, const tessera::Region &, double);
   tessera::Region subdomain() const;
   double ghost_width() const;

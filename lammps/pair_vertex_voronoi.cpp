@@ -17,7 +17,10 @@
 #include "force.h"
 #include "memory.h"
 #include "modify.h"
+#include "fix.h"
 #include "neighbor.h"
+#include "output.h"
+#include "thermo.h"
 #include "update.h"
 
 #include <algorithm>
@@ -27,6 +30,126 @@
 #include <string>
 
 using namespace LAMMPS_NS;
+
+/* ----------------------------------------------------------------------
+   The step guard, an internal fix the pair style adds.  It keeps each owned
+   atom's position from the last force computation and, after the
+   integrators have moved the atoms (post_integrate, before atoms migrate
+   between ranks), compares.  A step that moves an atom by more than a cell
+   diameter sqrt(A0) does not resolve the forces (typically two centres
+   nearly collided: the Voronoi forces grow as 1/distance): a warning, once
+   per run, since such runs usually recover.  A step that moves it so far
+   that LAMMPS would lose it (past the neighbouring rank's sub-domain, or
+   half the box with one rank along that direction), or to a non-finite
+   position, stops the run with an error.  Integrator-independent: it
+   measures the displacement.
+------------------------------------------------------------------------- */
+
+namespace {
+
+const char *const GUARD_STYLE = "VERTEX_VORONOI_GUARD";
+
+class FixVertexGuard : public Fix {
+ public:
+  FixVertexGuard(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg), pair(nullptr) {}
+  int setmask() override { return FixConst::POST_INTEGRATE | FixConst::POST_FORCE; }
+  void init() override { warned = 0; }
+  void setup(int) override { record(); }
+  void post_force(int) override { record(); }
+  void post_integrate() override;
+  PairVertexVoronoi *pair;
+
+ private:
+  std::vector<double> x0;
+  std::vector<tagint> tag0;
+  bigint step0 = -1;
+  int warned = 0;
+  void record()
+  {
+    const int n = atom->nlocal;
+    x0.resize(2 * static_cast<size_t>(n));
+    tag0.resize(n);
+    for (int i = 0; i < n; i++) {
+      x0[2 * i] = atom->x[i][0];
+      x0[2 * i + 1] = atom->x[i][1];
+      tag0[i] = atom->tag[i];
+    }
+    step0 = update->ntimestep;
+  }
+  double loss_limit() const;
+  std::string describe(int i, double moved, double size) const;
+};
+
+Fix *create_guard(LAMMPS *lmp, int narg, char **arg)
+{
+  return new FixVertexGuard(lmp, narg, arg);
+}
+
+}    // namespace
+
+/* The largest displacement LAMMPS's atom migration survives: one
+   neighbouring sub-domain, or half the box along a direction with one rank. */
+
+double FixVertexGuard::loss_limit() const
+{
+  double limit = std::numeric_limits<double>::max();
+  const double prd[2] = {domain->xprd, domain->yprd};
+  for (int d = 0; d < 2; d++) {
+    const double width = (domain->triclinic ? domain->subhi_lamda[d] - domain->sublo_lamda[d]
+                                            : (domain->subhi[d] - domain->sublo[d]) / prd[d]) * prd[d];
+    limit = MIN(limit, comm->procgrid[d] > 1 ? width : 0.5 * prd[d]);
+  }
+  return limit;
+}
+
+std::string FixVertexGuard::describe(int i, double moved, double size) const
+{
+  tagint j = 0;
+  double d = -1.0;
+  pair->closest_neighbour(i, j, d);
+  return fmt::format(
+      "atom {} moved by {:.3g} in the step from {} to {}, more than a cell diameter sqrt(A0) = "
+      "{:.3g}: the timestep does not resolve the forces of step {} (its closest Voronoi "
+      "neighbour then, atom {}, was {:.3g} away; Voronoi forces grow as 1/distance when two "
+      "centres nearly collide)",
+      atom->tag[i], moved, step0, update->ntimestep, size, step0, j, d);
+}
+
+void FixVertexGuard::post_integrate()
+{
+  const int n = atom->nlocal;
+  if (!pair || static_cast<int>(tag0.size()) != n) return;
+  double **x = atom->x;
+  const double lost = loss_limit();
+  int worst = -1;
+  double worst_moved = 0.0;
+  for (int i = 0; i < n; i++) {
+    if (atom->tag[i] != tag0[i]) return;    // re-ordered without a force computation
+    const double dx = x[i][0] - x0[2 * i], dy = x[i][1] - x0[2 * i + 1];
+    const double moved = std::sqrt(dx * dx + dy * dy);
+    if (!std::isfinite(moved) || moved > lost)
+      error->one(FLERR,
+                 "pair_style vertex/voronoi: {}; it would be lost (limit {:.3g} for this domain "
+                 "decomposition). Use a smaller timestep, 'fix dt/reset' to limit the "
+                 "displacement per step, or the second-order integrator fix brownian/heun",
+                 describe(i, moved, pair->cell_size(atom->type[i])), lost);
+    if (moved > pair->cell_size(atom->type[i]) && moved > worst_moved) {
+      worst = i;
+      worst_moved = moved;
+    }
+  }
+  if (warned) return;
+  int any = worst >= 0, any_all = 0;
+  MPI_Allreduce(&any, &any_all, 1, MPI_INT, MPI_MAX, world);
+  if (!any_all) return;
+  warned = 1;
+  if (worst >= 0)
+    error->warning(FLERR,
+                   "pair_style vertex/voronoi: {}. The run goes on, but such steps are not "
+                   "accurate; use a smaller timestep, 'fix dt/reset' or fix brownian/heun "
+                   "(reported once per run)",
+                   describe(worst, worst_moved, pair->cell_size(atom->type[worst])));
+}
 
 PairVertexVoronoi::PairVertexVoronoi(LAMMPS *lmp) : Pair(lmp)
 {
@@ -53,6 +176,7 @@ PairVertexVoronoi::PairVertexVoronoi(LAMMPS *lmp) : Pair(lmp)
   reference_every = 0;
   grow = 1;
   cutghost_saved = -1.0;
+  guard_id = std::string("VERTEX_VORONOI_GUARD_") + std::to_string(instance_me);
   pvector = stats;
   for (double &v : stats) v = 0.0;
 }
@@ -60,6 +184,7 @@ PairVertexVoronoi::PairVertexVoronoi(LAMMPS *lmp) : Pair(lmp)
 PairVertexVoronoi::~PairVertexVoronoi()
 {
   if (cutghost_saved >= 0.0) comm->cutghostuser = cutghost_saved;
+  if (modify && modify->find_fix(guard_id) >= 0) modify->delete_fix(guard_id);
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -337,6 +462,12 @@ void PairVertexVoronoi::init_style()
 
   build_model();
   print_model();
+  // The step guard (see FixVertexGuard), added once; internal, not in the style table.
+  if (modify->fix_map->find(GUARD_STYLE) == modify->fix_map->end())
+    (*modify->fix_map)[GUARD_STYLE] = &create_guard;
+  if (modify->find_fix(guard_id) < 0) modify->add_fix(guard_id + " all " + GUARD_STYLE);
+  auto guard = dynamic_cast<FixVertexGuard *>(modify->fix[modify->find_fix(guard_id)]);
+  if (guard) guard->pair = this;
   // No neighbor list is requested: the tessellation needs only the ghost atoms.
   for (double &v : stats) v = 0.0;
   close_d = -1.0;
@@ -505,6 +636,15 @@ bool PairVertexVoronoi::tessellate()
   double lo_inc[2], hi_inc[2];
   sub.bounding_box(wi, lo_inc, hi_inc);
 
+  // A rank that owns no cell has nothing to compute (its ghosts are other
+  // ranks' cells); it only takes part in the collective check below.
+  if (nlocal == 0) {
+    tess = tessera::Tessellation();
+    tess.n_points = nall;
+    tess.cell_offset.assign(1, 0);
+    mesh_ncalls = -1;    // triangulate from scratch when cells arrive
+  }
+
   bool fresh = false;
   auto build = [&]() {
     try {
@@ -524,22 +664,24 @@ bool PairVertexVoronoi::tessellate()
     fresh = true;
     stats[2] += 1.0;
   };
-  if (!incremental || mesh_ncalls != neighbor->ncalls || !mesh.valid() || mesh.n_points() != nall)
+  if (nlocal == 0)
+    ;
+  else if (!incremental || mesh_ncalls != neighbor->ncalls || !mesh.valid() || mesh.n_points() != nall)
     build();
   else if (mesh.update(pts, lo_inc, hi_inc))
     stats[3] += mesh.flips_last_update();
   else
     build();
-  mesh.cells(pts, nlocal, tess);
+  if (nlocal > 0) mesh.cells(pts, nlocal, tess);
 
   tessera::Coverage cov;  // ok unless checked below
-  if (!fresh && !tessera::check_coverage(tess, sub, wi).ok) {
+  if (nlocal > 0 && !fresh && !tessera::check_coverage(tess, sub, wi).ok) {
     // A cell reaches past the region where the updated mesh is certified:
     // triangulate from scratch, then check against the full ghost shell.
     build();
     mesh.cells(pts, nlocal, tess);
   }
-  if (incremental == 2 && !fresh) check_against_scratch(pts, sub, w);
+  if (incremental == 2 && !fresh && nlocal > 0) check_against_scratch(pts, sub, w);
   // An updated mesh that passed the smaller region passes the full one.
   if (fresh) cov = tessera::check_coverage(tess, sub, w);
   double need = cov.needed_margin, need_all;
@@ -639,6 +781,7 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
 
+  check_lost_atoms();
   const double t0 = MPI_Wtime();
   // Each pass that widens the ghost shell re-acquires the atoms; then the
   // energy/virial accumulators are set up again for the new atom count.
@@ -669,6 +812,7 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
       vatom[i][3] += 0.5 * (cell_w[4 * i + 2] + cell_w[4 * i + 3]);
     }
 
+  note_closest_pair();
   stats[0] += t1 - t0;
   stats[1] += MPI_Wtime() - t1;
   stats[4] += 1.0;
@@ -685,6 +829,94 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
   if (eflag_atom)
     for (int i = 0; i < nlocal; i++) eatom[i] += cell_e[i];
   if (vflag_fdotr) virial_fdotr_compute();
+}
+
+/* Cell diameter sqrt(A0) of a type (1-based), the step guard's limit. */
+
+double PairVertexVoronoi::cell_size(int type) const
+{
+  return std::sqrt(area0[type]);
+}
+
+/* The closest Voronoi neighbour of owned atom i in the last tessellation. */
+
+bool PairVertexVoronoi::closest_neighbour(int i, tagint &j, double &d) const
+{
+  d = -1.0;
+  if (i < 0 || i >= tess.n_owned || static_cast<int>(close_pos.size()) != 2 * tess.n_points)
+    return false;
+  for (int k = tess.cell_offset[i]; k < tess.cell_offset[i + 1]; k++) {
+    const int q = tess.cell_neighbor[k];
+    const double dx = close_pos[2 * q] - close_pos[2 * i], dy = close_pos[2 * q + 1] - close_pos[2 * i + 1];
+    const double r = std::sqrt(dx * dx + dy * dy);
+    if (d < 0.0 || r < d) {
+      d = r;
+      j = close_tag[q];
+    }
+  }
+  return d >= 0.0;
+}
+
+/* The closest pair of Voronoi neighbours among this rank's cells at this
+   force computation, for the error messages of the guard and of lost atoms
+   (the positions and IDs are kept: the guard reads them after the atoms
+   moved). */
+
+void PairVertexVoronoi::note_closest_pair()
+{
+  const int nall = tess.n_points;
+  close_pos.resize(2 * static_cast<size_t>(nall));
+  close_tag.resize(nall);
+  for (int i = 0; i < nall; i++) {
+    close_pos[2 * i] = atom->x[i][0];
+    close_pos[2 * i + 1] = atom->x[i][1];
+    close_tag[i] = atom->tag[i];
+  }
+  close_d = -1.0;
+  for (int i = 0; i < tess.n_owned; i++) {
+    tagint j;
+    double d;
+    if (closest_neighbour(i, j, d) && (close_d < 0.0 || d < close_d)) {
+      close_d = d;
+      close_i = atom->tag[i];
+      close_j = j;
+    }
+  }
+  close_step = update->ntimestep;
+}
+
+/* Atoms lost since the last step (moved out of the box or past a
+   neighbouring rank in one step): say so before the tessellation of what is
+   left fails, with the closest pair of the previous step. */
+
+void PairVertexVoronoi::check_lost_atoms()
+{
+  bigint n = atom->nlocal, ntotal = 0;
+  MPI_Allreduce(&n, &ntotal, 1, MPI_LMP_BIGINT, MPI_SUM, world);
+  if (ntotal == atom->natoms) return;
+  if (output && output->thermo && output->thermo->lostflag != Thermo::ERROR) return;
+  // The globally closest pair of the last force computation.
+  struct {
+    double d;
+    int rank;
+  } mine{close_d >= 0.0 ? close_d : std::numeric_limits<double>::max(), comm->me}, best;
+  MPI_Allreduce(&mine, &best, 1, MPI_DOUBLE_INT, MPI_MINLOC, world);
+  tagint ids[2] = {close_i, close_j};
+  bigint when = close_step;
+  MPI_Bcast(ids, 2, MPI_LMP_TAGINT, best.rank, world);
+  MPI_Bcast(&when, 1, MPI_LMP_BIGINT, best.rank, world);
+  const std::string closest =
+      best.d < std::numeric_limits<double>::max()
+          ? fmt::format("; at step {} the closest centres were atoms {} and {}, {:.3g} apart", when,
+                        ids[0], ids[1], best.d)
+          : std::string();
+  error->all(FLERR,
+             "pair_style vertex/voronoi: {} of {} atoms are left at step {}: the others were lost "
+             "(moved out of the box, or past a neighbouring rank's domain in one step; during a "
+             "run usually because the forces were too large for the timestep: two centres nearly "
+             "colliding, or very stiff parameters){}. Use a smaller timestep, 'fix dt/reset', or "
+             "fix brownian/heun",
+             ntotal, atom->natoms, update->ntimestep, closest);
 }
 
 // The restart layout: settings, then per type and type pair.  Files of the

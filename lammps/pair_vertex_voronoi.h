@@ -18,6 +18,7 @@ PairStyle(vertex/voronoi,PairVertexVoronoi);
 #include "tessera/mesh.h"
 #include "tessera/tessellation.h"
 
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -48,6 +49,10 @@ class PairVertexVoronoi : public Pair {
   const std::vector<double> &cell_energy() const { return cell_e; }
   // Whether the tessellation was computed at the current timestep.
   bool tessellation_current() const;
+  // For the step guard: sqrt(A0) of a type, and owned atom i's closest
+  // Voronoi neighbour (ID, distance) at the last force computation.
+  double cell_size(int type) const;
+  bool closest_neighbour(int i, tagint &j, double &d) const;
 
  protected:
   double cut_global;
@@ -87,7 +92,11 @@ class PairVertexVoronoi : public Pair {
   tagint close_i, close_j;
   double close_d;
   bigint close_step;
-  void check_collisions();
+  std::vector<double> close_pos;  // positions and IDs of the last tessellated points
+  std::vector<tagint> close_tag;
+  void note_closest_pair();
+  void check_lost_atoms();
+  std::string guard_id;
   void check_against_scratch(const tessera::Points &, const tessera::Region &, double);
   tessera::Region subdomain() const;
   double ghost_width() const;

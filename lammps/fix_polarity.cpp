@@ -28,8 +28,8 @@ using namespace FixConst;
 namespace {
 
 // Counter-based random numbers: a value depends only on (seed, atom ID,
-// timestep, stream), so runs are identical on any number of ranks and
-// continue exactly from a restart.
+// timestep, stream), not on the rank or the order of atoms (runs on other
+// rank counts and restarts then agree to round-off; see the doc).
 inline uint64_t mix(uint64_t z)
 {
   z += 0x9e3779b97f4a7c15ULL;
@@ -312,7 +312,7 @@ void FixPolarity::post_force(int /*vflag*/)
    of step n, the same state whose active force moves the positions in this
    step.  Doing it here rather than at the end of step n keeps mu at the end
    of every step equal to the angle that step's force used, so that a new
-   run or a restart continues exactly.  The torque works on unit vectors
+   run or a restart continues from the same state.  The torque works on unit vectors
    (cross products instead of sines of angle differences); the angle change
    is applied as a rotation of mu. */
 

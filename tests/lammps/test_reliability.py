@@ -6,6 +6,7 @@ atoms, their distance and the step before any atom is lost; a warning when
 the run can go on), ranks that own no cell, and atoms lost for another
 reason."""
 
+import os
 import re
 
 import numpy as np
@@ -64,6 +65,23 @@ class Collision(LammpsTestCase):
         # the same pair with a timestep that resolves it: no warning
         run = self.run_lmp(near_collision(1e-3, 1e-3, steps=3))
         self.assertNotIn("more than a cell diameter", run.output)
+
+    def test_grooves_reproducers(self):
+        # examples/grooves at the thesis's dt with J_S = 1, J_G = 0: seeds 81
+        # and 2023 used to end in "Lost atoms" (at steps 106 and 16)
+        path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples",
+                            "grooves", "in.grooves")
+        with open(path) as f:
+            script = "\n".join(l for l in f.read().splitlines() if not l.startswith("dump"))
+        # (the steps are those of this build; another compiler's round-off may
+        # move them, so only the form of the message is checked)
+        for seed in (81, 2023):
+            run = self.run_lmp(script, variables={"JS": 1, "JG": 0, "seed": seed}, ok=False)
+            self.assertLammpsError(run, "it would be lost", "closest Voronoi neighbour")
+            line = [l for l in run.output.splitlines() if "ERROR" in l][0]
+            self.assertRegex(line, r"atom \d+ moved by \S+ in the step from \d+ to \d+")
+            self.assertRegex(line, r"atom \d+, was \S+ away")
+            self.assertNotIn("Lost atoms", run.output)
 
     def test_stiff_parameters(self):
         # K = 1e200: every atom would leave; the error says why, not "need at

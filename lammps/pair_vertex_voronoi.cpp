@@ -117,14 +117,17 @@ std::string FixVertexGuard::describe(int i, double moved, double size) const
 
 void FixVertexGuard::post_integrate()
 {
+  if (!pair) return;
   const int n = atom->nlocal;
-  if (!pair || static_cast<int>(tag0.size()) != n) return;
+  // Atoms added or re-ordered without a force computation (run N pre no):
+  // nothing to compare on this rank, but it still takes part below.
+  bool valid = static_cast<int>(tag0.size()) == n;
+  for (int i = 0; valid && i < n; i++) valid = atom->tag[i] == tag0[i];
   double **x = atom->x;
   const double lost = loss_limit();
   int worst = -1;
   double worst_moved = 0.0;
-  for (int i = 0; i < n; i++) {
-    if (atom->tag[i] != tag0[i]) return;    // re-ordered without a force computation
+  for (int i = 0; valid && i < n; i++) {
     const double dx = x[i][0] - x0[2 * i], dy = x[i][1] - x0[2 * i + 1];
     const double moved = std::sqrt(dx * dx + dy * dy);
     if (!std::isfinite(moved) || moved > lost)
@@ -139,16 +142,27 @@ void FixVertexGuard::post_integrate()
     }
   }
   if (warned) return;
-  int any = worst >= 0, any_all = 0;
-  MPI_Allreduce(&any, &any_all, 1, MPI_INT, MPI_MAX, world);
-  if (!any_all) return;
+  // The largest such step over all ranks, reported by rank 0 (other ranks
+  // have no screen).
+  struct {
+    double moved;
+    int rank;
+  } mine{worst >= 0 ? worst_moved : -1.0, comm->me}, top;
+  MPI_Allreduce(&mine, &top, 1, MPI_DOUBLE_INT, MPI_MAXLOC, world);
+  if (top.moved < 0.0) return;
   warned = 1;
-  if (worst >= 0)
+  std::string text;
+  if (comm->me == top.rank) text = describe(worst, worst_moved, pair->cell_size(atom->type[worst]));
+  int len = static_cast<int>(text.size());
+  MPI_Bcast(&len, 1, MPI_INT, top.rank, world);
+  text.resize(len);
+  MPI_Bcast(&text[0], len, MPI_CHAR, top.rank, world);
+  if (comm->me == 0)
     error->warning(FLERR,
                    "pair_style vertex/voronoi: {}. The run goes on, but such steps are not "
                    "accurate; use a smaller timestep, 'fix dt/reset' or fix brownian/heun "
                    "(reported once per run)",
-                   describe(worst, worst_moved, pair->cell_size(atom->type[worst])));
+                   text);
 }
 
 PairVertexVoronoi::PairVertexVoronoi(LAMMPS *lmp) : Pair(lmp)

@@ -15,12 +15,14 @@ import lmptest
 from lmptest import LammpsTestCase, nprocs
 
 
-def near_collision(distance, dt, steps=2):
+def near_collision(distance, dt, steps=2, site=0):
     """A hexagonal tissue (cells of area 1) and one more cell `distance`
-    from atom 1 along the diagonal; overdamped dynamics with gamma_T = 1.
-    The Voronoi forces on the pair are about 0.014 / distance here."""
+    along the diagonal from the lattice site (site, 0) (site 0: atom 1);
+    overdamped dynamics with gamma_T = 1.  The Voronoi forces on the pair
+    are about 0.014 / distance here."""
+    x0 = site * 1.0745699318235422    # the hex lattice constant for area 1
     return lmptest.tissue(6, 3) + f"""
-create_atoms 1 single {distance} {distance} 0 units box
+create_atoms 1 single {x0 + distance} {distance} 0 units box
 pair_style vertex/voronoi 3.0
 pair_coeff * * 1.0 1.0 0.1 -0.5
 timestep {dt}
@@ -60,6 +62,17 @@ class Collision(LammpsTestCase):
         self.assertEqual(len(warnings), 1, run.output[-3000:])
         self.assertIn("the step from 0 to 1", warnings[0])
         self.assertIn("reported once per run", warnings[0])
+
+    @nprocs(2)
+    def test_warning_two_ranks(self):
+        # printed once, by rank 0, whichever rank holds the atom (site 4 is
+        # in the right half of the box: rank 1's)
+        for site in (0, 4):
+            run = self.run_lmp(near_collision(1e-3, 0.1, steps=3, site=site), nprocs=2)
+            warnings = [l for l in run.output.splitlines()
+                        if "WARNING" in l and "more than a cell diameter" in l]
+            self.assertEqual(len(warnings), 1, run.output[-3000:])
+            self.assertRegex(warnings[0], r"atom \d+ moved by")
 
     def test_resolved_step_is_silent(self):
         # the same pair with a timestep that resolves it: no warning

@@ -229,6 +229,28 @@ run 3
     def test_settings_two_ranks(self):
         self.check_run(2)
 
+    def test_adapted_values_written(self):
+        # fix adapt ... reset no leaves A0 = 1.3 and Lambda_12 = 0.2; the
+        # restart file carries them
+        first = self.run_lmp(two_type_tissue() + """
+pair_style vertex/voronoi 3.0
+pair_coeff * * 1.0 1.0 0.1 -0.5
+variable a equal 1.3
+variable l equal 0.2
+fix a all adapt 1 pair vertex/voronoi area0 * * v_a pair vertex/voronoi lambda 1 2 v_l reset no
+run 1
+unfix a
+write_restart r.restart
+""")
+        run = self.run_lmp("""
+read_restart %s
+thermo_style custom step pe
+thermo_modify format float %%.15g
+run 0
+""" % first.path("r.restart"))
+        self.assertAlmostEqual(thermo(run)[0][1],
+                               hex_energy_per_cell(1.0, 1.3, 0.1, -0.5, -0.5, 0.2), delta=1e-12)
+
     def test_grow_no_holds(self):
         # grow no after read_restart: a hole needs a wider shell, the run stops
         script = lmptest.tissue(12, 6) + """

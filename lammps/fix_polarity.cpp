@@ -28,8 +28,8 @@ using namespace FixConst;
 namespace {
 
 // Counter-based random numbers: a value depends only on (seed, atom ID,
-// timestep, stream), so runs are identical on any number of ranks and
-// continue exactly from a restart.
+// timestep, stream), not on the rank or the order of atoms (runs on other
+// rank counts and restarts then agree to round-off; see the doc).
 inline uint64_t mix(uint64_t z)
 {
   z += 0x9e3779b97f4a7c15ULL;
@@ -248,6 +248,29 @@ void FixPolarity::init_angles()
   }
 }
 
+/* Cells that appeared since the last step (fix deposit, fix pour, create_atoms
+   between runs, cell division) with mu = 0 in the plane get a uniformly
+   random angle from the seed and their atom ID, owned and ghost copies alike
+   (a ghost's image position differs from its owner's, its ID does not), so
+   every copy agrees without communication.  A non-zero mu (set by whatever
+   created the cell) is kept. */
+
+void FixPolarity::fresh_angles(int n)
+{
+  double **mu = atom->mu;
+  const int *mask = atom->mask;
+  const tagint *tag = atom->tag;
+  for (int i = 0; i < n; i++) {
+    if (!(mask[i] & groupbit) || mu[i][0] != 0.0 || mu[i][1] != 0.0) continue;
+    const double th = MathConst::MY_2PI * uniform01(seed, tag[i], 0, 5);
+    const double m = mu[i][3] > 0.0 ? mu[i][3] : 1.0;
+    mu[i][0] = m * std::cos(th);
+    mu[i][1] = m * std::sin(th);
+    mu[i][2] = 0.0;
+    mu[i][3] = m;
+  }
+}
+
 void FixPolarity::setup(int vflag)
 {
   post_force(vflag);
@@ -264,6 +287,7 @@ void FixPolarity::post_force(int /*vflag*/)
   double **v = atom->v;
   const int *mask = atom->mask;
   const int nlocal = atom->nlocal;
+  fresh_angles(nlocal + atom->nghost);
   vhat.resize(2 * nlocal);
   has_v.resize(nlocal);
   const bool need_v = params.J_V != 0.0;  // only velocity alignment needs it
@@ -288,7 +312,7 @@ void FixPolarity::post_force(int /*vflag*/)
    of step n, the same state whose active force moves the positions in this
    step.  Doing it here rather than at the end of step n keeps mu at the end
    of every step equal to the angle that step's force used, so that a new
-   run or a restart continues exactly.  The torque works on unit vectors
+   run or a restart continues from the same state.  The torque works on unit vectors
    (cross products instead of sines of angle differences); the angle change
    is applied as a rotation of mu. */
 
@@ -298,8 +322,21 @@ void FixPolarity::initial_integrate(int /*vflag*/)
   double **mu = atom->mu;
   const int *mask = atom->mask;
   const tagint *tag = atom->tag;
-  if (static_cast<int>(has_v.size()) != nlocal)
-    error->one(FLERR, "fix polarity: internal error: velocity directions not recorded");
+  // Atoms appended since the last post_force (create_atoms before 'run N pre
+  // no') have no recorded velocity: no velocity torque on their first step.
+  // Removed atoms have shifted the others' indices: that needs a setup.
+  const int nrec = static_cast<int>(has_v.size());
+  if (nrec > nlocal || (nrec < nlocal && params.J_S != 0.0))
+    error->one(FLERR,
+               "fix polarity: {} atoms on this rank at step {}, but {} when forces were last "
+               "computed: atoms were {} without a setup; use 'run N pre yes' after "
+               "create_atoms or delete_atoms",
+               nlocal, update->ntimestep, nrec, nrec > nlocal ? "removed" : "added");
+  if (nrec < nlocal) {
+    has_v.resize(nlocal, 0);
+    vhat.resize(2 * nlocal, 0.0);
+  }
+  fresh_angles(nlocal + atom->nghost);
 
   // Unit polarities: mu[i][0..1] / |mu|.  mu is stored with |mu| in mu[i][3];
   // every cell's moment has length mu[i][3] > 0 after init().

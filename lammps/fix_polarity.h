@@ -43,6 +43,7 @@ class FixPolarity : public Fix {
   std::vector<unsigned char> has_v;
 
   void init_angles();
+  void fresh_angles(int);
   void polar_orders(double &polar, double &nematic);
 };
 

@@ -18,6 +18,7 @@ PairStyle(vertex/voronoi,PairVertexVoronoi);
 #include "tessera/mesh.h"
 #include "tessera/tessellation.h"
 
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -36,6 +37,7 @@ class PairVertexVoronoi : public Pair {
   void write_restart_settings(FILE *) override;
   void read_restart_settings(FILE *) override;
   void *extract(const char *, int &) override;
+  void reinit() override;
   double memory_usage() override;
 
   // The tessellation of the last force computation: owned cells are the local
@@ -47,6 +49,10 @@ class PairVertexVoronoi : public Pair {
   const std::vector<double> &cell_energy() const { return cell_e; }
   // Whether the tessellation was computed at the current timestep.
   bool tessellation_current() const;
+  // For the step guard: sqrt(A0) of a type, and owned atom i's closest
+  // Voronoi neighbour (ID, distance) at the last force computation.
+  double cell_size(int type) const;
+  bool closest_neighbour(int i, tagint &j, double &d) const;
 
  protected:
   double cut_global;
@@ -56,6 +62,14 @@ class PairVertexVoronoi : public Pair {
   int **lambda_set;               // 1 if pair_coeff I J gave Lambda_IJ explicitly
   int *type_set;                  // 1 if pair_coeff I I gave the cell parameters
   tessera::Model model;
+  // Model-parameter plumbing for fix adapt and the quadratic heterotypic
+  // tension (see build_model() and reinit()).
+  double **lambda_extra;  // lambda_set == 2: Lambda_IJ = mean + this (pair_coeff I J quadratic)
+  double **adapt_kappa, **adapt_area0, **adapt_gamma;  // type-pair views of the per-type values
+  double **lambda_built;  // lambda as build_model() left it: what fix adapt changed since
+  void build_model();
+  int read_restart_settings_version(FILE *);
+  void print_model() const;
 
   tessera::Tessellation tess;
   bigint tess_step;
@@ -73,6 +87,16 @@ class PairVertexVoronoi : public Pair {
   void grow_ghost_shell(double);
   int grow;             // widen the ghost shell when a cell needs it (default) or stop
   double cutghost_saved;  // comm->cutghostuser before this style raised it, or -1
+  // Closest pair of centres among the owned cells' Voronoi neighbours at the
+  // last force computation (atom IDs, distance, step), to name in errors.
+  tagint close_i, close_j;
+  double close_d;
+  bigint close_step;
+  std::vector<double> close_pos;  // positions and IDs of the last tessellated points
+  std::vector<tagint> close_tag;
+  void note_closest_pair();
+  void check_lost_atoms();
+  std::string guard_id;
   void check_against_scratch(const tessera::Points &, const tessera::Region &, double);
   tessera::Region subdomain() const;
   double ghost_width() const;

@@ -147,12 +147,8 @@ def _spectrum_solve(H, vectors, dense_limit):
     # Large: pin point 0 (removes the translations) and solve sparse.
     import scipy.sparse.linalg
 
-    Hr = H[2:, 2:].tocsc()
-    quad = []
-    for v in vectors:
-        u = scipy.sparse.linalg.spsolve(Hr, v[2:])
-        quad.append(float(v[2:] @ u))
-    return None, quad
+    solve = scipy.sparse.linalg.factorized(H[2:, 2:].tocsc())  # one LU for all vectors
+    return None, [float(v[2:] @ solve(v[2:])) for v in vectors]
 
 
 def moduli(res, dense_limit=4000):

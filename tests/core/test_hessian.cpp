@@ -216,3 +216,40 @@ TEST(HessianMultifold, SquareLatticeThrowsNamingTheVertex) {
 }
 
 }  // namespace
+
+namespace {
+
+// Nearly four-fold vertices (a square lattice jittered by 1e-3: Voronoi edges
+// of length ~1e-3): the Hessian is still the derivative of the forces.
+TEST(HessianNearlyMultifold, ShortEdgesStillFiniteDifferences) {
+  testutil::Rng rng(11);
+  Config c;
+  c.box = tessera::Box::rect(0.0, 4.0, 0.0, 4.0);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j)
+      c.xy.insert(c.xy.end(), {i + 0.5 + 1e-3 * rng.uniform(-1, 1), j + 0.5 + 1e-3 * rng.uniform(-1, 1)});
+  c.type.assign(c.n(), 0);
+  const tessera::Model m = quadratic_model(3.8, tessera::Tension::Edge);
+  const auto t = tessera::tessellate_periodic(c.box, c.points());
+  double shortest = 1e300;
+  for (double l : t.edge_length) shortest = std::min(shortest, l);
+  ASSERT_LT(shortest, 3e-3);
+  ASSERT_GT(shortest, 0.0);
+  const auto ph = tessera::periodic_hessian(c.box, c.points(), c.type.data(), m);
+  const std::vector<double> H = dense(ph.hessian);
+  const int n2 = 2 * c.n();
+  const double h = 1e-7;
+  double scale = 0.0, worst = 0.0;
+  for (double v : H) scale = std::max(scale, std::abs(v));
+  for (int j = 0; j < n2; ++j) {
+    std::vector<double> xp = c.xy, xm = c.xy;
+    xp[j] += h;
+    xm[j] -= h;
+    const auto fp = forces(c.box, xp, c.type, m), fm = forces(c.box, xm, c.type, m);
+    for (int i = 0; i < n2; ++i)
+      worst = std::max(worst, std::abs(H[static_cast<size_t>(i) * n2 + j] + (fp[i] - fm[i]) / (2 * h)));
+  }
+  EXPECT_LT(worst / scale, 1e-5) << "max |H| " << scale << ", shortest edge " << shortest;
+}
+
+}  // namespace

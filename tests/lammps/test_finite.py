@@ -102,16 +102,18 @@ class Analytic(LammpsTestCase):
     each: pe and compute vertex/atom's area, perimeter and free length equal
     the closed forms."""
 
-    def test_disc_and_pair(self):
+    def check(self, nprocs):
         d = 1.1
         xy = [(0.0, 0.0), (5.0, 0.3), (5.0 + d * 0.6, 0.3 + d * 0.8)]
         run = self.run_lmp(script("s s p", two_types=False, extra="""
 compute c all vertex/atom
 dump d all custom 1 cells.dump id c_c[1] c_c[2] c_c[8] c_c[9]
 dump_modify d sort id format float %.17g
+thermo_style custom step pe c_c[4] c_c[5]
+thermo_modify norm no format float %.17g
 run 0
 print "E $(pe:%.17g)"
-"""), files={"cells.data": data_file(xy, [1, 1, 1], (-1, 8, -1, 3))})
+"""), nprocs=nprocs, files={"cells.data": data_file(xy, [1, 1, 1], (-1, 8, -1, 3))})
         ca = d / (2 * R)
         alpha = math.acos(ca)
         sa = math.sqrt(1 - ca * ca)
@@ -126,6 +128,16 @@ print "E $(pe:%.17g)"
                             ("c_c[8]", (P1, L2, L2)), ("c_c[9]", (1, 1, 1))):
             for got, want in zip(f[col], values):
                 self.assertAlmostEqual(got, want, delta=1e-12)
+        g = run.stdout.split("Step")[1].splitlines()[1].split()[2:]
+        self.assertEqual(float(g[0]), 3)
+        self.assertAlmostEqual(float(g[1]), P1 + 2 * L2, delta=1e-12)
+
+    def test_disc_and_pair(self):
+        self.check(1)
+
+    @nprocs(2)
+    def test_disc_and_pair_2_ranks(self):
+        self.check(2)
 
 
 class FiniteDifferences(LammpsTestCase):

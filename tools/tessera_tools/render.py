@@ -16,7 +16,16 @@ import math
 import numpy as np
 
 from .trajectories import ORIENTATION_TICKS, attach_colorbar, coordination, frame_axes, orientation
-from .voronoi import tessellate_frame
+from .finite import finite_voronoi
+from .voronoi import tessellate_frame as _voronoi_frame
+
+
+def tessellate_frame(frame, radius=None):
+    """Voronoi cells of a frame, or finite Voronoi cells of radius ``radius``
+    (pair_style vertex/voronoi ... radius r; open or periodic box)."""
+    if radius:
+        return finite_voronoi(frame.positions(), frame.box, radius, frame.ids)
+    return _voronoi_frame(frame)
 
 FIELDS = {
     # name: (label, colormap, vmin, vmax); None = from the data
@@ -31,6 +40,7 @@ FIELDS = {
     "axis": ("long-axis angle", "twilight", 0.0, math.pi),
     "elongation": ("elongation (aspect ratio)", "viridis", 1.0, None),
     "none": ("", None, None, None),
+    "free": ("free arc length $L$", "viridis", None, None),
 }
 ALIASES = {"q": "shape", "shape_index": "shape", "z": "sides", "A": "area", "P": "perimeter",
            "theta": "polarity", "angle": "polarity"}
@@ -74,6 +84,10 @@ def cell_field(frame, tess, field):
             values = tess.long_axis_angle()
         elif name == "elongation":
             values = tess.elongation()
+        elif name == "free":
+            if not hasattr(tess, "free_length"):
+                raise KeyError("field 'free' needs finite cells (render --radius r)")
+            values = tess.free_length
         else:
             values = None
         return values, meta
@@ -93,6 +107,8 @@ def _tiles(tess, view):
     if view != "box":
         raise ValueError(f"view must be 'box' or 'cells', not '{view}'")
     box = tess.box
+    if not (box.periodic[0] and box.periodic[1]):
+        return list(tess.polygons), np.arange(len(tess))    # open box: nothing to tile
     matrix = box.matrix
     polys, owner = [], []
     for i, poly in enumerate(tess.polygons):
@@ -146,18 +162,36 @@ def draw_tessellation(ax, frame, tess, field="area", view="box", cmap=None, vmin
             pad = 0.05 * abs(mid) if mid != 0 else 1.0
             lo, hi = mid - pad, mid + pad
         coll.set_clim(lo, hi)
-    boxpatch = Polygon(tess.box.corners(), closed=True, fill=False, edgecolor="0.2", linewidth=1.0)
+    periodic = tess.box.periodic[0] and tess.box.periodic[1]
+    boxpatch = Polygon(tess.box.corners(), closed=True, fill=False, edgecolor="0.2",
+                       linewidth=1.0 if periodic else 0.0)
     ax.add_patch(boxpatch)
     ax.add_collection(coll)
-    if view == "box":
+    clip = view == "box" and periodic
+    if clip:
         coll.set_clip_path(boxpatch)
+    arcs = getattr(tess, "arcs", None)
+    if arcs is not None:
+        # The free boundary of finite cells: arcs drawn as arcs, in a heavier line.
+        from matplotlib.collections import LineCollection
+        segs = [a for i in owner for a in arcs[i]] if not clip else []
+        if clip:
+            shift = {}
+            for poly, i in zip(polys, owner):
+                d = poly[0] - tess.polygons[i][0]
+                shift.setdefault(i, []).append(d)
+            segs = [a + d for i, ds in shift.items() for d in ds for a in arcs[i]]
+        free = LineCollection(segs, colors="#b2182b", linewidths=1.6 * linewidth + 0.4)
+        ax.add_collection(free)
+        if clip:
+            free.set_clip_path(boxpatch)
     pts = tess.points
     if highlight:
         chosen = set(np.nonzero(np.isin(frame.ids, list(highlight)))[0].tolist())
         sel = [p for p, o in zip(polys, owner) if o in chosen]
         hcoll = PolyCollection(sel, facecolors="none", edgecolors="red", linewidths=2.0 * linewidth + 0.8)
         ax.add_collection(hcoll)
-        if view == "box":
+        if clip:
             hcoll.set_clip_path(boxpatch)
     if centres:
         ax.plot(pts[:, 0], pts[:, 1], ".", color="k", ms=max(1.0, 12.0 / math.sqrt(n)))
@@ -170,7 +204,8 @@ def draw_tessellation(ax, frame, tess, field="area", view="box", cmap=None, vmin
         scale = 0.45 * math.sqrt(tess.box.area / n)
         ax.quiver(pts[:, 0], pts[:, 1], unit[:, 0] * scale, unit[:, 1] * scale, angles="xy",
                   scale_units="xy", scale=1.0, width=0.004, color="k", pivot="middle")
-    frame_axes(ax, np.vstack([tess.box.corners()] + ([np.vstack(polys)] if view == "cells" else [])),
+    frame_axes(ax, np.vstack([tess.box.corners()] +
+                             ([np.vstack(polys)] if (view == "cells" or not periodic) else [])),
                0.01)
     if colorbar and values is not None:
         attach_colorbar(ax, coll, label or default_label, ANGLE_FIELDS.get(ALIASES.get(field, field)))
@@ -194,11 +229,12 @@ def _title(frame, field, title):
     return f"{frame.natoms} cells, {when}"
 
 
-def render_frame(frame, out, field="area", view="box", dpi=150, title=None, **kwargs):
-    """Write one PNG (or any format matplotlib knows from the extension) of ``frame``."""
+def render_frame(frame, out, field="area", view="box", dpi=150, title=None, radius=None, **kwargs):
+    """Write one PNG (or any format matplotlib knows from the extension) of
+    ``frame``; ``radius``: finite Voronoi cells of that radius."""
     import matplotlib.pyplot as plt
 
-    tess = tessellate_frame(frame)
+    tess = tessellate_frame(frame, radius)
     fig, ax = _figure(frame.box, view)
     draw_tessellation(ax, frame, tess, field=field, view=view, **kwargs)
     ax.set_title(_title(frame, field, title))
@@ -228,12 +264,13 @@ def animation_writer(out, fps):
     raise RuntimeError(f"unknown animation format '.{ext}': use .gif or .mp4")
 
 
-def render_series(frames, out, field="area", view="box", dpi=100, fps=5, title=None, common_scale=True, **kwargs):
+def render_series(frames, out, field="area", view="box", dpi=100, fps=5, title=None, common_scale=True,
+                  radius=None, **kwargs):
     """An animation (.gif/.mp4) of several frames, or one file per frame when ``out``
     contains a ``{timestep}`` / ``{index}`` pattern."""
     import matplotlib.pyplot as plt
 
-    tessellations = [tessellate_frame(f) for f in frames]
+    tessellations = [tessellate_frame(f, radius) for f in frames]
     norm_from = None
     if common_scale and ALIASES.get(field, field) != "none":
         norm_from = np.concatenate([cell_field(f, t, field)[0] for f, t in zip(frames, tessellations)])

@@ -7,6 +7,7 @@ with holes, 1 and 2 ranks), the virial against box strain, the same forces
 on 1, 2 and 4 ranks in open boxes (from one data file), restart, errors."""
 
 import math
+import os
 
 import numpy as np
 
@@ -261,6 +262,36 @@ run 0
 print "E $(pe:%.17g)"
 """)
         self.assertAlmostEqual(energies(second)[0], energies(first)[0], delta=1e-12)
+
+
+EXAMPLES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples")
+
+
+def example(name):
+    with open(os.path.join(EXAMPLES, name, "in." + name)) as f:
+        return f.read().replace("dump_modify", "#").replace("dump ", "# dump ")
+
+
+class Examples(LammpsTestCase):
+    """examples/wound: the hole closes (wound area below 2% of the start by
+    t = 16); examples/colony on 4 ranks prints the 1-rank values."""
+
+    def test_wound_closes(self):
+        run = self.run_lmp(example("wound"), args=["-var", "tend", "16"])
+        data = np.loadtxt(run.path("wound.dat"))
+        self.assertGreater(data[0, 1], 14.0)
+        self.assertLess(data[data[:, 0] >= 10.0, 1].min(), 0.02 * data[0, 1])
+
+    def thermo(self, run):
+        rows = run.stdout.split("Step")[1].split("Loop")[0].strip().splitlines()[1:]
+        return np.array([[float(w) for w in r.split()] for r in rows])
+
+    @nprocs(4)
+    def test_colony_4_ranks(self):
+        one = self.thermo(self.run_lmp(example("colony"), args=["-var", "tend", "10"]))
+        four = self.thermo(self.run_lmp(example("colony"), nprocs=4, args=["-var", "tend", "10"]))
+        np.testing.assert_allclose(four, one, rtol=1e-5)
+        self.assertGreater(one[-1, 3], one[0, 3] + 10)    # the colony spread
 
 
 class Errors(LammpsTestCase):

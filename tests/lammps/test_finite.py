@@ -211,6 +211,41 @@ change_box all {dim} scale {1 / (1 - eps)!r} remap
             self.assertGreater(abs(dE), 1e-3)
 
 
+class PerAtom(LammpsTestCase):
+    """compute stress/atom and pe/atom add up to the global virial and pe in a
+    periodic box with a hole and in an open box, on 1 and 2 ranks."""
+
+    def check(self, boundary, nprocs):
+        xy = rng_cluster(8, 26, 6.0, 5.0, 0.55, hole=(3.0, 2.5, 1.4))
+        run = self.run_lmp(script(boundary) + """
+compute s all stress/atom NULL virial
+compute st all reduce sum c_s[1] c_s[2] c_s[4]
+compute e all pe/atom
+compute es all reduce sum c_e
+thermo_style custom step pe c_es pxx pyy pxy c_st[1] c_st[2] c_st[3] vol
+thermo_modify norm no format float %.15g
+run 0
+""", nprocs=nprocs, files={"cells.data": data_file(xy, [1 + (i % 2) for i in range(len(xy))],
+                                                   (0, 6, 0, 5))})
+        row = [float(w) for w in run.stdout.split("Step")[1].splitlines()[1].split()]
+        _, pe, es, pxx, pyy, pxy, sxx, syy, sxy, vol = row
+        self.assertAlmostEqual(es, pe, delta=1e-10 * (1 + abs(pe)))
+        for p, s in ((pxx, sxx), (pyy, syy), (pxy, sxy)):
+            self.assertAlmostEqual(s, -p * vol, delta=1e-9 * (1 + abs(p * vol)))
+        self.assertGreater(abs(sxx), 1e-3)
+
+    def test_periodic_hole(self):
+        self.check("p p p", 1)
+
+    @nprocs(2)
+    def test_periodic_hole_2_ranks(self):
+        self.check("p p p", 2)
+
+    @nprocs(2)
+    def test_open_2_ranks(self):
+        self.check("s s p", 2)
+
+
 class Ranks(LammpsTestCase):
     """An open box (s s p) of a cluster: pe and forces on 1, 2 and 4 ranks
     agree, and a short overdamped run keeps every atom."""

@@ -52,8 +52,9 @@ struct FiniteTessellation {
   bool at_edge(int c) const { return free_length[c] > 0.0; }
 };
 
-// Pairs of points closer than this fraction of 2 r short of touching
-// (half-chord below 1e-9 r) are treated as not touching.
+// Two cells at distance d touch when their half-chord sqrt(r^2 - d^2/4)
+// exceeds kFiniteTouchTol * r (so exactly tangent and round-off-tangent
+// pairs do not).
 constexpr double kFiniteTouchTol = 1e-9;
 
 // Finite Voronoi cells of the first n_owned of the points (the others only

@@ -45,9 +45,12 @@ def data_file(xy, types, box):
     return "\n".join(lines) + "\n"
 
 
-def script(boundary, two_types=True, cutoff=None, extra=""):
+def script(boundary, two_types=True, cutoff=None, extra="", coeffs=None, style=""):
     cutoff = cutoff or 2 * R + 0.1
-    coeffs = "pair_coeff * * quadratic %g %g %g %g free %g\n" % QUAD[1]
+    if coeffs:
+        two_types = False
+    else:
+        coeffs = "pair_coeff * * quadratic %g %g %g %g free %g\n" % QUAD[1]
     if two_types:
         coeffs += "pair_coeff 2 2 quadratic %g %g %g %g free %g\npair_coeff 1 2 %g\n" % (
             QUAD[2] + (LAMBDA_12,))
@@ -57,7 +60,7 @@ units lj
 atom_style atomic
 boundary {boundary}
 read_data cells.data
-pair_style vertex/voronoi {cutoff} radius {R}
+pair_style vertex/voronoi {cutoff} radius {R} {style}
 {coeffs}
 thermo_style custom step pe pxx pyy
 thermo_modify norm no format float %.17g
@@ -145,7 +148,7 @@ class FiniteDifferences(LammpsTestCase):
     """Forces equal -dpe/dx by central differences in an open box and in a
     periodic box with a hole, on 1 and 2 ranks."""
 
-    def check(self, boundary, nprocs):
+    def check(self, boundary, nprocs, **kw):
         if boundary == "p p p":
             xy = rng_cluster(3, 26, 6.0, 5.0, 0.55, hole=(3.0, 2.5, 1.4))
             box = (0.0, 6.0, 0.0, 5.0)
@@ -155,7 +158,7 @@ class FiniteDifferences(LammpsTestCase):
         types = [1 + (i % 3 == 0) for i in range(len(xy))]
         atoms = [1, 4, 9, 14, 20]
         h = 1e-6
-        run = self.run_lmp(script(boundary) + fd_script(atoms, h), nprocs=nprocs,
+        run = self.run_lmp(script(boundary, **kw) + fd_script(atoms, h), nprocs=nprocs,
                            files={"cells.data": data_file(xy, types, box)})
         frame = run.dump("cfg.dump")[0]
         e = energies(run)
@@ -171,6 +174,12 @@ class FiniteDifferences(LammpsTestCase):
 
     def test_open(self):
         self.check("s s p", 1)
+
+    def test_edge_form_tension_cell(self):
+        # K A0 Gamma Lambda free F per type, Lambda_12 between types, tension cell
+        self.check("s s p", 1, style="tension cell",
+                   coeffs="pair_coeff 1 1 1.0 1.1 0.2 -0.3 free 0.4\n"
+                          "pair_coeff 2 2 1.3 0.9 0.3 -0.5 free -0.2\npair_coeff 1 2 0.15\n")
 
     @nprocs(2)
     def test_open_2_ranks(self):

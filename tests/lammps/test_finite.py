@@ -34,11 +34,14 @@ def rng_cluster(seed, n, w, h, min_dist, hole=None):
     return np.array(pts)
 
 
-def data_file(xy, types, box):
+def data_file(xy, types, box, tilt=None):
     """A LAMMPS data file (atom_style atomic) with these atoms; box =
-    (xlo, xhi, ylo, yhi)."""
+    (xlo, xhi, ylo, yhi), triclinic with xy = tilt if given."""
     lines = ["finite-cell test configuration", "", "%d atoms" % len(xy), "2 atom types", "",
-             "%r %r xlo xhi" % box[:2], "%r %r ylo yhi" % box[2:], "-0.5 0.5 zlo zhi", "",
+             "%r %r xlo xhi" % box[:2], "%r %r ylo yhi" % box[2:], "-0.5 0.5 zlo zhi"]
+    if tilt is not None:
+        lines.append("%r 0.0 0.0 xy xz yz" % tilt)
+    lines += ["",
              "Masses", "", "1 1.0", "2 1.0", "", "Atoms # atomic", ""]
     for i, ((x, y), t) in enumerate(zip(xy, types)):
         lines.append("%d %d %r %r 0.0" % (i + 1, t, x, y))
@@ -148,10 +151,12 @@ class FiniteDifferences(LammpsTestCase):
     """Forces equal -dpe/dx by central differences in an open box and in a
     periodic box with a hole, on 1 and 2 ranks."""
 
-    def check(self, boundary, nprocs, **kw):
+    def check(self, boundary, nprocs, tilt=None, **kw):
         if boundary == "p p p":
             xy = rng_cluster(3, 26, 6.0, 5.0, 0.55, hole=(3.0, 2.5, 1.4))
             box = (0.0, 6.0, 0.0, 5.0)
+            if tilt is not None:    # the same cells, sheared into the tilted box
+                xy = xy + np.outer(xy[:, 1] / 5.0, (tilt, 0.0))
         else:
             xy = rng_cluster(4, 24, 5.0, 4.0, 0.5)
             box = (-1.0, 6.0, -1.0, 5.0)
@@ -159,7 +164,7 @@ class FiniteDifferences(LammpsTestCase):
         atoms = [1, 4, 9, 14, 20]
         h = 1e-6
         run = self.run_lmp(script(boundary, **kw) + fd_script(atoms, h), nprocs=nprocs,
-                           files={"cells.data": data_file(xy, types, box)})
+                           files={"cells.data": data_file(xy, types, box, tilt)})
         frame = run.dump("cfg.dump")[0]
         e = energies(run)
         k = 0
@@ -191,6 +196,10 @@ class FiniteDifferences(LammpsTestCase):
     @nprocs(2)
     def test_periodic_hole_2_ranks(self):
         self.check("p p p", 2)
+
+    @nprocs(2)
+    def test_triclinic_hole_2_ranks(self):
+        self.check("p p p", 2, tilt=1.7)
 
 
 class Virial(LammpsTestCase):

@@ -34,7 +34,7 @@ using namespace LAMMPS_NS;
 
 namespace {
 
-constexpr int NCOLS = 7;
+constexpr int NCOLS = 9;
 
 // Same criterion as Tessellation::coordination_number: an edge counts as a
 // neighbour relation if it is longer than this fraction of the cell's mean
@@ -83,7 +83,7 @@ ComputeVertexAtom::ComputeVertexAtom(LAMMPS *lmp, int narg, char **arg) :
   peratom_flag = 1;
   size_peratom_cols = NCOLS;
   vector_flag = 1;
-  size_vector = 3;
+  size_vector = 5;
   extvector = 0;
   comm_forward = 2;
   create_attribute = 1;
@@ -129,6 +129,11 @@ void ComputeVertexAtom::init()
                "(uncompute, then compute)",
                id_fix);
   fix = static_cast<FixStore *>(modify->fix[ifix]);
+  if (rosette > 0.0 && pair->finite_radius() > 0.0)
+    error->all(FLERR,
+               "compute vertex/atom {}: 'rosette' needs the confluent tessellation; finite "
+               "cells (pair_style vertex/voronoi ... radius r) have no Voronoi vertex clusters",
+               id);
 }
 
 /* New atoms (create_atoms, fix deposit) have no neighbour memory yet. */
@@ -224,6 +229,10 @@ void ComputeVertexAtom::compute_peratom()
     row[4] = energy[i];
     row[5] = coordination[i];
     row[6] = orientation[i];
+    // Finite cells: free (cell-medium) arc length, and 1 for a cell at an edge.
+    const bool finite = pair->finite_radius() > 0.0;
+    row[7] = finite ? pair->finite_cells().free_length[i] : 0.0;
+    row[8] = finite && pair->finite_cells().at_edge(i) ? 1.0 : 0.0;
   }
 }
 
@@ -236,16 +245,24 @@ void ComputeVertexAtom::compute_vector()
 
   const tessera::Tessellation &t = pair->tessellation();
   const int *mask = atom->mask;
-  double local[2] = {0.0, 0.0}, all[2];
+  double local[4] = {0.0, 0.0, 0.0, 0.0}, all[4];
+  const bool finite = pair->finite_radius() > 0.0;
   for (int i = 0; i < atom->nlocal; i++) {
-    if (!(mask[i] & groupbit) || !(t.area[i] > 0.0)) continue;
+    if (!(mask[i] & groupbit)) continue;
+    if (finite && pair->finite_cells().at_edge(i)) {
+      local[2] += 1.0;
+      local[3] += pair->finite_cells().free_length[i];
+    }
+    if (!(t.area[i] > 0.0)) continue;
     local[0] += t.perimeter[i] / std::sqrt(t.area[i]);
     local[1] += 1.0;
   }
-  MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_SUM, world);
+  MPI_Allreduce(local, all, 4, MPI_DOUBLE, MPI_SUM, world);
   vector[0] = all[1] > 0.0 ? all[0] / all[1] : 0.0;
   vector[1] = count_multifold();
   vector[2] = count_new_neighbors();
+  vector[3] = all[2];    // cells at an edge (free arcs)
+  vector[4] = all[3];    // free perimeter of the tissue
 }
 
 /* Voronoi vertices where four or more cells of the group meet, each counted

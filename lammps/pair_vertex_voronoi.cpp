@@ -95,6 +95,9 @@ double FixVertexGuard::loss_limit() const
   double limit = std::numeric_limits<double>::max();
   const double prd[2] = {domain->xprd, domain->yprd};
   for (int d = 0; d < 2; d++) {
+    // One rank along an open direction: nothing to migrate past (an atom
+    // that leaves a fixed boundary is reported by the pair style's count).
+    if (comm->procgrid[d] == 1 && !domain->periodicity[d]) continue;
     const double width = (domain->triclinic ? domain->subhi_lamda[d] - domain->sublo_lamda[d]
                                             : (domain->subhi[d] - domain->sublo[d]) / prd[d]) * prd[d];
     limit = MIN(limit, comm->procgrid[d] > 1 ? width : 0.5 * prd[d]);
@@ -191,6 +194,9 @@ PairVertexVoronoi::PairVertexVoronoi(LAMMPS *lmp) : Pair(lmp)
   grow = 1;
   cutghost_saved = -1.0;
   guard_id = std::string("VERTEX_VORONOI_GUARD_") + std::to_string(instance_me);
+  radius = 0.0;
+  free_tension = nullptr;
+  free_set = 0;
   pvector = stats;
   for (double &v : stats) v = 0.0;
 }
@@ -213,6 +219,7 @@ PairVertexVoronoi::~PairVertexVoronoi()
     memory->destroy(adapt_area0);
     memory->destroy(adapt_gamma);
     memory->destroy(lambda_built);
+    memory->destroy(free_tension);
   }
 }
 
@@ -233,8 +240,10 @@ void PairVertexVoronoi::allocate()
   memory->create(adapt_area0, n + 1, n + 1, "pair:adapt_area0");
   memory->create(adapt_gamma, n + 1, n + 1, "pair:adapt_gamma");
   memory->create(lambda_built, n + 1, n + 1, "pair:lambda_built");
+  memory->create(free_tension, n + 1, "pair:free_tension");
   for (int i = 0; i <= n; i++) {
     kappa[i] = area0[i] = gamma[i] = 0.0;
+    free_tension[i] = 0.0;
     type_set[i] = 0;
     for (int j = 0; j <= n; j++) {
       setflag[i][j] = 0;
@@ -311,10 +320,18 @@ void PairVertexVoronoi::settings(int narg, char **arg)
         error->all(FLERR, "pair_style vertex/voronoi: reference N must be >= 0, got {}",
                    arg[iarg + 1]);
       iarg += 2;
+    } else if (strcmp(arg[iarg], "radius") == 0) {
+      if (iarg + 2 > narg)
+        error->all(FLERR, "pair_style vertex/voronoi: keyword 'radius' needs a value r (the "
+                          "radius of the finite Voronoi cells)");
+      radius = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(radius > 0.0) || !std::isfinite(radius))
+        error->all(FLERR, "pair_style vertex/voronoi: radius must be > 0, got {}", arg[iarg + 1]);
+      iarg += 2;
     } else {
       error->all(FLERR,
                  "pair_style vertex/voronoi: unknown keyword '{}' (known: tension, incremental, "
-                 "grow, reference)",
+                 "grow, reference, radius)",
                  arg[iarg]);
     }
   }
@@ -349,6 +366,18 @@ void PairVertexVoronoi::coeff(int narg, char **arg)
   const bool same = (ilo == jlo && ihi == jhi);
   const std::string where = fmt::format("pair_coeff {} {}", arg[0], arg[1]);
 
+  // Trailing 'free F': the tension of the free (cell-medium) arcs of finite
+  // Voronoi cells.
+  bool has_free = false;
+  double free_value = 0.0;
+  if (narg >= 5 && strcmp(arg[narg - 2], "free") == 0) {
+    has_free = true;
+    free_value = utils::numeric(FLERR, arg[narg - 1], false, lmp);
+    if (!std::isfinite(free_value))
+      error->all(FLERR, "{}: free tension must be finite, got {}", where, arg[narg - 1]);
+    narg -= 2;
+  }
+
   // pair_coeff I J Lambda_IJ, or pair_coeff I J quadratic sigma: the extra
   // tension sigma of a heterotypic junction on top of the default mean
   // (energy sigma * l per junction, in either tension convention).
@@ -374,6 +403,11 @@ void PairVertexVoronoi::coeff(int narg, char **arg)
       for (int j = MAX(jlo, i + 1); j <= jhi; j++) set(i, j);
     for (int i = jlo; i <= jhi; i++)
       for (int j = MAX(ilo, i + 1); j <= ihi; j++) set(i, j);
+    if (has_free)
+      error->all(FLERR,
+                 "{}: 'free' is a per-type tension: give it with the cell parameters "
+                 "(pair_coeff I I ... free F)",
+                 where);
     if (count == 0 && het_quadratic)
       error->all(FLERR,
                  "{}: 'quadratic sigma' with one value sets the extra tension between two "
@@ -394,10 +428,11 @@ void PairVertexVoronoi::coeff(int narg, char **arg)
                "Lambda); between different types give only Lambda (pair_coeff I J Lambda)",
                where);
 
-  double K, A0, G, lam;
+  double K, A0, G, lam, ftension = free_value;
   if (strcmp(arg[2], "quadratic") == 0) {
     if (narg != 7)
-      error->all(FLERR, "{}: expected 'pair_coeff I I quadratic KA A0 KP P0'", where);
+      error->all(FLERR, "{}: expected 'pair_coeff I I quadratic KA A0 KP P0 [free Lambda]'",
+                 where);
     tessera::QuadraticParams q;
     q.KA = utils::numeric(FLERR, arg[3], false, lmp);
     q.A0 = utils::numeric(FLERR, arg[4], false, lmp);
@@ -410,6 +445,8 @@ void PairVertexVoronoi::coeff(int narg, char **arg)
     A0 = ct.A0;
     G = ct.Gamma;
     lam = tessera::lambda_from_quadratic(q, tension);
+    // KP (P - P0)^2 + Lambda L: the arcs carry -2 KP P0 per length besides Lambda.
+    ftension = free_value - 2.0 * q.KP * q.P0;
   } else {
     if (narg != 6)
       error->all(FLERR,
@@ -436,7 +473,9 @@ void PairVertexVoronoi::coeff(int narg, char **arg)
     lambda_set[i][i] = 1;
     type_set[i] = 1;
     setflag[i][i] = 1;
+    free_tension[i] = ftension;
   }
+  if (has_free) free_set = 1;
 }
 
 void PairVertexVoronoi::init_style()
@@ -445,10 +484,21 @@ void PairVertexVoronoi::init_style()
     error->all(FLERR,
                "pair_style vertex/voronoi requires a 2d simulation; add 'dimension 2' before "
                "the box is created");
-  if (!domain->xperiodic || !domain->yperiodic)
+  if (radius == 0.0 && (!domain->xperiodic || !domain->yperiodic))
     error->all(FLERR,
                "pair_style vertex/voronoi requires periodic x and y boundaries ('boundary p p "
-               "p'); a confluent tissue has no free edge in this model");
+               "p'); a confluent tissue has no free edge in this model (for tissue edges use "
+               "finite cells: 'pair_style vertex/voronoi cutoff radius r')");
+  if (radius > 0.0 && cut_global < 2.0 * radius)
+    error->all(FLERR,
+               "pair_style vertex/voronoi: cutoff {} is smaller than twice the radius {} of "
+               "the finite cells (cells up to 2r apart touch); use 'pair_style vertex/voronoi "
+               "{} radius {}'",
+               cut_global, radius, 2.0 * radius, radius);
+  if (radius == 0.0 && free_set && comm->me == 0)
+    error->warning(FLERR,
+                   "pair_style vertex/voronoi: 'free' tensions are ignored without 'radius r' "
+                   "(confluent cells have no free arcs)");
   if (force->newton_pair == 0)
     error->all(FLERR, "pair_style vertex/voronoi requires 'newton on' (forces go to ghost atoms)");
   if (atom->tag_enable == 0) error->all(FLERR, "pair_style vertex/voronoi requires atom IDs");
@@ -519,6 +569,8 @@ void PairVertexVoronoi::build_model()
       adapt_area0[i][j] = area0[t];
       adapt_gamma[i][j] = gamma[t];
     }
+  free_t0.assign(n, 0.0);
+  for (int i = 1; i <= n; i++) free_t0[i - 1] = free_tension[i];
   try {
     model.validate();
   } catch (tessera::Error &e) {
@@ -794,8 +846,12 @@ void PairVertexVoronoi::check_against_scratch(const tessera::Points &pts,
 void PairVertexVoronoi::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
-
   check_lost_atoms();
+  if (radius > 0.0) {
+    compute_finite();
+    return;
+  }
+
   const double t0 = MPI_Wtime();
   // Each pass that widens the ghost shell re-acquires the atoms; then the
   // energy/virial accumulators are set up again for the new atom count.
@@ -938,6 +994,55 @@ void PairVertexVoronoi::check_lost_atoms()
 // add RESTART_V2 to it and carry every keyword and the heterotypic sigma.
 static constexpr int RESTART_V2 = 16;
 
+/* Finite Voronoi cells: each owned cell is cut by every atom (owned or
+   ghost) within 2r; the ghost shell (cutoff >= 2r) holds them all, so no
+   triangulation and no coverage check are needed. */
+
+void PairVertexVoronoi::compute_finite()
+{
+  const double t0 = MPI_Wtime();
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  tessera::Points pts{&atom->x[0][0], nall, 3};
+  try {
+    ftess = tessera::finite_tessellate(pts, nlocal, radius);
+  } catch (tessera::Error &) {
+    std::vector<long> ids(nall);
+    for (int i = 0; i < nall; i++) ids[i] = atom->tag[i];
+    try {
+      ftess = tessera::finite_tessellate(pts, nlocal, radius, ids.data());
+    } catch (tessera::Error &e) {
+      error->one(FLERR, "pair_style vertex/voronoi: {}", e.what());
+    }
+  }
+  tessera::finite_contacts(ftess, tess);
+  tess_step = update->ntimestep;
+  note_closest_pair();
+  const double t1 = MPI_Wtime();
+
+  type0.resize(nall);
+  const int *type = atom->type;
+  for (int i = 0; i < nall; i++) type0[i] = type[i] - 1;
+  cell_e.resize(nlocal);
+  if (vflag_atom) cell_w.resize(4 * static_cast<size_t>(nlocal));
+  const tessera::ForceOutput out = tessera::finite_forces(
+      ftess, pts, type0.data(), model, free_t0.data(), &atom->f[0][0], 3, cell_e.data(),
+      vflag_atom ? cell_w.data() : nullptr);
+  if (vflag_atom)
+    for (int i = 0; i < nlocal; i++) {
+      vatom[i][0] += cell_w[4 * i];
+      vatom[i][1] += cell_w[4 * i + 1];
+      vatom[i][3] += 0.5 * (cell_w[4 * i + 2] + cell_w[4 * i + 3]);
+    }
+  stats[0] += t1 - t0;
+  stats[1] += MPI_Wtime() - t1;
+  stats[4] += 1.0;
+  if (eflag_global) eng_vdwl += out.energy;
+  if (eflag_atom)
+    for (int i = 0; i < nlocal; i++) eatom[i] += cell_e[i];
+  if (vflag_fdotr) virial_fdotr_compute();
+}
+
 void PairVertexVoronoi::write_restart(FILE *fp)
 {
   write_restart_settings(fp);
@@ -953,6 +1058,8 @@ void PairVertexVoronoi::write_restart(FILE *fp)
       fwrite(&lambda_extra[i][j], sizeof(double), 1, fp);
     }
   }
+  for (int i = 1; i <= n; i++) fwrite(&free_tension[i], sizeof(double), 1, fp);
+  fwrite(&free_set, sizeof(int), 1, fp);
 }
 
 void PairVertexVoronoi::read_restart(FILE *fp)
@@ -985,6 +1092,15 @@ void PairVertexVoronoi::read_restart(FILE *fp)
       MPI_Bcast(&lambda_extra[i][j], 1, MPI_DOUBLE, 0, world);
     }
   }
+  // Finite cells: the free tensions per type, after everything else (files
+  // of the first layout have none).
+  if (version < 2) return;
+  for (int i = 1; i <= n; i++) {
+    if (me == 0) utils::sfread(FLERR, &free_tension[i], sizeof(double), 1, fp, nullptr, error);
+    MPI_Bcast(&free_tension[i], 1, MPI_DOUBLE, 0, world);
+  }
+  if (me == 0) utils::sfread(FLERR, &free_set, sizeof(int), 1, fp, nullptr, error);
+  MPI_Bcast(&free_set, 1, MPI_INT, 0, world);
 }
 
 void PairVertexVoronoi::write_restart_settings(FILE *fp)
@@ -995,6 +1111,7 @@ void PairVertexVoronoi::write_restart_settings(FILE *fp)
   fwrite(&incremental, sizeof(int), 1, fp);
   fwrite(&grow, sizeof(int), 1, fp);
   fwrite(&reference_every, sizeof(int), 1, fp);
+  fwrite(&radius, sizeof(double), 1, fp);
 }
 
 void PairVertexVoronoi::read_restart_settings(FILE *fp)
@@ -1020,6 +1137,8 @@ int PairVertexVoronoi::read_restart_settings_version(FILE *fp)
     incremental = v[0];
     grow = v[1];
     reference_every = v[2];
+    if (comm->me == 0) utils::sfread(FLERR, &radius, sizeof(double), 1, fp, nullptr, error);
+    MPI_Bcast(&radius, 1, MPI_DOUBLE, 0, world);
   }
   tension = t == 0 ? tessera::Tension::Edge : tessera::Tension::Cell;
   return version;

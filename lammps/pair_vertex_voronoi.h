@@ -15,6 +15,7 @@ PairStyle(vertex/voronoi,PairVertexVoronoi);
 #include "pair.h"
 
 #include "tessera/energy.h"
+#include "tessera/finite.h"
 #include "tessera/mesh.h"
 #include "tessera/tessellation.h"
 
@@ -53,6 +54,11 @@ class PairVertexVoronoi : public Pair {
   // Voronoi neighbour (ID, distance) at the last force computation.
   double cell_size(int type) const;
   bool closest_neighbour(int i, tagint &j, double &d) const;
+  // Finite Voronoi cells ('radius r'): r, or 0 for the confluent model; the
+  // cells of the last force computation (tessellation() then holds their
+  // contact edges only).
+  double finite_radius() const { return radius; }
+  const tessera::FiniteTessellation &finite_cells() const { return ftess; }
 
  protected:
   double cut_global;
@@ -81,6 +87,13 @@ class PairVertexVoronoi : public Pair {
   std::vector<int> type0;
   std::vector<double> cell_e;
   std::vector<double> cell_w;  // per-cell virial (xx, yy, xy, yx) when asked for
+
+  double radius;                 // finite Voronoi radius (0: confluent model)
+  double *free_tension;          // per type: tension of free arcs (internal F)
+  int free_set;                  // 1 if some pair_coeff gave 'free'
+  tessera::FiniteTessellation ftess;
+  std::vector<double> free_t0;   // free_tension, 0-based
+  void compute_finite();
 
   void allocate();
   bool tessellate();  // true if the ghost shell had to grow (atoms re-acquired)

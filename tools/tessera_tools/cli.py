@@ -116,7 +116,7 @@ def cmd_render(args):
     opts = dict(cmap=args.cmap, vmin=args.vmin, vmax=args.vmax, centres=args.centres,
                 arrows=tuple(args.arrows) if args.arrows else None, highlight=args.highlight or (),
                 colorbar=not args.no_colorbar, label=args.label,
-                categorical=True if args.categorical else None)
+                categorical=True if args.categorical else None, radius=args.radius)
     tessellations = None
     if args.local:
         frames, tessellations = _local_frames(args)
@@ -300,6 +300,9 @@ def build_parser():
                    help="box: periodic picture clipped to the box (default); cells: whole cells around their "
                         "centres, crossing the box edge")
     r.add_argument("--centres", "--centers", action="store_true", help="mark the cell centres")
+    r.add_argument("--radius", type=float, metavar="R",
+                   help="finite Voronoi cells of radius R (pair_style vertex/voronoi ... radius R): "
+                        "free arcs drawn as arcs; open boxes (boundary s/f) work")
     r.add_argument("--arrows", nargs=2, metavar=("XCOL", "YCOL"),
                    help="unit arrows from two columns, e.g. --arrows mux muy (polarity) or vx vy")
     r.add_argument("--highlight", type=int, nargs="+", metavar="ID", help="outline these atom IDs in red")

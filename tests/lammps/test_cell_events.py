@@ -219,6 +219,26 @@ run 150
             np.testing.assert_allclose(np.hypot(f["mux"], f["muy"]), 1.0, atol=1e-12)
 
 
+class MeshAfterEvents(LammpsTestCase):
+    """No stale mesh: with 'incremental check' the pair style compares its
+    updated triangulation with one from scratch at every step and stops on
+    a difference; a living tissue runs through many divisions and deaths."""
+
+    @nprocs(2)
+    def test_incremental_check_two_ranks(self):
+        data = make_data(self)
+        run = self.run_lmp(data_header() + PAIR.replace("3.0\n", "3.0 incremental check\n") + LIVING + """
+fix div all cell/divide rate 0.5 seed 17 axis short
+fix die all cell/death rate 0.4 seed 19
+thermo_style custom step atoms f_div[2] f_die[2]
+thermo 10
+run 150
+""", nprocs=2, files={"cfg.data": data})
+        rows = thermo_table(run)
+        self.assertGreater(rows[-1]["f_div[2]"], 10)
+        self.assertGreater(rows[-1]["f_die[2]"], 10)
+
+
 class GrowthRate(LammpsTestCase):
     """With division probability R dt per cell and step, the number of
     divisions D over an exposure S = sum_k N_k dt estimates R (Poisson:

@@ -49,6 +49,7 @@ enum Stream : uint64_t {
   NOISE = 4,
   CYCLE = 5,
   PHASE = 6,
+  DIRECTION = 7,
   DEATH = 11,
   DEATH_PRIORITY = 12
 };

@@ -24,7 +24,6 @@
 #include "force.h"
 #include "math_const.h"
 #include "memory.h"
-#include "modify.h"
 #include "pair_vertex_voronoi.h"
 #include "region.h"
 #include "update.h"
@@ -431,7 +430,7 @@ void FixCellDivide::pre_exchange()
         double *mu = atom->mu[k];
         double th = std::hypot(mu[0], mu[1]) > 0.0
             ? std::atan2(mu[1], mu[0])
-            : MathConst::MY_2PI * uniform01(seed, atom->tag[k], step, NOISE);
+            : MathConst::MY_2PI * uniform01(seed, atom->tag[k], step, DIRECTION);
         if (noise > 0.0) th += noise * (2.0 * uniform01(seed, atom->tag[k], step, NOISE) - 1.0);
         mu[0] = std::cos(th);
         mu[1] = std::sin(th);

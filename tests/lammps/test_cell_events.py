@@ -175,13 +175,14 @@ def box_area(frame):
 
 class Ranks(LammpsTestCase):
     """From one data file, the same N(t), the same divisions and deaths
-    (cells' IDs, ages, generations) on 1, 2 and 4 ranks; the cells' areas
-    sum to the box after the events."""
+    (cells' IDs, ages, generations) on 1, 2 and 4 ranks, also when the cap
+    on N picks which cells may divide; the cells' areas sum to the box
+    after the events."""
 
     def run_on(self, n, data):
         return self.run_lmp(data_header() + PAIR + AREA0 + LIVING + """
-fix div all cell/divide rate 0.5 seed 7 axis long growth linear
-fix die all cell/death rate 0.3 seed 9
+fix div all cell/divide rate 0.5 seed 7 axis long growth linear max 70
+fix die all cell/death rate 0.3 seed 9 min 45
 thermo_style custom step atoms f_div[1] f_div[2] f_die[1] f_die[2]
 thermo 1
 dump d all custom 150 out.dump id x y c_c[1] f_div[1] f_div[2] d_area0 mux muy
@@ -199,6 +200,8 @@ run 150
         self.assertGreater(ref[-1]["f_div[2]"], 10)     # real events happened
         self.assertGreater(ref[-1]["f_die[2]"], 5)
         n0 = ref[0]["Atoms"]
+        self.assertEqual(max(r["Atoms"] for r in ref), 70)     # the cap acted, alike on all
+        self.assertTrue(all(45 <= r["Atoms"] <= 70 for r in ref))
         for row in ref:
             self.assertEqual(row["Atoms"], n0 + row["f_div[2]"] - row["f_die[2]"])
         for t in tables[1:]:
@@ -319,6 +322,40 @@ run 1
     def test_polarity(self):
         u = self.divide("polarity", "set group all dipole 0.6 0.8 0\n")
         np.testing.assert_allclose(u, [0.6, 0.8], atol=1e-12)
+
+
+class DaughterPolarity(LammpsTestCase):
+    """Daughters get unit in-plane polarities: the mother's direction turned
+    by a uniform angle in [-eta, eta] each, or a random direction when the
+    mother had none (mu = 0)."""
+
+    def divide(self, fix, setmu):
+        run = self.run_lmp(lmptest.tissue(6, 4, "sq") + PAIR + setmu + f"""
+fix div all {fix}
+timestep 0.01
+dump d all custom 1 cfg.dump id mux muy muz
+dump_modify d sort id format float %.17g
+run 1
+""")
+        return run.dump("cfg.dump")[-1]
+
+    def test_noise(self):
+        eta = 0.3
+        f = self.divide(f"cell/divide rate 1000 seed 3 noise {eta}", "set group all dipole 0.6 0.8 0\n")
+        self.assertEqual(len(f["id"]), 48)
+        mu = np.column_stack([f["mux"], f["muy"]])
+        np.testing.assert_allclose(np.hypot(mu[:, 0], mu[:, 1]), 1.0, atol=1e-12)
+        np.testing.assert_array_equal(f["muz"], 0.0)
+        turn = np.arctan2(mu[:, 1], mu[:, 0]) - math.atan2(0.8, 0.6)
+        self.assertTrue(np.all(np.abs(turn) <= eta + 1e-12))
+        self.assertGreater(np.std(turn), 0.5 * eta / math.sqrt(3))    # uniform: sd eta/sqrt(3)
+
+    def test_zero_polarity_gets_a_direction(self):
+        f = self.divide("cell/divide rate 1000 seed 3", "")
+        mu = np.column_stack([f["mux"], f["muy"]])
+        self.assertTrue(np.all(np.isfinite(mu)))
+        np.testing.assert_allclose(np.hypot(mu[:, 0], mu[:, 1]), 1.0, atol=1e-12)
+        self.assertGreater(np.std(np.arctan2(mu[:, 1], mu[:, 0])), 1.0)    # spread over the circle
 
 
 

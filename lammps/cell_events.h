@@ -12,7 +12,9 @@
 #define LMP_TESSERA_CELL_EVENTS_H
 
 #include "domain.h"
+#include "dump.h"
 #include "lmptype.h"
+#include "output.h"
 #include "region.h"
 
 #include <mpi.h>
@@ -103,6 +105,17 @@ inline std::vector<std::pair<double, tagint>> gather_sorted(
   for (int k = 0; k < total; k++) all[k] = {prio_all[k], tags_all[k]};
   std::sort(all.begin(), all.end());
   return all;
+}
+
+// After atoms were added or removed mid-run: let every dump re-check the
+// atom IDs.  A dump sorted by ID decides at its init (the start of a run)
+// whether the IDs are 1..N and then places atoms by ID directly; once cells
+// have divided and died, N can be back at its start value with other IDs,
+// and that shortcut would write out of bounds.  Dump::init() recomputes it
+// (the output file stays open).
+inline void refresh_dumps(Output *output)
+{
+  for (int i = 0; i < output->ndump; i++) output->dump[i]->init();
 }
 
 }    // namespace cell_events

@@ -18,6 +18,7 @@
 #include "domain.h"
 #include "error.h"
 #include "force.h"
+#include "output.h"
 #include "pair_vertex_voronoi.h"
 #include "region.h"
 #include "update.h"
@@ -198,6 +199,7 @@ void FixCellDeath::pre_exchange()
     atom->map_init();
     atom->map_set();
   }
+  if (nall > 0) refresh_dumps(output);
 }
 
 double FixCellDeath::compute_scalar()

@@ -24,6 +24,7 @@
 #include "force.h"
 #include "math_const.h"
 #include "memory.h"
+#include "output.h"
 #include "pair_vertex_voronoi.h"
 #include "region.h"
 #include "update.h"
@@ -452,6 +453,7 @@ void FixCellDivide::pre_exchange()
     atom->map_init();
     atom->map_set();
   }
+  if (nall > 0) refresh_dumps(output);
 }
 
 double FixCellDivide::compute_scalar()

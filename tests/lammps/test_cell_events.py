@@ -242,6 +242,50 @@ run 150
         self.assertGreater(rows[-1]["f_die[2]"], 10)
 
 
+class SortedDumps(LammpsTestCase):
+    """A dump sorted by ID stays correct when divisions and deaths bring N
+    back to its start value with other IDs (LAMMPS's dumps would otherwise
+    keep reordering for the IDs they saw at the start of the run): every
+    frame lists each cell once, with the areas filling the box."""
+
+    SCRIPT = tissue(6, 4) + PAIR + """
+fix move all brownian 1.0 1 gamma_t 1.0 rng none
+fix div all cell/divide rate 2.0 seed 7 max 52
+fix die all cell/death rate 2.0 seed 9 min 44
+compute c all vertex/atom
+timestep 0.02
+thermo_style custom step atoms f_div[2] f_die[2]
+thermo 1
+"""
+
+    def test_sorted_dump_through_turnover(self):
+        # a first run finds a step at which N is back to 48 after events ...
+        rows = thermo_table(self.run_lmp(self.SCRIPT + "run 60\n"))
+        back = [int(r["Step"]) for r in rows[1:] if r["Atoms"] == 48 and r["f_div[2]"] > 0]
+        self.assertTrue(back, "N never came back to 48 after events")
+        every = back[0]
+        # ... the same run dumps at step 0 and at that step (N = 48, other IDs)
+        run = self.run_lmp(self.SCRIPT + f"""
+dump d all custom {every} cfg.dump id x y c_c[1]
+dump_modify d sort id format float %.17g
+run {every}
+""")
+        with open(run.path("cfg.dump")) as f:
+            lines = f.read().split("\n")
+        frames = []
+        for i, line in enumerate(lines):
+            if line.startswith("ITEM: NUMBER OF ATOMS"):
+                n = int(lines[i + 1])
+                frames.append([int(lines[i + 7 + k].split()[0]) for k in range(n)])
+        self.assertEqual(len(frames), 2)
+        self.assertEqual(len(frames[1]), 48)
+        self.assertNotEqual(frames[1], frames[0])
+        for ids in frames:
+            self.assertEqual(ids, sorted(set(ids)), "IDs repeated or unsorted: %s" % ids)
+        for f in run.dump("cfg.dump"):
+            self.assertAlmostEqual(f["c_c[1]"].sum(), box_area(f), delta=1e-9 * box_area(f))
+
+
 class GrowthRate(LammpsTestCase):
     """With division probability R dt per cell and step, the number of
     divisions D over an exposure S = sum_k N_k dt estimates R (Poisson:

@@ -869,6 +869,22 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
   cell_e.resize(nlocal);
 
   tessera::Points pts{&atom->x[0][0], nall, 3};
+  // Per-cell preferred areas from 'fix property/atom d_area0', when defined
+  // (otherwise the types' A0).  Only owned cells' values are read.
+  model.cell_area0 = nullptr;
+  int a0_flag = -1, a0_cols = -1;
+  const int a0_index = atom->find_custom("area0", a0_flag, a0_cols);
+  if (a0_index >= 0 && a0_flag == 1 && a0_cols == 0) {
+    const double *a0 = atom->dvector[a0_index];
+    for (int i = 0; i < nlocal; i++)
+      if (!(a0[i] > 0.0) || !std::isfinite(a0[i]))
+        error->one(FLERR,
+                   "pair_style vertex/voronoi: per-atom preferred area d_area0 of atom {} is {}; "
+                   "it must be > 0 (e.g. 'set group all d_area0 1.0' after 'fix property/atom "
+                   "d_area0')",
+                   atom->tag[i], a0[i]);
+    model.cell_area0 = a0;
+  }
   // Per-atom virial (compute stress/atom): each cell's own energy term's
   // virial, assigned to its atom; the cells' virials add up to the total.
   if (vflag_atom) cell_w.resize(4 * static_cast<size_t>(nlocal));

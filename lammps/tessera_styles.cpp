@@ -14,6 +14,8 @@
 // One include per style in the table below.
 #include "compute_vertex_atom.h"
 #include "compute_vertex_local.h"
+#include "fix_cell_death.h"
+#include "fix_cell_divide.h"
 #include "fix_brownian.h"
 #include "fix_polarity.h"
 #include "pair_vertex_voronoi.h"
@@ -86,6 +88,8 @@ const std::vector<Entry> &style_table()
       fix_style<FixBrownianTessera>("brownian", Policy::IF_MISSING),
       compute_style<ComputeVertexAtom>("vertex/atom"),
       compute_style<ComputeVertexLocal>("vertex/local"),
+      fix_style<FixCellDivide>("cell/divide"),
+      fix_style<FixCellDeath>("cell/death"),
   };
   return table;
 }

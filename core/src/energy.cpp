@@ -56,7 +56,7 @@ namespace {
 
 inline double cell_energy_of(const Tessellation &t, int c, const int *type, const Model &m) {
   const CellType &ct = m.types[type[c]];
-  const double dA = t.area[c] - ct.A0;
+  const double dA = t.area[c] - m.area0_of(c, type[c]);
   double e = 0.5 * ct.K * dA * dA + 0.5 * ct.Gamma * t.perimeter[c] * t.perimeter[c];
   double tension = 0.0;
   for (int k = t.cell_offset[c]; k < t.cell_offset[c + 1]; ++k)
@@ -172,7 +172,7 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
     const int o = t.cell_offset[c], m = t.cell_size(c);
     const int tc = type[c];
     const CellType &ct = model.types[tc];
-    const double dA = t.area[c] - ct.A0;
+    const double dA = t.area[c] - model.area0_of(c, tc);
     const double dEdA = ct.K * dA;
     const double dEdP = ct.Gamma * t.perimeter[c];
     const double *lam_row = &model.lambda[static_cast<size_t>(tc) * ntypes];

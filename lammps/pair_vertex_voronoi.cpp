@@ -722,7 +722,11 @@ bool PairVertexVoronoi::tessellate()
       try {
         mesh.build(pts, ids.data());
       } catch (tessera::Error &e) {
-        error->one(FLERR, "pair_style vertex/voronoi: {}", e.what());
+        error->one(FLERR,
+                   "pair_style vertex/voronoi at step {}: {} (during a run two centres come "
+                   "this close when the timestep does not resolve their forces: use a smaller "
+                   "timestep, 'fix dt/reset' or fix brownian/heun)",
+                   update->ntimestep, e.what());
       }
       error->one(FLERR, "pair_style vertex/voronoi: tessellation failed");
     }
@@ -888,9 +892,15 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
   // Per-atom virial (compute stress/atom): each cell's own energy term's
   // virial, assigned to its atom; the cells' virials add up to the total.
   if (vflag_atom) cell_w.resize(4 * static_cast<size_t>(nlocal));
-  const tessera::ForceOutput out =
-      tessera::compute_forces(tess, pts, type0.data(), model, &atom->f[0][0], 3, cell_e.data(),
-                              vflag_atom ? cell_w.data() : nullptr);
+  tessera::ForceOutput out;
+  try {
+    out = tessera::compute_forces(tess, pts, type0.data(), model, &atom->f[0][0], 3, cell_e.data(),
+                                  vflag_atom ? cell_w.data() : nullptr);
+  } catch (tessera::Error &e) {
+    // Energy or virial overflow (parameters or lengths far outside the
+    // model's reduced units); the core names the local point.
+    error->one(FLERR, "pair_style vertex/voronoi at step {}: {}", update->ntimestep, e.what());
+  }
   if (vflag_atom)
     for (int i = 0; i < nlocal; i++) {
       vatom[i][0] += cell_w[4 * i];

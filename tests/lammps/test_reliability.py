@@ -49,9 +49,20 @@ class Collision(LammpsTestCase):
 
     @nprocs(2)
     def test_error_two_ranks(self):
-        run = self.run_lmp(near_collision(1e-12, 0.01), nprocs=2, ok=False)
+        run = self.run_lmp(near_collision(1e-9, 0.01), nprocs=2, ok=False)
         self.assertLammpsError(run, "it would be lost", "the step from 0 to 1")
         self.assertNotIn("Lost atoms", run.output)
+
+    @nprocs(2)
+    def test_coincident_centres_refused(self):
+        # 1.4e-12 apart is below what double precision resolves in a box of
+        # ~10 (the core's limit, 1e-10 of the coordinates): refused before
+        # any force, naming both atoms, their distance and the step
+        for n in (1, 2):
+            run = self.run_lmp(near_collision(1e-12, 0.01), nprocs=n, ok=False)
+            self.assertLammpsError(run, "at step 0", "nearly coincide", "id 1 ", "id 37 ",
+                                   "e-12 apart", "fix dt/reset")
+            self.assertNotIn("Lost atoms", run.output)
 
     def test_warning_when_the_run_can_go_on(self):
         # distance 1e-3, dt 0.1: the pair separates by about 1.4 in one step,

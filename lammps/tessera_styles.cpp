@@ -14,6 +14,7 @@
 // One include per style in the table below.
 #include "compute_vertex_atom.h"
 #include "fix_brownian.h"
+#include "fix_brownian_heun.h"
 #include "fix_polarity.h"
 #include "pair_vertex_voronoi.h"
 
@@ -83,6 +84,7 @@ const std::vector<Entry> &style_table()
       pair_style<PairVertexVoronoi>("vertex/voronoi"),
       fix_style<FixPolarity>("polarity"),
       fix_style<FixBrownianTessera>("brownian", Policy::IF_MISSING),
+      fix_style<FixBrownianHeun>("brownian/heun"),
       compute_style<ComputeVertexAtom>("vertex/atom"),
   };
   return table;

@@ -33,14 +33,22 @@
 
 namespace LAMMPS_NS {
 
+// The destructors are protected and not virtual: nothing is deleted through
+// these interfaces, and so they add no exception specification that would
+// clash with Fix's destructor (noexcept(false) in newer LAMMPS).
+
 class CoupledDof {
+ protected:
+  ~CoupledDof() = default;
+
  public:
-  virtual ~CoupledDof() = default;
   // Number of scalar degrees of freedom per atom.
   virtual int coupled_size() const = 0;
-  // Deterministic rate dq/dt at the current positions, degrees of freedom and
-  // forces; state_step is the timestep whose force computation (and
-  // tessellation) describes the current positions, checked by the fix.
+  // Deterministic rate dq/dt at the current positions, degrees of freedom,
+  // forces and velocities (atom->v holds the drift velocity of this state,
+  // F / gamma_t, for the integrator's atoms); state_step is the timestep whose
+  // force computation (and tessellation) describes the current positions,
+  // checked by the fix.
   virtual void coupled_rate(double *rate, int stride, bigint state_step) = 0;
   // The stochastic increment of this timestep (zero without noise).
   virtual void coupled_noise(double *w, int stride) = 0;
@@ -50,8 +58,12 @@ class CoupledDof {
 
 // Marks a time integrator that advances the CoupledDof fixes itself.
 class CoupledIntegrator {
+ protected:
+  ~CoupledIntegrator() = default;
+
  public:
-  virtual ~CoupledIntegrator() = default;
+  // Makes the class polymorphic, for dynamic_cast from Fix *.
+  virtual int integrates_coupled_dof() const { return 1; }
 };
 
 }    // namespace LAMMPS_NS

@@ -95,6 +95,7 @@ void FixBrownianHeun::initial_integrate(int /*vflag*/)
   // before any of them moves.
   int nlocal = atom->nlocal;
   double *base = saved ? saved[0] : nullptr;
+  if (!coupled.empty()) drift_velocity();
   for (size_t c = 0; c < coupled.size(); c++)
     coupled[c]->coupled_rate(base + NSAVED + coupled_offset[c], ncol, step - 1);
   scratch.assign(static_cast<size_t>(nlocal) * (ncoupled > 0 ? ncoupled : 1), 0.0);
@@ -124,6 +125,7 @@ void FixBrownianHeun::initial_integrate(int /*vflag*/)
 
   // Coupled degrees of freedom, corrector (atoms may have been exchanged).
   nlocal = atom->nlocal;
+  if (!coupled.empty()) drift_velocity();
   scratch.assign(static_cast<size_t>(nlocal) * (ncoupled > 0 ? ncoupled : 1), 0.0);
   for (size_t c = 0; c < coupled.size(); c++)
     coupled[c]->coupled_rate(scratch.data() + coupled_offset[c], ncoupled, step);
@@ -170,6 +172,26 @@ template <int NOISE, int THREE_D> void FixBrownianHeun::predict()
       v[i][d] = dr / dt;
     }
     if (!THREE_D) v[i][2] = 0.0;
+  }
+}
+
+/* ----------------------------------------------------------------------
+   v = F / gamma_t, the velocity of the current state without noise, which
+   the coupled fixes see (fix polarity's velocity alignment); the step's
+   own velocity (r' - r)/dt replaces it at the end of the step.
+------------------------------------------------------------------------- */
+
+void FixBrownianHeun::drift_velocity()
+{
+  double **v = atom->v;
+  double **f = atom->f;
+  int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  const int ndim = domain->dimension;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    for (int d = 0; d < ndim; d++) v[i][d] = mobility * f[i][d];
+    if (ndim == 2) v[i][2] = 0.0;
   }
 }
 

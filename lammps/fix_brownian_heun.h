@@ -43,6 +43,7 @@ class FixBrownianHeun : public FixBrownianTessera, public CoupledIntegrator {
 
   void allocate_saved();
   void force_at_predicted_state();
+  void drift_velocity();
   template <int NOISE, int THREE_D> void predict();
   template <int THREE_D> void correct();
 };

@@ -387,7 +387,8 @@ double FixPolarity::compute_vector(int n)
 /* ----------------------------------------------------------------------
    Integration by fix brownian/heun (the CoupledDof interface of
    coupled_dof.h).  The degree of freedom is the polarity angle; its rate
-   is tau / gamma_R at the current positions, polarities and velocities,
+   is tau / gamma_R at the current positions, polarities and velocities
+   (the integrator puts the velocity of the state, F / gamma_t, into v),
    its noise the same Gaussian increment that the Euler step above draws.
 ------------------------------------------------------------------------- */
 
@@ -441,6 +442,18 @@ void FixPolarity::angle_torques(bigint state_step)
 
 void FixPolarity::coupled_rate(double *rate, int stride, bigint state_step)
 {
+  // The integrator has put the velocity of this state into v.
+  double **v = atom->v;
+  const int nlocal = atom->nlocal;
+  vhat.resize(2 * nlocal);
+  has_v.assign(nlocal, 0);
+  if (params.J_V != 0.0)
+    for (int i = 0; i < nlocal; i++) {
+      const double s = std::sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1]);
+      has_v[i] = s > 0.0;
+      vhat[2 * i] = has_v[i] ? v[i][0] / s : 0.0;
+      vhat[2 * i + 1] = has_v[i] ? v[i][1] / s : 0.0;
+    }
   angle_torques(state_step);
   const int *mask = atom->mask;
   for (int i = 0; i < atom->nlocal; i++)

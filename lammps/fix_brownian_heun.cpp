@@ -84,6 +84,18 @@ void FixBrownianHeun::init()
   }
 }
 
+/* ----------------------------------------------------------------------
+   At the start of a run v becomes the drift velocity F/gamma_t of the
+   initial state (nothing of this fix depends on the v stored before), so
+   that a fix dt/reset defined after this fix picks its first timestep from
+   the cells' actual speeds rather than from v = 0.
+------------------------------------------------------------------------- */
+
+void FixBrownianHeun::setup(int /*vflag*/)
+{
+  drift_velocity();
+}
+
 /* ---------------------------------------------------------------------- */
 
 void FixBrownianHeun::initial_integrate(int /*vflag*/)

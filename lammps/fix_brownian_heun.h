@@ -20,6 +20,7 @@ class FixBrownianHeun : public FixBrownianTessera, public CoupledIntegrator {
   FixBrownianHeun(class LAMMPS *, int, char **);
   ~FixBrownianHeun() override;
   void init() override;
+  void setup(int) override;
   void initial_integrate(int) override;
 
   double memory_usage() override;

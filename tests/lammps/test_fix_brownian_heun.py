@@ -8,6 +8,7 @@ forward Euler), exact drift and the diffusion constant of free particles,
 dt/reset with both integrators, and errors for bad input."""
 
 import math
+import os
 
 import numpy as np
 
@@ -225,7 +226,7 @@ write_dump all custom b.dump id xu yu modify sort id format float %.17g
             np.testing.assert_allclose(last_dt, dt_v * 0.01 / (0.01 + 0.5 * dt_v**2 * fnorm),
                                        rtol=1e-12)
             (a,), (b,) = run.dump("a.dump"), run.dump("b.dump")
-            self.assertGreater(elapsed, 100 * 30 * 1e-4)
+            self.assertGreater(elapsed, 50 * 30 * 1e-4)    # dt grew from 1e-4
             np.testing.assert_allclose(b["xu"] - a["xu"], elapsed * 0.1 * a["id"] / 2.0, rtol=1e-10,
                                        err_msg=integrator)
             np.testing.assert_allclose(b["yu"] - a["yu"], elapsed * 0.25, rtol=1e-10, err_msg=integrator)
@@ -247,6 +248,28 @@ run 30
                      for a, b in zip(frames[1:], frames[2:])]
             self.assertLess(max(steps), 1.1 * xmax, integrator)
             self.assertGreater(max(steps), 0.9 * xmax, integrator)
+
+
+class Example(LammpsTestCase):
+    """examples/heun (brownian/heun + fix dt/reset) runs to its end time with
+    a timestep that fix dt/reset changes, starting from the cells' speeds."""
+
+    INPUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples",
+                         "heun", "in.heun")
+
+    def test_example_short(self):
+        with open(self.INPUT) as f:
+            script = f.read()
+        run = self.run_lmp(script, variables={"tend": 0.3})
+        self.assertIn("Fix halt condition", run.output)
+        log = run.stdout.split("Step Time Dt")[1].split("Loop time")[0].split("\n")[1:]
+        rows = np.array([[float(w) for w in line.split()] for line in log
+                         if line.strip() and line.split()[0].isdigit()])
+        # Step 0: dt from the speed f_a / gamma_t = 10 of the cells (0.1 / 10),
+        # not from v = 0 (which would give dtmax = 0.05).
+        self.assertLess(rows[0, 2], 0.0101)
+        self.assertGreater(rows[0, 2], 0.009)
+        self.assertNotEqual(rows[1, 2], rows[0, 2])
 
 
 class Errors(LammpsTestCase):

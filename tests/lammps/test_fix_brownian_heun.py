@@ -133,6 +133,42 @@ write_dump all custom b.dump id xu yu modify sort id format float %.17g
         self.assertLess(abs(d2.mean() - expected), 5 * sigma, (d2.mean(), expected))
 
 
+class RotationalDiffusion(LammpsTestCase):
+    """Free polarities under fix brownian/heun diffuse with fix polarity's D_r:
+    <cos(theta(t) - theta(0))> = exp(-D_r t) (the noise enters once per step,
+    not once per stage)."""
+
+    def test_decorrelation(self):
+        n_side, d_rot, dt, steps = 64, 0.5, 0.05, 20
+        script = f"""
+dimension 2
+units lj
+atom_style dipole
+boundary p p p
+lattice sq 1.0
+region box block 0 {n_side} 0 {n_side} -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+mass * 1.0
+pair_style zero 0.5
+pair_coeff * *
+fix p all polarity 0.0 1.0 noise {d_rot} 3301
+fix b all brownian/heun 1.0 1 gamma_t 1.0 rng none
+timestep {dt}
+thermo 0
+run 0
+""" + DUMP.format(name="a.dump") + f"run {steps}\n" + DUMP.format(name="b.dump")
+        run = self.run_lmp(script)
+        (a,), (b,) = run.dump("a.dump"), run.dump("b.dump")
+        c = a["mux"] * b["mux"] + a["muy"] * b["muy"]
+        expected = math.exp(-d_rot * dt * steps)
+        # cos of a Gaussian angle of variance s2 = 2 D_r t: variance (1 - e^-s2)^2 / 2
+        s2 = 2 * d_rot * dt * steps
+        sigma = math.sqrt(0.5 * (1 - math.exp(-s2)) ** 2 / len(c))
+        self.assertLess(abs(c.mean() - expected), 5 * sigma, (c.mean(), expected, sigma))
+        np.testing.assert_array_equal(b["xu"], a["xu"])
+
+
 class Continuation(LammpsTestCase):
     """Without position noise (rotational noise is counter-based), `run N;
     run M`, a restart and 1 vs 2 ranks all give the same trajectory up to the
@@ -160,6 +196,21 @@ run 15
         for other in (split, restarted):
             for col in ("xu", "yu", "mux", "muy", "vx", "vy"):
                 np.testing.assert_allclose(other[col], whole[col], rtol=0, atol=1e-11, err_msg=col)
+
+    def test_fix_order(self):
+        """fix brownian/heun finds fix polarity whichever is defined first."""
+        base = active_tissue("brownian/heun", self.POLARITY) + "timestep 0.01\nrun 30\n" + \
+            DUMP.format(name="end.dump")
+        lines = base.split("\n")
+        p = next(i for i, line in enumerate(lines) if line.startswith("fix p "))
+        b = next(i for i, line in enumerate(lines) if line.startswith("fix b "))
+        lines[p], lines[b] = lines[b], lines[p]
+        swapped = "\n".join(lines)
+        self.assertLess(swapped.index("fix b "), swapped.index("fix p "))
+        one = self.run_lmp(base).dump("end.dump")[0]
+        two = self.run_lmp(swapped).dump("end.dump")[0]
+        for col in ("xu", "yu", "mux", "muy"):
+            np.testing.assert_allclose(two[col], one[col], rtol=0, atol=1e-12, err_msg=col)
 
     @nprocs(2)
     def test_one_vs_two_ranks(self):

@@ -16,6 +16,7 @@
 #include "error.h"
 #include "force.h"
 #include "math_const.h"
+#include "modify.h"
 #include "pair_vertex_voronoi.h"
 #include "update.h"
 
@@ -213,6 +214,7 @@ void FixPolarity::init()
                "fix polarity: 'neighbor' alignment needs pair_style vertex/voronoi, whose "
                "tessellation gives the Voronoi neighbours");
   init_angles();
+  find_driver();
 }
 
 /* Atoms with mu = 0 get a uniformly random polarity angle (thesis 4.1.4: a
@@ -318,6 +320,7 @@ void FixPolarity::post_force(int /*vflag*/)
 
 void FixPolarity::initial_integrate(int /*vflag*/)
 {
+  if (driven) return;    // fix brownian/heun advances the angles (coupled_*)
   const int nlocal = atom->nlocal;
   double **mu = atom->mu;
   const int *mask = atom->mask;
@@ -416,4 +419,116 @@ double FixPolarity::compute_vector(int n)
   double polar, nematic;
   polar_orders(polar, nematic);
   return n == 0 ? polar : nematic;
+}
+
+/* ----------------------------------------------------------------------
+   Integration by fix brownian/heun (the CoupledDof interface of
+   coupled_dof.h).  The degree of freedom is the polarity angle; its rate
+   is tau / gamma_R at the current positions, polarities and velocities
+   (the integrator puts the velocity of the state, F / gamma_t, into v),
+   its noise the same Gaussian increment that the Euler step above draws.
+------------------------------------------------------------------------- */
+
+void FixPolarity::find_driver()
+{
+  int n = 0;
+  for (int i = 0; i < modify->nfix; i++)
+    if (dynamic_cast<CoupledIntegrator *>(modify->fix[i])) n++;
+  if (n > 1)
+    error->all(FLERR,
+               "fix polarity {}: {} fixes (brownian/heun) want to integrate its angles; "
+               "keep one",
+               id, n);
+  driven = n;
+}
+
+/* tau of the local atoms (in the vector tau) from the tessellation of
+   state_step (the current positions) and the current polarities, including
+   the ghosts', and velocity directions. */
+
+void FixPolarity::angle_torques(bigint state_step)
+{
+  const int nlocal = atom->nlocal;
+  double **mu = atom->mu;
+  if (static_cast<int>(has_v.size()) != nlocal)
+    error->one(FLERR, "fix polarity: internal error: velocity directions not recorded");
+  const int nall = nlocal + atom->nghost;
+  unit.resize(2 * nall);
+  for (int i = 0; i < nall; i++) {
+    const double inv = mu[i][3] > 0.0 ? 1.0 / mu[i][3] : 0.0;
+    unit[2 * i] = mu[i][0] * inv;
+    unit[2 * i + 1] = mu[i][1] * inv;
+  }
+  tau.resize(nlocal);
+  if (params.J_S != 0.0) {
+    const tessera::Tessellation &t = pair->tessellation();
+    if (pair->tessellation_step() != state_step || t.n_owned != nlocal)
+      error->one(FLERR,
+                 "fix polarity: the tessellation of pair vertex/voronoi is from step {}, the "
+                 "integrator needs it for step {}",
+                 pair->tessellation_step(), state_step);
+    tessera::polarity_torque_vec(t, unit.data(), 2, params, vhat.data(), has_v.data(),
+                                 tau.data());
+  } else {
+    none.n_owned = nlocal;
+    none.cell_offset.assign(nlocal + 1, 0);
+    tessera::polarity_torque_vec(none, unit.data(), 2, params, vhat.data(), has_v.data(),
+                                 tau.data());
+  }
+}
+
+void FixPolarity::coupled_rate(double *rate, int stride, bigint state_step)
+{
+  // The integrator has put the velocity of this state into v.
+  double **v = atom->v;
+  const int nlocal = atom->nlocal;
+  vhat.resize(2 * nlocal);
+  has_v.assign(nlocal, 0);
+  if (params.J_V != 0.0)
+    for (int i = 0; i < nlocal; i++) {
+      const double s = std::sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1]);
+      has_v[i] = s > 0.0;
+      vhat[2 * i] = has_v[i] ? v[i][0] / s : 0.0;
+      vhat[2 * i + 1] = has_v[i] ? v[i][1] / s : 0.0;
+    }
+  angle_torques(state_step);
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++)
+    rate[i * stride] = (mask[i] & groupbit) ? tau[i] / gamma_r : 0.0;
+}
+
+void FixPolarity::coupled_noise(double *w, int stride)
+{
+  const int *mask = atom->mask;
+  const tagint *tag = atom->tag;
+  const double noise = std::sqrt(2.0 * d_rot * update->dt);
+  const bigint step = update->ntimestep;
+  for (int i = 0; i < atom->nlocal; i++)
+    w[i * stride] =
+        (d_rot > 0.0 && (mask[i] & groupbit)) ? noise * gaussian(seed, tag[i], step) : 0.0;
+}
+
+void FixPolarity::coupled_advance(const double *dq, int stride)
+{
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mask[i] & groupbit) rotate(i, dq[i * stride]);
+}
+
+/* mu of local atom i turned by dth, its length kept (1 if it had none). */
+
+void FixPolarity::rotate(int i, double dth)
+{
+  double **mu = atom->mu;
+  const double m = mu[i][3] > 0.0 ? mu[i][3] : 1.0;
+  const double nx = mu[i][3] > 0.0 ? mu[i][0] / m : 1.0;
+  const double ny = mu[i][3] > 0.0 ? mu[i][1] / m : 0.0;
+  double s, c;
+  sincos_small(dth, s, c);
+  const double rx = c * nx - s * ny, ry = s * nx + c * ny;
+  const double r = 1.0 / std::sqrt(rx * rx + ry * ry);
+  mu[i][0] = m * rx * r;
+  mu[i][1] = m * ry * r;
+  mu[i][2] = 0.0;
+  mu[i][3] = m;
 }

@@ -17,6 +17,7 @@
 #include "fix_cell_death.h"
 #include "fix_cell_divide.h"
 #include "fix_brownian.h"
+#include "fix_brownian_heun.h"
 #include "fix_polarity.h"
 #include "pair_vertex_voronoi.h"
 
@@ -86,6 +87,7 @@ const std::vector<Entry> &style_table()
       pair_style<PairVertexVoronoi>("vertex/voronoi"),
       fix_style<FixPolarity>("polarity"),
       fix_style<FixBrownianTessera>("brownian", Policy::IF_MISSING),
+      fix_style<FixBrownianHeun>("brownian/heun"),
       compute_style<ComputeVertexAtom>("vertex/atom"),
       compute_style<ComputeVertexLocal>("vertex/local"),
       fix_style<FixCellDivide>("cell/divide"),

@@ -10,6 +10,13 @@ passes, or from the environment for running a module by hand:
 
 Decorate a test that starts more than one MPI rank with ``@nprocs(n)`` so
 CTest reserves that many cores and can skip it without mpiexec.
+
+Every test runs on either host LAMMPS (``--host``, which CMake passes):
+``tessera-lmp`` (Debian's LAMMPS with our styles built in; the default) or
+``plugin`` (a current LAMMPS's ``lmp`` given by ``--lmp``, with
+tesseraplugin.so loaded through LAMMPS_PLUGIN_PATH, and that LAMMPS's Python
+module for run_python).  A test whose expectation differs by host asks
+``Config.host`` (or ``self.plugin_host``) and checks each host's value.
 """
 
 import argparse
@@ -24,11 +31,15 @@ import unittest
 import numpy as np
 
 SKIP_RETURN_CODE = 77
+TOOLS = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "tools")
 
 
 class Config:
-    lmp = None          # tessera-lmp
-    lib = None          # libtessera_lammps.so
+    host = "tessera-lmp"    # or "plugin"
+    lmp = None          # tessera-lmp, or the plugin host's lmp
+    lib = None          # libtessera_lammps.so (tessera-lmp host)
+    plugin = None       # tesseraplugin.so (plugin host)
+    build = None        # Tessera's build directory (tests/core_forces, ...)
     mpiexec = None      # mpiexec, or None
     workdir = None      # where each test gets a fresh directory
     keep = False        # keep the directories of passing tests
@@ -128,8 +139,27 @@ mass * 1.0
 """
 
 
+def use_plugin_host(plugin, lammps_python=None, lammps_libdir=None):
+    """Every LAMMPS this process starts (lmp, or Python's lammps module)
+    loads tesseraplugin.so: LAMMPS_PLUGIN_PATH names its directory, and the
+    host's Python module and liblammps.so come first on the search paths."""
+    os.environ["LAMMPS_PLUGIN_PATH"] = os.path.dirname(plugin)
+    os.environ["TESSERA_PLUGIN"] = plugin
+
+    def prepend(var, path):
+        if path:
+            os.environ[var] = os.pathsep.join([path] + [p for p in os.environ.get(var, "").split(os.pathsep) if p])
+    prepend("PYTHONPATH", lammps_python)
+    prepend("LD_LIBRARY_PATH", lammps_libdir)
+
+
 class LammpsTestCase(unittest.TestCase):
     """Base class: self.run_lmp() runs an input script in a fresh directory."""
+
+    @property
+    def plugin_host(self):
+        """True when the tests run on a current LAMMPS through the plugin."""
+        return Config.host == "plugin"
 
     def setUp(self):
         os.makedirs(Config.workdir, exist_ok=True)
@@ -151,7 +181,7 @@ class LammpsTestCase(unittest.TestCase):
 
     def run_lmp(self, script, nprocs=1, variables=None, args=None, stdin=None, files=None,
                 ok=True, timeout=240):
-        """Runs tessera-lmp on `script` (written to in.test and passed with
+        """Runs the host's lmp (tessera-lmp) on `script` (written to in.test and passed with
         -in; None: no -in) on nprocs ranks, in a fresh directory that also
         holds `files` (name: text).  With ok=True a failing run fails the test
         and shows LAMMPS's output."""
@@ -169,19 +199,23 @@ class LammpsTestCase(unittest.TestCase):
         cmd += list(args or [])
         proc = subprocess.run(cmd, cwd=d, input=stdin, capture_output=True, text=True,
                               timeout=timeout)
-        return self._checked(Run(d, proc), cmd, "tessera-lmp", ok)
+        return self._checked(Run(d, proc), cmd, os.path.basename(Config.lmp), ok)
 
     def run_python(self, code=None, nprocs=1, script=None, args=(), timeout=240, ok=True):
         """Runs Python `code` (or the file `script` with `args`) under the
         interpreter running these tests (Debian's /usr/bin/python3) in a fresh
         directory, on nprocs ranks.  libtessera_lammps.so is in the
-        environment as TESSERA_LAMMPS_LIB."""
+        environment as TESSERA_LAMMPS_LIB (and, on the plugin host,
+        tesseraplugin.so as TESSERA_PLUGIN, with that LAMMPS's Python module
+        first on PYTHONPATH); tessera_tools.host.register(lmp) uses either."""
         d = self.new_dir()
         if script is None:
             script = os.path.join(d, "script.py")
             with open(script, "w") as f:
                 f.write(code)
         env = dict(os.environ, TESSERA_LAMMPS_LIB=Config.lib, PYTHONDONTWRITEBYTECODE="1")
+        # tessera_tools (tools/), for tessera_tools.host.register(lmp)
+        env["PYTHONPATH"] = os.pathsep.join(p for p in (env.get("PYTHONPATH"), TOOLS) if p)
         cmd = mpiexec_command(nprocs) + [sys.executable, script] + list(args)
         proc = subprocess.run(cmd, cwd=d, capture_output=True, text=True, env=env,
                               timeout=timeout)
@@ -222,6 +256,15 @@ def main():
     parser.add_argument("--build", default=build, help="build directory (default $TESSERA_BUILD or build)")
     parser.add_argument("--lmp", default=os.environ.get("TESSERA_LMP"))
     parser.add_argument("--lib", default=os.environ.get("TESSERA_LAMMPS_LIB"))
+    parser.add_argument("--host", choices=("tessera-lmp", "plugin"),
+                        default=os.environ.get("TESSERA_TEST_HOST", "tessera-lmp"),
+                        help="host LAMMPS: tessera-lmp (default) or plugin (--lmp is a current "
+                        "LAMMPS's lmp, --plugin its tesseraplugin.so)")
+    parser.add_argument("--plugin", default=os.environ.get("TESSERA_PLUGIN"))
+    parser.add_argument("--lammps-python", default=os.environ.get("TESSERA_LAMMPS_PYTHON"),
+                        help="plugin host: directory of that LAMMPS's Python module")
+    parser.add_argument("--lammps-libdir", default=None,
+                        help="plugin host: directory of its liblammps.so (default: ../lib of --lmp)")
     parser.add_argument("--mpiexec", default=os.environ.get("TESSERA_MPIEXEC", shutil.which("mpiexec")))
     parser.add_argument("--workdir", default=os.environ.get("TESSERA_TEST_WORKDIR"))
     parser.add_argument("--keep", action="store_true", help="keep run directories")
@@ -238,6 +281,14 @@ def main():
             print(name, getattr(method, "nprocs", 1))
         return
 
+    Config.host = opts.host
+    Config.build = os.path.abspath(opts.build)
+    if opts.host == "plugin":
+        if not opts.lmp:
+            parser.error("--host plugin needs --lmp (the lmp of the LAMMPS the plugin is for)")
+        Config.plugin = os.path.abspath(opts.plugin or os.path.join(opts.build, "lammps", "tesseraplugin.so"))
+        libdir = opts.lammps_libdir or os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(opts.lmp))), "lib")
+        use_plugin_host(Config.plugin, opts.lammps_python, libdir)
     Config.lmp = os.path.abspath(opts.lmp or os.path.join(opts.build, "lammps", "tessera-lmp"))
     Config.lib = os.path.abspath(opts.lib or os.path.join(opts.build, "lammps", "libtessera_lammps.so"))
     Config.mpiexec = opts.mpiexec

@@ -136,6 +136,13 @@ template <class Map, class Creator> bool host_has(Map *map, const char *name, Cr
   return found != map->end() && found->second != ours;
 }
 
+// True if map serves name with our creator.
+template <class Map, class Creator> bool is_ours(Map *map, const char *name, Creator ours)
+{
+  auto found = map->find(name);
+  return found != map->end() && found->second == ours;
+}
+
 // The LAMMPS plugin API's name of a command ("pair_style" -> "pair").
 const char *plugin_style(const Entry &entry)
 {
@@ -179,6 +186,7 @@ std::vector<TesseraStyle> LAMMPS_NS::tessera_register_plugin(LAMMPS *lmp, void *
 {
   auto reg = reinterpret_cast<lammpsplugin_regfunc>(regfunc);
   std::vector<TesseraStyle> results;
+  int fresh = 0;
   for (const Entry &entry : style_table()) {
     TesseraStyle result{entry.command, entry.name, true, false};
     lammpsplugin_t plugin;
@@ -205,10 +213,17 @@ std::vector<TesseraStyle> LAMMPS_NS::tessera_register_plugin(LAMMPS *lmp, void *
       else
         result.provided = !host_has(lmp->modify->compute_map, entry.name, entry.compute);
     }
-    if (result.provided) reg(&plugin, lmp);
+    // a second `plugin load` of the same file: those entries are ours already
+    const bool loaded = entry.pair      ? is_ours(lmp->force->pair_map, entry.name, entry.pair)
+                        : entry.fix     ? is_ours(lmp->modify->fix_map, entry.name, entry.fix)
+                                        : is_ours(lmp->modify->compute_map, entry.name, entry.compute);
+    if (result.provided && !loaded) {
+      reg(&plugin, lmp);
+      fresh++;
+    }
     results.push_back(result);
   }
-  log_styles(lmp, results);
+  if (fresh > 0) log_styles(lmp, results);
   return results;
 }
 

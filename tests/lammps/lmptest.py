@@ -40,6 +40,8 @@ class Config:
     lib = None          # libtessera_lammps.so (tessera-lmp host)
     plugin = None       # tesseraplugin.so (plugin host)
     build = None        # Tessera's build directory (tests/core_forces, ...)
+    python_paths = {}   # plugin host: PYTHONPATH, LD_LIBRARY_PATH entries for run_python
+    tessera_lmp = None  # plugin host: Debian's tessera-lmp, to compare the hosts
     mpiexec = None      # mpiexec, or None
     workdir = None      # where each test gets a fresh directory
     keep = False        # keep the directories of passing tests
@@ -141,16 +143,17 @@ mass * 1.0
 
 def use_plugin_host(plugin, lammps_python=None, lammps_libdir=None):
     """Every LAMMPS this process starts (lmp, or Python's lammps module)
-    loads tesseraplugin.so: LAMMPS_PLUGIN_PATH names its directory, and the
-    host's Python module and liblammps.so come first on the search paths."""
+    loads tesseraplugin.so: LAMMPS_PLUGIN_PATH names its directory.  For
+    run_python, the host's Python module and liblammps.so come first on the
+    search paths (only there: tessera-lmp must keep Debian's liblammps.so.0)."""
     os.environ["LAMMPS_PLUGIN_PATH"] = os.path.dirname(plugin)
     os.environ["TESSERA_PLUGIN"] = plugin
+    Config.python_paths = {"PYTHONPATH": lammps_python, "LD_LIBRARY_PATH": lammps_libdir}
 
-    def prepend(var, path):
-        if path:
-            os.environ[var] = os.pathsep.join([path] + [p for p in os.environ.get(var, "").split(os.pathsep) if p])
-    prepend("PYTHONPATH", lammps_python)
-    prepend("LD_LIBRARY_PATH", lammps_libdir)
+
+def _prepended(env, var, path):
+    if path:
+        env[var] = os.pathsep.join([path] + [p for p in env.get(var, "").split(os.pathsep) if p])
 
 
 class LammpsTestCase(unittest.TestCase):
@@ -180,16 +183,17 @@ class LammpsTestCase(unittest.TestCase):
         return d
 
     def run_lmp(self, script, nprocs=1, variables=None, args=None, stdin=None, files=None,
-                ok=True, timeout=240):
+                ok=True, timeout=240, lmp=None):
         """Runs the host's lmp (tessera-lmp) on `script` (written to in.test and passed with
         -in; None: no -in) on nprocs ranks, in a fresh directory that also
         holds `files` (name: text).  With ok=True a failing run fails the test
-        and shows LAMMPS's output."""
+        and shows LAMMPS's output.  `lmp`: another executable than the host's
+        (e.g. Config.tessera_lmp, to compare hosts)."""
         d = self.new_dir()
         for name, text in (files or {}).items():
             with open(os.path.join(d, name), "w") as f:
                 f.write(text)
-        cmd = mpiexec_command(nprocs) + [Config.lmp]
+        cmd = mpiexec_command(nprocs) + [lmp or Config.lmp]
         if script is not None:
             with open(os.path.join(d, "in.test"), "w") as f:
                 f.write(script)
@@ -199,7 +203,7 @@ class LammpsTestCase(unittest.TestCase):
         cmd += list(args or [])
         proc = subprocess.run(cmd, cwd=d, input=stdin, capture_output=True, text=True,
                               timeout=timeout)
-        return self._checked(Run(d, proc), cmd, os.path.basename(Config.lmp), ok)
+        return self._checked(Run(d, proc), cmd, os.path.basename(lmp or Config.lmp), ok)
 
     def run_python(self, code=None, nprocs=1, script=None, args=(), timeout=240, ok=True):
         """Runs Python `code` (or the file `script` with `args`) under the
@@ -214,6 +218,8 @@ class LammpsTestCase(unittest.TestCase):
             with open(script, "w") as f:
                 f.write(code)
         env = dict(os.environ, TESSERA_LAMMPS_LIB=Config.lib, PYTHONDONTWRITEBYTECODE="1")
+        for var, path in Config.python_paths.items():
+            _prepended(env, var, path)
         # tessera_tools (tools/), for tessera_tools.host.register(lmp)
         env["PYTHONPATH"] = os.pathsep.join(p for p in (env.get("PYTHONPATH"), TOOLS) if p)
         cmd = mpiexec_command(nprocs) + [sys.executable, script] + list(args)
@@ -265,6 +271,8 @@ def main():
                         help="plugin host: directory of that LAMMPS's Python module")
     parser.add_argument("--lammps-libdir", default=None,
                         help="plugin host: directory of its liblammps.so (default: ../lib of --lmp)")
+    parser.add_argument("--tessera-lmp", default=os.environ.get("TESSERA_TEST_TESSERA_LMP"),
+                        help="plugin host: Debian's tessera-lmp, for tests comparing the hosts")
     parser.add_argument("--mpiexec", default=os.environ.get("TESSERA_MPIEXEC", shutil.which("mpiexec")))
     parser.add_argument("--workdir", default=os.environ.get("TESSERA_TEST_WORKDIR"))
     parser.add_argument("--keep", action="store_true", help="keep run directories")
@@ -289,6 +297,7 @@ def main():
         Config.plugin = os.path.abspath(opts.plugin or os.path.join(opts.build, "lammps", "tesseraplugin.so"))
         libdir = opts.lammps_libdir or os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(opts.lmp))), "lib")
         use_plugin_host(Config.plugin, opts.lammps_python, libdir)
+        Config.tessera_lmp = opts.tessera_lmp and os.path.abspath(opts.tessera_lmp)
     Config.lmp = os.path.abspath(opts.lmp or os.path.join(opts.build, "lammps", "tessera-lmp"))
     Config.lib = os.path.abspath(opts.lib or os.path.join(opts.build, "lammps", "libtessera_lammps.so"))
     Config.mpiexec = opts.mpiexec

@@ -1,0 +1,175 @@
+#!/usr/bin/python3
+# Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
+"""Both host LAMMPS: Debian's 29 Sep 2021 through tessera-lmp, and a current
+LAMMPS (4 Jul 2026 in CI) through tesseraplugin.so.
+
+* The examples print the same thermo output on both hosts, on 1 and 2 ranks:
+  every thermo value as the same printed number (the 2026 thermo pads its
+  columns differently, so values are compared token by token).  All examples
+  use `fix brownian ... rng none`, where upstream BROWNIAN's fix brownian and
+  Tessera's compute the same floating-point operations.  These run on the
+  plugin host, which knows both executables (--tessera-lmp).
+* The `plugin` command: `plugin load` registers every style of the table
+  (fix brownian only where the host has none); Debian's LAMMPS has no such
+  command, which is why tessera-lmp exists.
+"""
+
+import os
+import re
+import unittest
+
+import lmptest
+from lmptest import Config, LammpsTestCase, nprocs
+
+EXAMPLES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples")
+
+# (directory, input, variables): every example's input script as shipped
+CASES = {
+    "solid": ("solid", "in.solid", {}),
+    "fluid": ("fluid", "in.fluid", {}),
+    "grooves": ("grooves", "in.grooves", {}),
+    "shear_solid": ("shear", "in.shear", {}),
+    "shear_fluid": ("shear", "in.shear", {"p0": 4.0}),
+}
+
+
+def thermo_rows(text):
+    """The thermo blocks of a LAMMPS screen output: for each run, its header
+    words and its rows of printed values (as strings)."""
+    blocks, rows, header = [], None, None
+    for line in text.splitlines():
+        words = line.split()
+        if words and words[0] == "Step":
+            header, rows = words, []
+            blocks.append((header, rows))
+        elif rows is not None:
+            if line.startswith("Loop time"):
+                rows = None
+            elif len(words) == len(header) and re.match(r"^-?\d", words[0]):
+                rows.append(words)
+    return blocks
+
+
+class ExamplesOnBothHosts(LammpsTestCase):
+
+    def compare(self, case, nranks):
+        if not self.plugin_host:
+            raise unittest.SkipTest("compares the hosts: runs in the plugin build (--host plugin)")
+        if not Config.tessera_lmp or not os.path.exists(Config.tessera_lmp):
+            self.fail("--host plugin needs --tessera-lmp (Debian's tessera-lmp) to compare the "
+                      "hosts; CMake's TESSERA_TEST_TESSERA_LMP is '%s'" % Config.tessera_lmp)
+        directory, script, variables = CASES[case]
+        with open(os.path.join(EXAMPLES, directory, script)) as f:
+            text = f.read()
+        outputs = {}
+        for host, lmp in (("plugin", Config.lmp), ("tessera-lmp", Config.tessera_lmp)):
+            run = self.run_lmp(text, nprocs=nranks, variables=variables, lmp=lmp)
+            self.assertIn("LAMMPS (", run.stdout)
+            outputs[host] = (run.stdout, thermo_rows(run.stdout))
+        # really two LAMMPS versions
+        versions = {host: re.search(r"LAMMPS \(([^)]*)\)", out).group(1)
+                    for host, (out, _) in outputs.items()}
+        self.assertTrue(versions["tessera-lmp"].startswith("29 Sep 2021"), versions)
+        self.assertNotEqual(versions["plugin"], versions["tessera-lmp"])
+        ours, theirs = outputs["plugin"][1], outputs["tessera-lmp"][1]
+        self.assertTrue(ours, "no thermo output:\n" + outputs["plugin"][0][-2000:])
+        self.assertEqual(len(ours), len(theirs))
+        for (h1, r1), (h2, r2) in zip(ours, theirs):
+            self.assertEqual(h1, h2)
+            self.assertGreater(len(r1), 1)
+            self.assertEqual(r1, r2, "%s on %d rank(s): thermo differs between the hosts"
+                             % (case, nranks))
+
+    def test_solid(self):
+        self.compare("solid", 1)
+
+    @nprocs(2)
+    def test_solid_two_ranks(self):
+        self.compare("solid", 2)
+
+    def test_fluid(self):
+        self.compare("fluid", 1)
+
+    @nprocs(2)
+    def test_fluid_two_ranks(self):
+        self.compare("fluid", 2)
+
+    def test_grooves(self):
+        self.compare("grooves", 1)
+
+    @nprocs(2)
+    def test_grooves_two_ranks(self):
+        self.compare("grooves", 2)
+
+    def test_shear_solid(self):
+        self.compare("shear_solid", 1)
+
+    @nprocs(2)
+    def test_shear_solid_two_ranks(self):
+        self.compare("shear_solid", 2)
+
+    def test_shear_fluid(self):
+        self.compare("shear_fluid", 1)
+
+    @nprocs(2)
+    def test_shear_fluid_two_ranks(self):
+        self.compare("shear_fluid", 2)
+
+
+class PluginCommand(LammpsTestCase):
+    """`plugin load` by hand (LAMMPS_PLUGIN_PATH unset for these runs)."""
+
+    SCRIPT = lmptest.tissue(4, 2) + """
+plugin load {plugin}
+plugin list
+pair_style vertex/voronoi 4.0
+pair_coeff * * 1.0 1.0 0.1 -0.5
+fix move all brownian 1.0 5 gamma_t 1.0 rng none
+fix act all polarity 0.5 1.0
+compute cell all vertex/atom
+thermo_style custom step pe c_cell[1]
+run 0
+print "Q $(c_cell[1]:%.10f)"
+run 2
+"""
+
+    def run_without_path(self, script, **kw):
+        saved = os.environ.pop("LAMMPS_PLUGIN_PATH", None)
+        try:
+            return self.run_lmp(script, **kw)
+        finally:
+            if saved is not None:
+                os.environ["LAMMPS_PLUGIN_PATH"] = saved
+
+    def test_plugin_load(self):
+        if not self.plugin_host:
+            # Debian's LAMMPS has no PLUGIN package: tessera-lmp has the styles built in
+            run = self.run_without_path("plugin load tesseraplugin.so\n", ok=False)
+            self.assertLammpsError(run, "Unknown command", "plugin")
+            return
+        run = self.run_without_path(self.SCRIPT.format(plugin=Config.plugin))
+        out = run.stdout
+        self.assertRegex(out, r"(?m)^Tessera \S+ styles: pair_style vertex/voronoi, fix polarity, "
+                              r"compute vertex/atom$")
+        self.assertRegex(out, r"(?m)^  kept the host LAMMPS's own: fix brownian$")
+        for style in ("pair style plugin vertex/voronoi", "fix style plugin polarity",
+                      "compute style plugin vertex/atom"):
+            self.assertIn(style, out)
+        self.assertNotIn("fix style plugin brownian", out)
+        # a hexagonal lattice of area-1 cells: shape index sqrt(8 sqrt 3)
+        q = float(re.search(r"(?m)^Q (\S+)$", out).group(1))
+        self.assertAlmostEqual(q, (8 * 3 ** 0.5) ** 0.5, places=8)
+
+    def test_plugin_load_twice(self):
+        if not self.plugin_host:
+            raise unittest.SkipTest("no plugin command in Debian's LAMMPS (see test_plugin_load)")
+        script = "plugin load {plugin}\n".format(plugin=Config.plugin) + \
+            self.SCRIPT.format(plugin=Config.plugin)
+        run = self.run_without_path(script)
+        self.assertEqual(len(re.findall(r"(?m)^Tessera \S+ styles:", run.stdout)), 1,
+                         run.stdout[-2000:])
+        self.assertEqual(run.stdout.count("pair style plugin vertex/voronoi"), 1)
+
+
+if __name__ == "__main__":
+    lmptest.main()

@@ -42,6 +42,7 @@ class Config:
     build = None        # Tessera's build directory (tests/core_forces, ...)
     python_paths = {}   # plugin host: PYTHONPATH, LD_LIBRARY_PATH entries for run_python
     tessera_lmp = None  # plugin host: Debian's tessera-lmp, to compare the hosts
+    intree_lmp = None   # plugin host: an lmp with the TESSERA package compiled in, or None
     mpiexec = None      # mpiexec, or None
     workdir = None      # where each test gets a fresh directory
     keep = False        # keep the directories of passing tests
@@ -273,6 +274,8 @@ def main():
                         help="plugin host: directory of its liblammps.so (default: ../lib of --lmp)")
     parser.add_argument("--tessera-lmp", default=os.environ.get("TESSERA_TEST_TESSERA_LMP"),
                         help="plugin host: Debian's tessera-lmp, for tests comparing the hosts")
+    parser.add_argument("--intree-lmp", default=os.environ.get("TESSERA_TEST_INTREE_LMP"),
+                        help="plugin host: also compare an lmp built with -D PKG_TESSERA=on")
     parser.add_argument("--mpiexec", default=os.environ.get("TESSERA_MPIEXEC", shutil.which("mpiexec")))
     parser.add_argument("--workdir", default=os.environ.get("TESSERA_TEST_WORKDIR"))
     parser.add_argument("--keep", action="store_true", help="keep run directories")
@@ -298,6 +301,7 @@ def main():
         libdir = opts.lammps_libdir or os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(opts.lmp))), "lib")
         use_plugin_host(Config.plugin, opts.lammps_python, libdir)
         Config.tessera_lmp = opts.tessera_lmp and os.path.abspath(opts.tessera_lmp)
+        Config.intree_lmp = opts.intree_lmp and os.path.abspath(opts.intree_lmp)
     Config.lmp = os.path.abspath(opts.lmp or os.path.join(opts.build, "lammps", "tessera-lmp"))
     Config.lib = os.path.abspath(opts.lib or os.path.join(opts.build, "lammps", "libtessera_lammps.so"))
     Config.mpiexec = opts.mpiexec

@@ -8,7 +8,8 @@ LAMMPS (4 Jul 2026 in CI) through tesseraplugin.so.
   columns differently, so values are compared token by token).  All examples
   use `fix brownian ... rng none`, where upstream BROWNIAN's fix brownian and
   Tessera's compute the same floating-point operations.  These run on the
-  plugin host, which knows both executables (--tessera-lmp).
+  plugin host, which knows both executables (--tessera-lmp); with
+  --intree-lmp also an lmp with the TESSERA package compiled in.
 * The `plugin` command: `plugin load` registers every style of the table
   (fix brownian only where the host has none); Debian's LAMMPS has no such
   command, which is why tessera-lmp exists.
@@ -62,7 +63,10 @@ class ExamplesOnBothHosts(LammpsTestCase):
         with open(os.path.join(EXAMPLES, directory, script)) as f:
             text = f.read()
         outputs = {}
-        for host, lmp in (("plugin", Config.lmp), ("tessera-lmp", Config.tessera_lmp)):
+        hosts = [("plugin", Config.lmp), ("tessera-lmp", Config.tessera_lmp)]
+        if Config.intree_lmp:    # the in-tree package (scripts/lammps-intree), if given
+            hosts.append(("in-tree", Config.intree_lmp))
+        for host, lmp in hosts:
             run = self.run_lmp(text, nprocs=nranks, variables=variables, lmp=lmp)
             self.assertIn("LAMMPS (", run.stdout)
             outputs[host] = (run.stdout, thermo_rows(run.stdout))
@@ -71,14 +75,16 @@ class ExamplesOnBothHosts(LammpsTestCase):
                     for host, (out, _) in outputs.items()}
         self.assertTrue(versions["tessera-lmp"].startswith("29 Sep 2021"), versions)
         self.assertNotEqual(versions["plugin"], versions["tessera-lmp"])
-        ours, theirs = outputs["plugin"][1], outputs["tessera-lmp"][1]
-        self.assertTrue(ours, "no thermo output:\n" + outputs["plugin"][0][-2000:])
-        self.assertEqual(len(ours), len(theirs))
-        for (h1, r1), (h2, r2) in zip(ours, theirs):
-            self.assertEqual(h1, h2)
-            self.assertGreater(len(r1), 1)
-            self.assertEqual(r1, r2, "%s on %d rank(s): thermo differs between the hosts"
-                             % (case, nranks))
+        theirs = outputs["tessera-lmp"][1]
+        for host in outputs:
+            ours = outputs[host][1]
+            self.assertTrue(ours, "no thermo output:\n" + outputs[host][0][-2000:])
+            self.assertEqual(len(ours), len(theirs))
+            for (h1, r1), (h2, r2) in zip(ours, theirs):
+                self.assertEqual(h1, h2)
+                self.assertGreater(len(r1), 1)
+                self.assertEqual(r1, r2, "%s on %d rank(s): thermo differs between %s and "
+                                 "tessera-lmp" % (case, nranks, host))
 
     def test_solid(self):
         self.compare("solid", 1)

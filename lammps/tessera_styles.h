@@ -39,7 +39,8 @@ TESSERA_LAMMPS_API std::vector<TesseraStyle> tessera_register_styles(LAMMPS *lmp
 // lammpsplugin_regfunc) with the plugin's dlopen handle, except a
 // Policy::IF_MISSING entry whose name the host already serves; logs the same
 // line as tessera_register_styles().
-std::vector<TesseraStyle> tessera_register_plugin(LAMMPS *lmp, void *handle, void *regfunc);
+TESSERA_LAMMPS_API std::vector<TesseraStyle> tessera_register_plugin(LAMMPS *lmp, void *handle,
+                                                                     void *regfunc);
 
 }    // namespace LAMMPS_NS
 

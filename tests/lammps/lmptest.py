@@ -269,7 +269,8 @@ def main():
                         "LAMMPS's lmp, --plugin its tesseraplugin.so)")
     parser.add_argument("--plugin", default=os.environ.get("TESSERA_PLUGIN"))
     parser.add_argument("--lammps-python", default=os.environ.get("TESSERA_LAMMPS_PYTHON"),
-                        help="plugin host: directory of that LAMMPS's Python module")
+                        help="plugin host: directory of that LAMMPS's Python module (default: "
+                        "src-tree/python beside the install prefix of --lmp, if there)")
     parser.add_argument("--lammps-libdir", default=None,
                         help="plugin host: directory of its liblammps.so (default: ../lib of --lmp)")
     parser.add_argument("--tessera-lmp", default=os.environ.get("TESSERA_TEST_TESSERA_LMP"),
@@ -299,7 +300,11 @@ def main():
             parser.error("--host plugin needs --lmp (the lmp of the LAMMPS the plugin is for)")
         Config.plugin = os.path.abspath(opts.plugin or os.path.join(opts.build, "lammps", "tesseraplugin.so"))
         libdir = opts.lammps_libdir or os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(opts.lmp))), "lib")
-        use_plugin_host(Config.plugin, opts.lammps_python, libdir)
+        python = opts.lammps_python    # default: scripts/lammps-current's layout
+        guess = os.path.join(os.path.dirname(os.path.dirname(libdir)), "src-tree", "python")
+        if not python and os.path.isdir(guess):
+            python = guess
+        use_plugin_host(Config.plugin, python, libdir)
         Config.tessera_lmp = opts.tessera_lmp and os.path.abspath(opts.tessera_lmp)
         Config.intree_lmp = opts.intree_lmp and os.path.abspath(opts.intree_lmp)
     Config.lmp = os.path.abspath(opts.lmp or os.path.join(opts.build, "lammps", "tessera-lmp"))

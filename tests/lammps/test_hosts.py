@@ -24,14 +24,35 @@ from lmptest import Config, LammpsTestCase, nprocs
 
 EXAMPLES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples")
 
-# (directory, input, variables): every example's input script as shipped
-CASES = {
-    "solid": ("solid", "in.solid", {}),
-    "fluid": ("fluid", "in.fluid", {}),
-    "grooves": ("grooves", "in.grooves", {}),
-    "shear_solid": ("shear", "in.shear", {}),
-    "shear_fluid": ("shear", "in.shear", {"p0": 4.0}),
-}
+# Every examples/<dir>/in.* as shipped (so new examples are compared too), and
+# variants the example READMEs give: name -> (directory, input, variables)
+CASES = {}
+for _dir in sorted(os.listdir(EXAMPLES)):
+    if os.path.isdir(os.path.join(EXAMPLES, _dir)):
+        for _input in sorted(os.listdir(os.path.join(EXAMPLES, _dir))):
+            if _input.startswith("in."):
+                _name = _dir if _input == "in." + _dir else _dir + "_" + _input[3:]
+                CASES[re.sub(r"\W", "_", _name)] = (_dir, _input, {})
+VARIANTS = {"shear_fluid": ("shear", "in.shear", {"p0": 4.0})}    # examples/shear/README.md
+CASES.update({k: v for k, v in VARIANTS.items() if os.path.exists(os.path.join(EXAMPLES, v[0], v[1]))})
+
+
+def example_files(directory):
+    """The text files an example's input may read (data files, includes), not
+    its reference logs or outputs."""
+    files = {}
+    path = os.path.join(EXAMPLES, directory)
+    for name in os.listdir(path):
+        if name.startswith(("log.", "dump.")) or name.endswith((".md", ".png", ".gif")):
+            continue
+        full = os.path.join(path, name)
+        if os.path.isfile(full) and os.path.getsize(full) < 10 ** 7:
+            try:
+                with open(full) as f:
+                    files[name] = f.read()
+            except UnicodeDecodeError:
+                pass
+    return files
 
 
 def thermo_rows(text):
@@ -67,7 +88,8 @@ class ExamplesOnBothHosts(LammpsTestCase):
         if Config.intree_lmp:    # the in-tree package (scripts/lammps-intree), if given
             hosts.append(("in-tree", Config.intree_lmp))
         for host, lmp in hosts:
-            run = self.run_lmp(text, nprocs=nranks, variables=variables, lmp=lmp)
+            run = self.run_lmp(text, nprocs=nranks, variables=variables, lmp=lmp,
+                               files=example_files(directory))
             self.assertIn("LAMMPS (", run.stdout)
             outputs[host] = (run.stdout, thermo_rows(run.stdout))
         # really two LAMMPS versions
@@ -86,40 +108,22 @@ class ExamplesOnBothHosts(LammpsTestCase):
                 self.assertEqual(r1, r2, "%s on %d rank(s): thermo differs between %s and "
                                  "tessera-lmp" % (case, nranks, host))
 
-    def test_solid(self):
-        self.compare("solid", 1)
 
-    @nprocs(2)
-    def test_solid_two_ranks(self):
-        self.compare("solid", 2)
 
-    def test_fluid(self):
-        self.compare("fluid", 1)
+def _add_example_tests():
+    """test_<case> on 1 rank and test_<case>_two_ranks on 2, for every case."""
+    for case in CASES:
+        def serial(self, case=case):
+            self.compare(case, 1)
 
-    @nprocs(2)
-    def test_fluid_two_ranks(self):
-        self.compare("fluid", 2)
+        @nprocs(2)
+        def two_ranks(self, case=case):
+            self.compare(case, 2)
+        setattr(ExamplesOnBothHosts, "test_" + case, serial)
+        setattr(ExamplesOnBothHosts, "test_%s_two_ranks" % case, two_ranks)
 
-    def test_grooves(self):
-        self.compare("grooves", 1)
 
-    @nprocs(2)
-    def test_grooves_two_ranks(self):
-        self.compare("grooves", 2)
-
-    def test_shear_solid(self):
-        self.compare("shear_solid", 1)
-
-    @nprocs(2)
-    def test_shear_solid_two_ranks(self):
-        self.compare("shear_solid", 2)
-
-    def test_shear_fluid(self):
-        self.compare("shear_fluid", 1)
-
-    @nprocs(2)
-    def test_shear_fluid_two_ranks(self):
-        self.compare("shear_fluid", 2)
+_add_example_tests()
 
 
 class PluginCommand(LammpsTestCase):

@@ -14,12 +14,12 @@
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
-#include "fix_store.h"
 #include "force.h"
 #include "group.h"
 #include "memory.h"
 #include "modify.h"
 #include "pair_vertex_voronoi.h"
+#include "tessera_compat.h"
 #include "update.h"
 
 #include "tessera/polarity.h"
@@ -99,8 +99,9 @@ ComputeVertexAtom::ComputeVertexAtom(LAMMPS *lmp, int narg, char **arg) :
   // neighbours with larger IDs, ascending.  Not written to restart files: a
   // restarted run starts counting afresh.
   id_fix = utils::strdup(std::string(id) + "_COMPUTE_STORE");
-  fix = static_cast<FixStore *>(modify->add_fix(
-      fmt::format("{} {} STORE peratom 0 {}", id_fix, group->names[igroup], MAXNEIGH + 1)));
+  fix = static_cast<tessera_compat::FixStorePerAtom *>(
+      modify->add_fix(fmt::format("{} {} {}", id_fix, group->names[igroup],
+                                  tessera_compat::store_peratom(MAXNEIGH + 1, false))));
   for (int i = 0; i < atom->nlocal; i++) fix->astore[i][0] = -1.0;
 }
 
@@ -128,7 +129,7 @@ void ComputeVertexAtom::init()
                "compute vertex/atom: its internal fix {} was deleted; re-create the compute "
                "(uncompute, then compute)",
                id_fix);
-  fix = static_cast<FixStore *>(modify->fix[ifix]);
+  fix = static_cast<tessera_compat::FixStorePerAtom *>(modify->fix[ifix]);
   if (rosette > 0.0 && pair->finite_radius() > 0.0)
     error->all(FLERR,
                "compute vertex/atom {}: 'rosette' needs the confluent tessellation; finite "
@@ -168,7 +169,7 @@ void ComputeVertexAtom::communicate_velocities()
     vel[2 * i] = v[i][0];
     vel[2 * i + 1] = v[i][1];
   }
-  comm->forward_comm_compute(this);
+  tessera_compat::forward_comm(comm, this);
 }
 
 int ComputeVertexAtom::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,

@@ -5,6 +5,12 @@
 // with the angles of fix polarity (through the CoupledDof interface of
 // coupled_dof.h).  Documentation: doc/fix_brownian_heun.rst.
 
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(brownian/heun,FixBrownianHeun);
+// clang-format on
+#else
+
 #ifndef TESSERA_FIX_BROWNIAN_HEUN_H
 #define TESSERA_FIX_BROWNIAN_HEUN_H
 
@@ -51,4 +57,5 @@ class FixBrownianHeun : public FixBrownianTessera, public CoupledIntegrator {
 
 }    // namespace LAMMPS_NS
 
+#endif
 #endif

@@ -17,6 +17,7 @@ PairStyle(vertex/voronoi,PairVertexVoronoi);
 #include "tessera/energy.h"
 #include "tessera/mesh.h"
 #include "tessera/tessellation.h"
+#include "tessera/voronoi3d.h"
 
 #include <vector>
 
@@ -47,6 +48,9 @@ class PairVertexVoronoi : public Pair {
   const std::vector<double> &cell_energy() const { return cell_e; }
   // Whether the tessellation was computed at the current timestep.
   bool tessellation_current() const;
+  // dimension 3: the same for the 3D cells (pair_vertex_voronoi_3d.cpp).
+  const tessera::Tessellation3 &tessellation3() const { return tess3; }
+  bool tessellation3_current() const;
 
  protected:
   double cut_global;
@@ -76,6 +80,13 @@ class PairVertexVoronoi : public Pair {
   void check_against_scratch(const tessera::Points &, const tessera::Region &, double);
   tessera::Region subdomain() const;
   double ghost_width() const;
+
+  // dimension 3 (pair_vertex_voronoi_3d.cpp): a CGAL rebuild every step.
+  tessera::Tessellation3 tess3;
+  bigint tess3_step = -1;
+  void init_style_3d();
+  void compute_3d(int, int);
+  bool tessellate_3d();  // true if the ghost shell had to grow
 };
 
 }    // namespace LAMMPS_NS

@@ -267,7 +267,32 @@ print "E1 $(pe:%.17g) $(fnorm:%.17g)"
         self.assertLammpsError(run, "too small")
 
 
+class Restart(LammpsTestCase):
+    """A restart file carries the 3D settings: the same energy and forces
+    after read_restart, without pair_coeff."""
+
+    def test_restart(self):
+        dump = """
+dump d all custom 1 f.dump id fx fy fz
+dump_modify d sort id format float %.17g
+run 0
+print "E $(pe:%.17g)"
+"""
+        first = self.run_lmp(tissue3d() + "write_restart cfg.restart\n" + dump)
+        again = self.run_lmp("read_restart %s\nthermo_modify norm no\n" % first.path("cfg.restart")
+                             + dump)
+        e0, e1 = printed(first, "E")[0][0], printed(again, "E")[0][0]
+        self.assertAlmostEqual(e0, e1, delta=1e-12 * abs(e0))
+        f0, f1 = first.dump("f.dump")[0], again.dump("f.dump")[0]
+        for c in ("fx", "fy", "fz"):
+            np.testing.assert_allclose(f1[c], f0[c], rtol=0, atol=1e-12)
+
+
 class Errors(LammpsTestCase):
+    def test_vertex_local(self):
+        run = self.run_lmp(tissue3d() + "compute l all vertex/local\nrun 0\n", ok=False)
+        self.assertLammpsError(run, "not available in 3d")
+
     def test_triclinic(self):
         run = self.run_lmp(tissue3d().replace("region box block 0 5 0 5 0 5",
                                               "region box prism 0 5 0 5 0 5 1 0 0") + "run 0\n",

@@ -217,6 +217,41 @@ print "R $(pe:%.17g) $(c_cells[1]:%.17g) $(c_cells[2]:%.17g)"
         self.check("fcc", 4, S_FCC, 12, 1)
 
 
+class Velocities(LammpsTestCase):
+    """Coordination over faces of non-zero area and orientation in 3D: all
+    cells move along one direction except atom 1, which moves against it."""
+
+    def test_one_reversed(self):
+        run = self.run_lmp(tissue3d() + """
+compute cells all vertex/atom
+compute voro all voronoi/atom surface all
+group one id 1
+velocity all set 0.3 0.4 1.2
+velocity one set -0.3 -0.4 -1.2
+dump d all custom 1 c.dump id c_cells[4] c_cells[6] c_cells[7] c_voro[2]
+dump_modify d sort id format float %.17g
+compute vl all voronoi/atom neighbors yes
+dump n all local 1 n.dump c_vl[1] c_vl[2] c_vl[3]
+run 0
+""")
+        fr = run.dump("c.dump")[0]
+        # voro++'s neighbours of atom 1 (local rows: atom, neighbour, area).
+        rows = [line.split() for line in run.text("n.dump").split("ITEM: ENTRIES")[1].split("\n")[1:]
+                if line.strip()]
+        nb = {int(float(b)) for a, b, area in rows if int(float(a)) == 1 and float(area) > 0}
+        self.assertGreater(len(nb), 6)
+        for k, i in enumerate(fr["id"]):
+            nf = fr["c_voro[2]"][k]
+            self.assertEqual(fr["c_cells[4]"][k], nf)
+            if i == 1:
+                expect_c, expect_o = -1.0, math.acos(-0.3 / 1.3)
+            else:
+                expect_c = (nf - 2) / nf if i in nb else 1.0
+                expect_o = math.acos(0.3 / 1.3)
+            self.assertAlmostEqual(fr["c_cells[6]"][k], expect_c, delta=1e-12, msg=f"atom {i}")
+            self.assertAlmostEqual(fr["c_cells[7]"][k], expect_o, delta=1e-12, msg=f"atom {i}")
+
+
 class Ranks(LammpsTestCase):
     """Forces and energy do not depend on the number of ranks (same data file)."""
 

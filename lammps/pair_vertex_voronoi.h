@@ -70,7 +70,7 @@ class PairVertexVoronoi : public Pair {
   double stats[7];      // pvector: see the doc (times, rebuilds, flips, steps, reference)
   std::vector<int> type0;
   std::vector<double> cell_e;
-  std::vector<double> cell_w;  // per-cell virial (xx, yy, xy, yx) when asked for
+  std::vector<double> cell_w;  // per-cell virial (2d: xx, yy, xy, yx; 3d: 9) when asked for
 
   void allocate();
   bool tessellate();  // true if the ghost shell had to grow (atoms re-acquired)

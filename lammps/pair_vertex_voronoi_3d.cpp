@@ -97,10 +97,6 @@ bool PairVertexVoronoi::tessellate_3d()
 void PairVertexVoronoi::compute_3d(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
-  if (vflag_atom)
-    error->all(FLERR,
-               "pair_style vertex/voronoi: the per-atom virial (compute stress/atom, "
-               "centroid/stress/atom) is not implemented in 3d; the global pressure is");
 
   const double t0 = MPI_Wtime();
   for (int pass = 0; tessellate_3d(); pass++) {
@@ -114,8 +110,22 @@ void PairVertexVoronoi::compute_3d(int eflag, int vflag)
   for (int i = 0; i < nall; i++) type0[i] = atom->type[i] - 1;
   cell_e.resize(nlocal);
   const tessera::Points3 pts{&atom->x[0][0], nall, 3};
-  const tessera::ForceOutput3 out = tessera::compute_forces_3d(
-      tess3, pts, type0.data(), model, &atom->f[0][0], 3, cell_e.data());
+  // Per-atom virial (compute stress/atom): each cell's own energy term's
+  // virial, assigned to its atom; the cells' virials add up to the total.
+  if (vflag_atom) cell_w.resize(9 * static_cast<size_t>(nlocal));
+  const tessera::ForceOutput3 out =
+      tessera::compute_forces_3d(tess3, pts, type0.data(), model, &atom->f[0][0], 3,
+                                 cell_e.data(), vflag_atom ? cell_w.data() : nullptr);
+  if (vflag_atom)
+    for (int i = 0; i < nlocal; i++) {
+      const double *w = &cell_w[9 * static_cast<size_t>(i)];
+      vatom[i][0] += w[0];
+      vatom[i][1] += w[4];
+      vatom[i][2] += w[8];
+      vatom[i][3] += 0.5 * (w[1] + w[3]);
+      vatom[i][4] += 0.5 * (w[2] + w[6]);
+      vatom[i][5] += 0.5 * (w[5] + w[7]);
+    }
   stats[0] += t1 - t0;
   stats[1] += MPI_Wtime() - t1;
   stats[4] += 1.0;

@@ -355,8 +355,33 @@ double compute_energy_3d(const Tessellation3 &t, const int *type, const Model &m
   return energy_3d(t, type, model, cell_energy);
 }
 
+namespace {
+
+// (dh/dp)^T g for the four points of tetrahedron v: calls add(point, force).
+template <class Add>
+void chain_rule(const Tessellation3 &t, const Points3 &pts, int v, V3 gv, Add add) {
+  const auto &q = t.tets[v];
+  const V3 p0 = load(pts, q[0]);
+  const V3 e[3] = {load(pts, q[1]) - p0, load(pts, q[2]) - p0, load(pts, q[3]) - p0};
+  const V3 col[3] = {cross(e[1], e[2]), cross(e[2], e[0]), cross(e[0], e[1])};
+  const double det = dot(e[0], col[0]);
+  const V3 h = vv(t.vertices[v]);
+  V3 sum{0, 0, 0};
+  for (int m = 0; m < 3; ++m) {
+    // (dh/dp_m)^T g = (p_m - h) (A^{-1}[:, m] . g)
+    const V3 df = (dot(col[m], gv) / det) * (load(pts, q[m + 1]) - h);
+    add(q[m + 1], -1.0 * df);
+    sum = sum + df;
+  }
+  // dh/dp0 = I - sum_m dh/dp_m
+  add(q[0], -1.0 * (gv - sum));
+}
+
+}  // namespace
+
 ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const int *type,
-                               const Model &model, double *f, int f_stride, double *cell_energy) {
+                               const Model &model, double *f, int f_stride, double *cell_energy,
+                               double *cell_virial) {
   ForceOutput3 out;
   std::vector<double> ce(t.n_owned);
   out.energy = energy_3d(t, type, model, ce.data());
@@ -365,7 +390,14 @@ ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const
   const double w = model.tension_weight();
   std::vector<V3> g(t.tets.size(), V3{0, 0, 0});
   std::vector<V3> u;
+  // With cell_virial: each cell's dE_c/dh on its own tetrahedra, then its
+  // forces and their virial about the cell's centre.
+  std::vector<int> own;
+  std::vector<V3> gc;
+  std::vector<int> stamp(cell_virial ? t.tets.size() : 0, -1);
+  if (cell_virial) gc.assign(t.tets.size(), V3{0, 0, 0});
   for (int c = 0; c < t.n_owned; ++c) {
+    own.clear();
     const CellType &ct = model.types[type[c]];
     const double dedv = ct.K * (t.volume[c] - ct.A0);
     const double deds = ct.Gamma * t.surface[c];
@@ -387,9 +419,29 @@ ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const
         const V3 diff = u[(k + 1) % m] - u[(k + m - 1) % m];
         const V3 dS = 0.5 * cross(diff, nrm);
         const V3 dV = (1.0 / 3.0) * (0.5 * cross(diff, q) + (1.0 / m) * av);
-        V3 &gk = g[t.face_vertex[o + k]];
-        gk = gk + dedsf * dS + dedv * dV;
+        const int v = t.face_vertex[o + k];
+        const V3 dg = dedsf * dS + dedv * dV;
+        g[v] = g[v] + dg;
+        if (cell_virial) {
+          if (stamp[v] != c) {
+            stamp[v] = c;
+            gc[v] = V3{0, 0, 0};
+            own.push_back(v);
+          }
+          gc[v] = gc[v] + dg;
+        }
       }
+    }
+    if (cell_virial) {
+      double *wc = cell_virial + 9 * static_cast<long>(c);
+      for (int a = 0; a < 9; ++a) wc[a] = 0.0;
+      for (int v : own)
+        chain_rule(t, pts, v, gc[v], [&](int p, V3 fp) {
+          const V3 r = load(pts, p) - xc;
+          const double ra[3] = {r.x, r.y, r.z}, fb[3] = {fp.x, fp.y, fp.z};
+          for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) wc[3 * a + b] += ra[a] * fb[b];
+        });
     }
   }
   // Chain rule through the circumcentres.
@@ -397,21 +449,7 @@ ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const
   for (size_t v = 0; v < t.tets.size(); ++v) {
     const V3 gv = g[v];
     if (gv.x == 0.0 && gv.y == 0.0 && gv.z == 0.0) continue;
-    const auto &q = t.tets[v];
-    const V3 p0 = load(pts, q[0]);
-    const V3 e[3] = {load(pts, q[1]) - p0, load(pts, q[2]) - p0, load(pts, q[3]) - p0};
-    const V3 col[3] = {cross(e[1], e[2]), cross(e[2], e[0]), cross(e[0], e[1])};
-    const double det = dot(e[0], col[0]);
-    const V3 h = vv(t.vertices[v]);
-    V3 sum{0, 0, 0};
-    for (int m = 0; m < 3; ++m) {
-      // (dh/dp_m)^T g = (p_m - h) (A^{-1}[:, m] . g)
-      const V3 df = (dot(col[m], gv) / det) * (load(pts, q[m + 1]) - h);
-      force[q[m + 1]] = force[q[m + 1]] - df;
-      sum = sum + df;
-    }
-    // dh/dp0 = I - sum_m dh/dp_m
-    force[q[0]] = force[q[0]] - (gv - sum);
+    chain_rule(t, pts, static_cast<int>(v), gv, [&](int p, V3 fp) { force[p] = force[p] + fp; });
   }
   for (int p = 0; p < t.n_points; ++p) {
     double *fp = f + static_cast<long>(p) * f_stride;

@@ -11,8 +11,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace tessera;
@@ -284,6 +286,23 @@ TEST(Voronoi3D, CellEnergiesAddUp) {
   EXPECT_NEAR(s, out.energy, 1e-10 * (1 + std::abs(s)));
 }
 
+TEST(Voronoi3D, CellVirialsAddUpToTheVirial) {
+  const Config3 c = jittered(3, 3, 3, 0.35, 23);
+  const Model m = random_model(5);
+  const Tessellation3 t = tessellate_periodic_3d(c.box, c.points());
+  std::vector<int> ty(t.n_points);
+  for (int p = 0; p < t.n_points; ++p) ty[p] = c.type[t.origin[p]];
+  std::vector<double> f(3 * static_cast<size_t>(t.n_points), 0.0), w(9 * static_cast<size_t>(c.n()));
+  const Points3 all{t.position.data(), t.n_points, 3};
+  const ForceOutput3 out = compute_forces_3d(t, all, ty.data(), m, f.data(), 3, nullptr, w.data());
+  for (int a = 0; a < 9; ++a) {
+    double sum = 0.0;
+    for (int i = 0; i < c.n(); ++i) sum += w[9 * i + a];
+    EXPECT_NEAR(sum, out.virial[a], 1e-9 * (1 + std::abs(out.virial[a]))) << "component " << a;
+  }
+  EXPECT_GT(std::abs(out.virial[0]), 1e-3);
+}
+
 TEST(Voronoi3D, BadInputIsNamed) {
   Config3 c = jittered(2, 2, 2, 0.2, 1);
   std::vector<long> ids(c.n());
@@ -306,4 +325,46 @@ TEST(Voronoi3D, BadInputIsNamed) {
   Config3 nanc = c;
   nanc.xyz[0] = std::nan("");
   EXPECT_THROW(tessellate_periodic_3d(nanc.box, nanc.points()), Error);
+}
+
+// At six-fold vertices CGAL breaks the tie by a symbolic perturbation that
+// depends on the coordinates; a rotation of the lattice by 90 degrees about x
+// (a symmetry of FCC) changes which tetrahedra it picks (checked below), but
+// the forces are the derivative of the energy either way, so they rotate
+// with the lattice.
+TEST(Voronoi3D, SixFoldForcesDoNotDependOnTheTieBreak) {
+  Config3 c = lattice(3, 1.0, kFCC);
+  testutil::Rng rng(8);
+  for (int &ty : c.type) ty = rng.below(2);
+  const Model m = random_model(6);
+  Config3 r = c;  // (x, y, z) -> (x, L - z, y), folded into [0, L)
+  const double L = c.box.length(0);
+  for (int i = 0; i < c.n(); ++i) {
+    double y = L - c.xyz[3 * i + 2];
+    if (y >= L) y -= L;
+    r.xyz[3 * i + 1] = y;
+    r.xyz[3 * i + 2] = c.xyz[3 * i + 1];
+  }
+  // The zero-area faces (pairs of cells touching at a six-fold vertex) differ.
+  auto zero_pairs = [](const Config3 &cfg) {
+    const Tessellation3 t = tessellate_periodic_3d(cfg.box, cfg.points());
+    std::vector<std::pair<int, int>> z;
+    for (int i = 0; i < t.n_owned; ++i)
+      for (int f = t.cell_offset[i]; f < t.cell_offset[i + 1]; ++f)
+        if (!(t.face_area[f] > 1e-9 * t.surface[i])) z.emplace_back(i, t.origin[t.face_neighbor[f]]);
+    std::sort(z.begin(), z.end());
+    return z;
+  };
+  const auto zc = zero_pairs(c), zr = zero_pairs(r);
+  ASSERT_FALSE(zc.empty());
+  EXPECT_NE(zc, zr) << "the rotation did not change CGAL's tie-break; the test shows nothing";
+  std::vector<double> f, g;
+  periodic_forces_3d(c.box, c.points(), c.type.data(), m, f);
+  periodic_forces_3d(r.box, r.points(), r.type.data(), m, g);
+  ASSERT_GT(testutil::max_abs(f), 1e-3);
+  for (int i = 0; i < c.n(); ++i) {
+    EXPECT_NEAR(g[3 * i], f[3 * i], 1e-11) << "atom " << i;
+    EXPECT_NEAR(g[3 * i + 1], -f[3 * i + 2], 1e-11) << "atom " << i;
+    EXPECT_NEAR(g[3 * i + 2], f[3 * i + 1], 1e-11) << "atom " << i;
+  }
 }

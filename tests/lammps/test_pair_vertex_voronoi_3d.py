@@ -172,6 +172,33 @@ change_box all {dim} scale {1 / (1 - eps)!r} remap
             self.assertAlmostEqual(-p[k] * p[3], dE, delta=1e-5 * max(1.0, abs(dE)))
 
 
+class PerAtomVirial(LammpsTestCase):
+    """compute stress/atom in 3D: the cells' virials add up to the global one
+    (sum of stress/atom = -p V with zero velocities), on 1 and 2 ranks."""
+
+    def check(self, nprocs):
+        run = self.run_lmp(tissue3d() + """
+compute s all stress/atom NULL virial
+compute st all reduce sum c_s[1] c_s[2] c_s[3] c_s[4] c_s[5] c_s[6]
+thermo_style custom step pxx pyy pzz pxy pxz pyz c_st[1] c_st[2] c_st[3] c_st[4] c_st[5] c_st[6] vol
+thermo_modify norm no format float %.15g
+run 0
+""", nprocs=nprocs)
+        row = [float(w) for w in run.stdout.split("Step")[1].splitlines()[1].split()]
+        p, s, vol = row[1:7], row[7:13], row[13]
+        for pk, sk in zip(p, s):
+            self.assertAlmostEqual(sk, -pk * vol, delta=1e-9 * (1 + abs(pk * vol)))
+        self.assertGreater(abs(s[0]), 1e-3)
+        self.assertGreater(abs(s[3]), 1e-4)
+
+    def test_serial(self):
+        self.check(1)
+
+    @nprocs(2)
+    def test_two_ranks(self):
+        self.check(2)
+
+
 class Lattices(LammpsTestCase):
     """BCC: truncated octahedra (s = 5.3147, 14 faces); FCC: rhombic
     dodecahedra (s = 5.3454, 12 faces, one zero-area face per octahedral
@@ -252,6 +279,40 @@ run 0
             self.assertAlmostEqual(fr["c_cells[7]"][k], expect_o, delta=1e-12, msg=f"atom {i}")
 
 
+class NeighbourExchanges(LammpsTestCase):
+    """Global element 3 in 3D: pairs of cells sharing a face of non-zero area
+    now but not at the previous computation, against voro++'s face lists of
+    the two configurations (by atom IDs)."""
+
+    def test_against_voro(self):
+        run = self.run_lmp(tissue3d(disp=0.05, two_types=False) + """
+compute cells all vertex/atom
+compute vl all voronoi/atom neighbors yes
+thermo_style custom step pe c_cells[3]
+dump n all local 1 n.dump c_vl[1] c_vl[2] c_vl[3]
+run 0
+displace_atoms all random 0.25 0.25 0.25 991 units box
+undump n
+dump n2 all local 1 n2.dump c_vl[1] c_vl[2] c_vl[3]
+run 0
+print "X $(c_cells[3])"
+""")
+        text = run.text("n.dump") + run.text("n2.dump")
+        pairs = []
+        for block in text.split("ITEM: TIMESTEP")[1:]:
+            rows = block.split("ITEM: ENTRIES")[1].strip().split("\n")[1:]
+            now = set()
+            for line in rows:
+                a, b, area = line.split()
+                if float(area) > 1e-9:
+                    now.add(tuple(sorted((int(float(a)), int(float(b))))))
+            pairs.append(now)
+        self.assertEqual(len(pairs), 2)
+        new = len(pairs[1] - pairs[0])
+        self.assertGreater(new, 5)
+        self.assertEqual(printed(run, "X")[0][0], new)
+
+
 class Ranks(LammpsTestCase):
     """Forces and energy do not depend on the number of ranks (same data file)."""
 
@@ -324,6 +385,11 @@ print "E $(pe:%.17g)"
 
 
 class Errors(LammpsTestCase):
+    def test_fix_polarity(self):
+        run = self.run_lmp(tissue3d().replace("atom_style atomic", "atom_style dipole") +
+                           "fix act all polarity 0.1 1.0 neighbor 1.0\nrun 0\n", ok=False)
+        self.assertLammpsError(run, "fix polarity requires a 2d simulation")
+
     def test_vertex_local(self):
         run = self.run_lmp(tissue3d() + "compute l all vertex/local\nrun 0\n", ok=False)
         self.assertLammpsError(run, "not available in 3d")
@@ -339,10 +405,6 @@ class Errors(LammpsTestCase):
                            ok=False)
         self.assertLammpsError(run, "periodic x, y and z")
 
-    def test_per_atom_virial(self):
-        run = self.run_lmp(tissue3d() + "compute s all stress/atom NULL\n"
-                           "dump d all custom 1 s.dump id c_s[1]\nrun 0\n", ok=False)
-        self.assertLammpsError(run, "per-atom virial", "not implemented in 3d")
 
     def test_coincident_atoms_named(self):
         run = self.run_lmp(tissue3d(disp=0, two_types=False) +

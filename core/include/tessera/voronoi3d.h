@@ -119,10 +119,12 @@ struct ForceOutput3 {
 // Energy of the owned cells and forces (added to f, stride f_stride) on all
 // n_points points.  type: 0-based, n_points entries.  cell_energy (optional,
 // n_owned) receives each owned cell's energy (face tension weighted by
-// model.tension_weight()).
+// model.tension_weight()).  cell_virial (optional, 9 per owned cell, order
+// as ForceOutput3::virial) receives the virial sum_p (r_p - r_c) F_p of each
+// cell's own energy term over the points it moves; they add up to the total.
 ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const int *type,
                                const Model &model, double *f, int f_stride,
-                               double *cell_energy = nullptr);
+                               double *cell_energy = nullptr, double *cell_virial = nullptr);
 double compute_energy_3d(const Tessellation3 &t, const int *type, const Model &model,
                          double *cell_energy = nullptr);
 

@@ -119,6 +119,14 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
                                   bool throw_if_unbounded) {
   const int n = pts.n;
   if (n_owned < 0 || n_owned > n) throw Error("tessera: n_owned out of range");
+  if (n_owned == 0) {
+    // No cells wanted (e.g. an MPI rank without atoms): nothing to triangulate.
+    Tessellation3 empty;
+    empty.n_points = n;
+    empty.cell_offset.assign(1, 0);
+    empty.face_offset.assign(1, 0);
+    return empty;
+  }
   std::vector<std::pair<P3, int>> in(n);
   for (int i = 0; i < n; ++i) {
     const double *p = pts.p(i);

@@ -322,6 +322,12 @@ TEST(Voronoi3D, BadInputIsNamed) {
   EXPECT_THROW(tessellate_periodic_3d(out.box, out.points(), ids.data()), Error);
   std::vector<double> flat = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
   EXPECT_THROW(tessellate_local_3d(Points3{flat.data(), 4, 3}, 1), Error);
+  // No owned cells (an MPI rank without atoms) is not an error, even with
+  // too few points to triangulate.
+  const Tessellation3 none = tessellate_local_3d(Points3{flat.data(), 2, 3}, 0);
+  EXPECT_EQ(none.n_owned, 0);
+  EXPECT_TRUE(none.volume.empty());
+  EXPECT_TRUE(check_coverage_3d(none, c.box.lo, c.box.hi).ok);
   Config3 nanc = c;
   nanc.xyz[0] = std::nan("");
   EXPECT_THROW(tessellate_periodic_3d(nanc.box, nanc.points()), Error);

@@ -336,6 +336,34 @@ print "E $(pe:%.17g)"
             self.assertAlmostEqual(e, energies[0], delta=1e-10 * abs(energies[0]))
 
 
+class EmptyRank(LammpsTestCase):
+    """A rank that owns no atom: the cells fill the empty slab, and 4 ranks
+    (one of them empty) give the energy and forces of 1 rank."""
+
+    @nprocs(2)
+    def test_empty_rank(self):
+        make = self.run_lmp(tissue3d(n=4).replace("region box block 0 4 0 4 0 4",
+                                                  "region box block 0 4 0 4 0 4\nregion fill block 0.5 2.5 0 4 0 4")
+                            .replace("create_atoms 1 box", "create_atoms 1 region fill")
+                            + "write_data cfg.data\n")
+        script = from_data("""
+dump d all custom 1 f.dump id fx fy fz
+dump_modify d sort id format float %.17g
+run 0
+print "E $(pe:%.17g) $(count(all))"
+""")
+        one = self.run_lmp(script, files={"cfg.data": make.text("cfg.data")})
+        four = self.run_lmp(script.replace("read_data cfg.data", "processors 4 1 1\nread_data cfg.data"),
+                            nprocs=4, files={"cfg.data": make.text("cfg.data")})
+        self.assertEqual(printed(one, "E")[0][1], 32)
+        self.assertRegex(four.output, r"Nlocal:.* 0 min")    # a rank with no atoms
+        self.assertAlmostEqual(printed(four, "E")[0][0], printed(one, "E")[0][0],
+                               delta=1e-10 * abs(printed(one, "E")[0][0]))
+        f1, f4 = one.dump("f.dump")[0], four.dump("f.dump")[0]
+        for c in ("fx", "fy", "fz"):
+            np.testing.assert_allclose(f4[c], f1[c], rtol=0, atol=1e-11)
+
+
 class Dynamics(LammpsTestCase):
     """Minimisation lowers the energy to a force-free state; the ghost shell
     grows from a cutoff that is too small."""

@@ -44,6 +44,12 @@ class FixPolarity : public Fix {
 
   void init_angles();
   void polar_orders(double &polar, double &nematic);
+
+  // dimension 3: a unit vector per cell (end of fix_polarity.cpp)
+  void init_angles_3d();
+  void post_force_3d();
+  void initial_integrate_3d();
+  void polar_orders_3d(double &polar, double &nematic);
 };
 
 }    // namespace LAMMPS_NS

@@ -50,6 +50,7 @@ class PairVertexVoronoi : public Pair {
   bool tessellation_current() const;
   // dimension 3: the same for the 3D cells (pair_vertex_voronoi_3d.cpp).
   const tessera::Tessellation3 &tessellation3() const { return tess3; }
+  bigint tessellation3_step() const { return tess3_step; }
   bool tessellation3_current() const;
 
  protected:

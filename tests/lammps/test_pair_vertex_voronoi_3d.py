@@ -413,11 +413,6 @@ print "E $(pe:%.17g)"
 
 
 class Errors(LammpsTestCase):
-    def test_fix_polarity(self):
-        run = self.run_lmp(tissue3d().replace("atom_style atomic", "atom_style dipole") +
-                           "fix act all polarity 0.1 1.0 neighbor 1.0\nrun 0\n", ok=False)
-        self.assertLammpsError(run, "fix polarity requires a 2d simulation")
-
     def test_vertex_local(self):
         run = self.run_lmp(tissue3d() + "compute l all vertex/local\nrun 0\n", ok=False)
         self.assertLammpsError(run, "not available in 3d")

@@ -105,7 +105,47 @@ void Box3::validate() const {
         << ", " << hi[d] << "]";
       throw Error(s.str());
     }
+  if (!std::isfinite(xy) || !std::isfinite(xz) || !std::isfinite(yz))
+    throw Error("tessera: box tilts xy, xz, yz must be finite");
 }
+
+Region3 Box3::region() const {
+  Region3 r;
+  for (int d = 0; d < 3; ++d) r.o[d] = lo[d];
+  r.a[0] = length(0);
+  r.a[1] = r.a[2] = 0.0;
+  r.b[0] = xy;
+  r.b[1] = length(1);
+  r.b[2] = 0.0;
+  r.c[0] = xz;
+  r.c[1] = yz;
+  r.c[2] = length(2);
+  return r;
+}
+
+void Box3::fractional(const double x[3], double s[3]) const {
+  s[2] = (x[2] - lo[2]) / length(2);
+  s[1] = (x[1] - lo[1] - yz * s[2]) / length(1);
+  s[0] = (x[0] - lo[0] - xy * s[1] - xz * s[2]) / length(0);
+}
+
+namespace {
+
+// Unit normals of the three pairs of faces of a parallelepiped (normal k is
+// perpendicular to the two edges other than k, pointing along edge k) and
+// the widths along them.
+void slabs(const Region3 &r, V3 n[3], double width[3]) {
+  const V3 e[3] = {{r.a[0], r.a[1], r.a[2]}, {r.b[0], r.b[1], r.b[2]}, {r.c[0], r.c[1], r.c[2]}};
+  for (int k = 0; k < 3; ++k) {
+    V3 m = cross(e[(k + 1) % 3], e[(k + 2) % 3]);
+    m = (1.0 / std::sqrt(dot(m, m))) * m;
+    if (dot(m, e[k]) < 0) m = -1.0 * m;
+    n[k] = m;
+    width[k] = dot(m, e[k]);
+  }
+}
+
+}  // namespace
 
 int Tessellation3::face_count(int c, double rel_tol) const {
   int z = 0;
@@ -278,17 +318,56 @@ Coverage check_coverage_3d(const Tessellation3 &t, const double lo[3], const dou
   return cov;
 }
 
+Coverage check_coverage_3d(const Tessellation3 &t, const Region3 &region, double margin) {
+  Coverage cov;
+  if (t.unbounded_cell >= 0) {
+    cov.ok = false;
+    cov.needed_margin = std::numeric_limits<double>::infinity();
+    cov.worst_cell = t.unbounded_cell;
+    return cov;
+  }
+  V3 n[3];
+  double width[3];
+  slabs(region, n, width);
+  const V3 o{region.o[0], region.o[1], region.o[2]};
+  for (int c = 0; c < t.n_owned; ++c)
+    for (int f = t.cell_offset[c]; f < t.cell_offset[c + 1]; ++f)
+      for (int k = t.face_offset[f]; k < t.face_offset[f + 1]; ++k) {
+        const int v = t.face_vertex[k];
+        const V3 h = vv(t.vertices[v]) - o;
+        const double r = t.radius[v];
+        for (int d = 0; d < 3; ++d) {
+          const double u = dot(n[d], h);
+          const double need = std::max(-margin - (u - r), (u + r) - (width[d] + margin));
+          if (need > cov.needed_margin) {
+            cov.ok = false;
+            cov.needed_margin = need;
+            cov.worst_cell = c;
+          }
+        }
+      }
+  return cov;
+}
+
 Tessellation3 tessellate_periodic_3d(const Box3 &box, const Points3 &pts, const long *ids) {
   box.validate();
   const int n = pts.n;
   if (n < 1) throw Error("tessera: no points");
   for (int i = 0; i < n; ++i) {
-    const double *p = pts.p(i);
+    double s[3];
+    box.fractional(pts.p(i), s);
     for (int d = 0; d < 3; ++d)
-      if (!(p[d] >= box.lo[d] && p[d] < box.hi[d]))
+      if (!(s[d] >= 0.0 && s[d] < 1.0))
         throw Error("tessera: " + point_name(i, ids) + " lies outside the box; wrap it first");
   }
-  const double lmax = std::max({box.length(0), box.length(1), box.length(2)});
+  const Region3 reg = box.region();
+  V3 nrm[3];
+  double width[3];
+  slabs(reg, nrm, width);
+  const V3 edge[3] = {{reg.a[0], reg.a[1], reg.a[2]}, {reg.b[0], reg.b[1], reg.b[2]},
+                      {reg.c[0], reg.c[1], reg.c[2]}};
+  const V3 origin0{reg.o[0], reg.o[1], reg.o[2]};
+  const double lmax = std::max({width[0], width[1], width[2]});
   double margin = 2.0 * std::cbrt(box.volume() / n);
   for (int attempt = 0; attempt < 40; ++attempt) {
     std::vector<double> xyz;
@@ -302,19 +381,22 @@ Tessellation3 tessellate_periodic_3d(const Box3 &box, const Points3 &pts, const 
       if (ids) pid.push_back(ids[i]);
     }
     int range[3];
-    for (int d = 0; d < 3; ++d) range[d] = static_cast<int>(std::ceil(margin / box.length(d)));
+    for (int d = 0; d < 3; ++d) range[d] = static_cast<int>(std::ceil(margin / width[d]));
     for (int a = -range[0]; a <= range[0]; ++a)
       for (int b = -range[1]; b <= range[1]; ++b)
         for (int c = -range[2]; c <= range[2]; ++c) {
           if (a == 0 && b == 0 && c == 0) continue;
-          const double s[3] = {a * box.length(0), b * box.length(1), c * box.length(2)};
+          const V3 shift = (1.0 * a) * edge[0] + (1.0 * b) * edge[1] + (1.0 * c) * edge[2];
+          const double s[3] = {shift.x, shift.y, shift.z};
           for (int i = 0; i < n; ++i) {
             const double *p = pts.p(i);
-            bool in = true;
             double q[3];
+            for (int d = 0; d < 3; ++d) q[d] = p[d] + s[d];
+            const V3 rel = V3{q[0], q[1], q[2]} - origin0;
+            bool in = true;
             for (int d = 0; d < 3; ++d) {
-              q[d] = p[d] + s[d];
-              if (q[d] < box.lo[d] - margin || q[d] > box.hi[d] + margin) in = false;
+              const double u = dot(nrm[d], rel);
+              if (u < -margin || u > width[d] + margin) in = false;
             }
             if (!in) continue;
             xyz.insert(xyz.end(), q, q + 3);
@@ -324,7 +406,7 @@ Tessellation3 tessellate_periodic_3d(const Box3 &box, const Points3 &pts, const 
         }
     const Points3 all{xyz.data(), static_cast<int>(origin.size()), 3};
     Tessellation3 t = tessellate_local_3d(all, n, ids ? pid.data() : nullptr, false);
-    const Coverage cov = check_coverage_3d(t, box.lo, box.hi, margin);
+    const Coverage cov = check_coverage_3d(t, reg, margin);
     if (cov.ok) {
       t.origin = std::move(origin);
       t.position = std::move(xyz);

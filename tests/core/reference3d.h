@@ -84,14 +84,16 @@ inline P vector_area(const std::vector<P> &poly) {
   return a;
 }
 
-// Cells of points xyz (stride 3) in the periodic box [lo, lo + L).
-inline std::vector<Cell> cells(const std::vector<double> &xyz, const double lo[3], const double L[3]) {
+// Cells of points xyz (stride 3) in the periodic box with edge vectors
+// e[0], e[1], e[2] (periodic images: the 27 shifts by -1, 0, 1 of each).
+inline std::vector<Cell> cells(const std::vector<double> &xyz, const P e[3]) {
   const int n = static_cast<int>(xyz.size() / 3);
   std::vector<Cell> res(n);
+  const double span = std::sqrt(dot(e[0], e[0])) + std::sqrt(dot(e[1], e[1])) + std::sqrt(dot(e[2], e[2]));
   for (int i = 0; i < n; ++i) {
     const P xi{xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
     std::vector<Face> faces;
-    const double h[3] = {L[0], L[1], L[2]};
+    const double h[3] = {span, span, span};
     // A box of half-width L around xi (surely contains the cell).
     P c[8];
     for (int k = 0; k < 8; ++k)
@@ -108,7 +110,8 @@ inline std::vector<Cell> cells(const std::vector<double> &xyz, const double lo[3
         for (int b = -1; b <= 1; ++b)
           for (int d = -1; d <= 1; ++d) {
             if (j == i && a == 0 && b == 0 && d == 0) continue;
-            const P xj{xyz[3 * j] + a * L[0], xyz[3 * j + 1] + b * L[1], xyz[3 * j + 2] + d * L[2]};
+            const P xj = P{xyz[3 * j], xyz[3 * j + 1], xyz[3 * j + 2]} + (1.0 * a) * e[0] +
+                         (1.0 * b) * e[1] + (1.0 * d) * e[2];
             const P nrm = xj - xi;
             clip(faces, nrm, dot(nrm, 0.5 * (xi + xj)), xj);
           }
@@ -122,6 +125,12 @@ inline std::vector<Cell> cells(const std::vector<double> &xyz, const double lo[3
     cell.faces = faces;
   }
   return res;
+}
+
+// Orthogonal box [lo, lo + L).
+inline std::vector<Cell> cells(const std::vector<double> &xyz, const double /*lo*/[3], const double L[3]) {
+  const P e[3] = {{L[0], 0, 0}, {0, L[1], 0}, {0, 0, L[2]}};
+  return cells(xyz, e);
 }
 
 }  // namespace ref3d

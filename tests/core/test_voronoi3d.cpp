@@ -374,3 +374,114 @@ TEST(Voronoi3D, SixFoldForcesDoNotDependOnTheTieBreak) {
     EXPECT_NEAR(g[3 * i + 2], f[3 * i + 1], 1e-11) << "atom " << i;
   }
 }
+
+namespace {
+
+// A jittered simple-cubic arrangement in a triclinic box (tilts in units of
+// the box lengths), wrapped into the box.
+Config3 jittered_triclinic(int m, double txy, double txz, double tyz, uint64_t seed) {
+  testutil::Rng rng(seed);
+  Config3 c;
+  const double lo[3] = {-0.4, 1.3, 0.2};
+  for (int d = 0; d < 3; ++d) {
+    c.box.lo[d] = lo[d];
+    c.box.hi[d] = lo[d] + m * (1.0 + 0.07 * d);
+  }
+  c.box.xy = txy * c.box.length(0);
+  c.box.xz = txz * c.box.length(0);
+  c.box.yz = tyz * c.box.length(1);
+  const Region3 r = c.box.region();
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j)
+      for (int k = 0; k < m; ++k) {
+        double s[3] = {(i + 0.5 + 0.4 * rng.uniform(-1, 1)) / m, (j + 0.5 + 0.4 * rng.uniform(-1, 1)) / m,
+                       (k + 0.5 + 0.4 * rng.uniform(-1, 1)) / m};
+        for (double &v : s) v -= std::floor(v);
+        for (int d = 0; d < 3; ++d) c.xyz.push_back(r.o[d] + s[0] * r.a[d] + s[1] * r.b[d] + s[2] * r.c[d]);
+        c.type.push_back(rng.below(2));
+      }
+  return c;
+}
+
+}  // namespace
+
+TEST(Voronoi3DTriclinic, MatchesHalfSpaceClipping) {
+  const Config3 c = jittered_triclinic(3, 0.3, -0.2, 0.25, 31);
+  const Tessellation3 t = tessellate_periodic_3d(c.box, c.points());
+  const Region3 r = c.box.region();
+  const ref3d::P e[3] = {{r.a[0], r.a[1], r.a[2]}, {r.b[0], r.b[1], r.b[2]}, {r.c[0], r.c[1], r.c[2]}};
+  const auto ref = ref3d::cells(c.xyz, e);
+  double vsum = 0.0;
+  for (int i = 0; i < c.n(); ++i) {
+    vsum += t.volume[i];
+    EXPECT_NEAR(t.volume[i], ref[i].volume, 1e-10) << "cell " << i;
+    EXPECT_NEAR(t.surface[i], ref[i].surface, 1e-10) << "cell " << i;
+    int faces = 0;
+    for (const auto &rf : ref[i].faces) {
+      ASSERT_FALSE(rf.box);
+      const ref3d::P av = ref3d::vector_area(rf.poly);
+      faces += std::sqrt(ref3d::dot(av, av)) > 1e-9;
+    }
+    EXPECT_EQ(t.face_count(i), faces) << "cell " << i;
+  }
+  EXPECT_NEAR(vsum, c.box.volume(), 1e-9);
+}
+
+TEST(Voronoi3DTriclinic, ForcesMatchCentralDifferences) {
+  const Config3 c = jittered_triclinic(3, -0.25, 0.3, 0.2, 32);
+  const Model m = random_model(13);
+  std::vector<double> f;
+  periodic_forces_3d(c.box, c.points(), c.type.data(), m, f);
+  const double h = 1e-6;
+  double err = 0.0;
+  auto wrapped = [&](Config3 x) {
+    const Region3 r = x.box.region();
+    for (int i = 0; i < x.n(); ++i) {
+      double s[3];
+      x.box.fractional(&x.xyz[3 * i], s);
+      for (double &v : s) v -= std::floor(v);
+      for (int d = 0; d < 3; ++d) x.xyz[3 * i + d] = r.o[d] + s[0] * r.a[d] + s[1] * r.b[d] + s[2] * r.c[d];
+    }
+    return x;
+  };
+  for (int i = 0; i < c.n(); ++i)
+    for (int d = 0; d < 3; ++d) {
+      Config3 cp = c, cm = c;
+      cp.xyz[3 * i + d] += h;
+      cm.xyz[3 * i + d] -= h;
+      const double fd = -(periodic_energy(wrapped(cp), m) - periodic_energy(wrapped(cm), m)) / (2 * h);
+      err = std::max(err, std::abs(fd - f[3 * i + d]));
+    }
+  EXPECT_LT(err, 1e-6 * testutil::max_abs(f));
+  EXPECT_GT(testutil::max_abs(f), 1e-3);
+}
+
+// Simple shear x -> x + g y (box tilt xy += g ly): dE/dg = -W_yx, and the
+// same for x -> x + g z (xz) and y -> y + g z (yz); the virial is symmetric.
+TEST(Voronoi3DTriclinic, ShearVirialIsStrainDerivative) {
+  const Config3 c = jittered_triclinic(3, 0.1, 0.05, -0.1, 33);
+  const Model m = random_model(14);
+  std::vector<double> f;
+  const ForceOutput3 out = periodic_forces_3d(c.box, c.points(), c.type.data(), m, f);
+  const double h = 1e-6;
+  // (a, b): x_a += g x_b
+  const int pairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+  for (const auto &ab : pairs) {
+    const int a = ab[0], b = ab[1];
+    auto sheared = [&](double g) {
+      Config3 s = c;
+      for (int i = 0; i < s.n(); ++i) s.xyz[3 * i + a] += g * (s.xyz[3 * i + b] - s.box.lo[b]);
+      // the edge vectors (lx,0,0), (xy,ly,0), (xz,yz,lz) deform alike
+      if (a == 0 && b == 1) {
+        s.box.xy += g * s.box.length(1);
+        s.box.xz += g * s.box.yz;
+      }
+      if (a == 0 && b == 2) s.box.xz += g * s.box.length(2);
+      if (a == 1 && b == 2) s.box.yz += g * s.box.length(2);
+      return periodic_energy(s, m);
+    };
+    const double de = (sheared(h) - sheared(-h)) / (2 * h);
+    EXPECT_NEAR(-out.virial[3 * b + a], de, 1e-6 * (1 + std::abs(de))) << a << b;
+    EXPECT_NEAR(out.virial[3 * b + a], out.virial[3 * a + b], 1e-8 * (1 + std::abs(de)));
+  }
+}

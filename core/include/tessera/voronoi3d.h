@@ -34,13 +34,28 @@ struct Points3 {
   const double *p(int i) const { return data + static_cast<long>(i) * stride; }
 };
 
-// Orthogonal periodic box [lo, hi].
+// A parallelepiped o + s a + t b + u c (s, t, u in [0, 1]): a LAMMPS
+// (sub-)domain, with a = (ax, 0, 0), b = (bx, by, 0), c = (cx, cy, cz).
+struct Region3 {
+  double o[3] = {0.0, 0.0, 0.0};
+  double a[3] = {1.0, 0.0, 0.0};
+  double b[3] = {0.0, 1.0, 0.0};
+  double c[3] = {0.0, 0.0, 1.0};
+};
+
+// Periodic box with edge vectors (lx, 0, 0), (xy, ly, 0), (xz, yz, lz) from
+// lo, as in LAMMPS (all tilts 0: orthogonal, [lo, hi]).
 struct Box3 {
   double lo[3] = {0.0, 0.0, 0.0};
   double hi[3] = {1.0, 1.0, 1.0};
+  double xy = 0.0, xz = 0.0, yz = 0.0;
   double length(int d) const { return hi[d] - lo[d]; }
   double volume() const { return length(0) * length(1) * length(2); }
-  // Throws Error if a length is not positive or not finite.
+  bool triclinic() const { return xy != 0.0 || xz != 0.0 || yz != 0.0; }
+  Region3 region() const;
+  // Fractional coordinates (in [0, 1) for a point inside).
+  void fractional(const double x[3], double s[3]) const;
+  // Throws Error if a length is not positive or not finite, or a tilt is not finite.
   void validate() const;
 };
 
@@ -103,9 +118,13 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
 // owned cells).  needed_margin: how much more margin the worst one needs.
 Coverage check_coverage_3d(const Tessellation3 &t, const double lo[3], const double hi[3],
                            double margin = 0.0);
+// The same for a parallelepiped grown by margin on every side (perpendicular
+// distance), e.g. a triclinic sub-domain and its ghost shell.
+Coverage check_coverage_3d(const Tessellation3 &t, const Region3 &region, double margin = 0.0);
 
-// Periodic tessellation of n points inside box (images within a margin,
-// grown until check_coverage_3d passes).  Throws Error for points outside.
+// Periodic tessellation of n points inside box (orthogonal or triclinic;
+// images within a margin, grown until check_coverage_3d passes).  Throws
+// Error for points outside.
 Tessellation3 tessellate_periodic_3d(const Box3 &box, const Points3 &pts,
                                      const long *ids = nullptr);
 

@@ -33,10 +33,6 @@ void PairVertexVoronoi::init_style_3d()
     error->all(FLERR,
                "pair_style vertex/voronoi in 3d requires periodic x, y and z boundaries "
                "('boundary p p p')");
-  if (domain->triclinic)
-    error->all(FLERR,
-               "pair_style vertex/voronoi in 3d supports orthogonal boxes only (this box is "
-               "triclinic); use 'region ... block' and no tilt");
   if (incremental == 2)
     error->all(FLERR,
                "pair_style vertex/voronoi: 'incremental check' is for 2d; in 3d the cells are "
@@ -67,8 +63,34 @@ bool PairVertexVoronoi::tessellate_3d()
     error->one(FLERR, "pair_style vertex/voronoi: tessellation failed");
   }
   stats[2] += 1.0;
-  const tessera::Coverage cov =
-      tessera::check_coverage_3d(tess3, domain->sublo, domain->subhi, ghost_width());
+  // This rank's sub-domain: a box, or for a triclinic box the parallelepiped
+  // of its lamda range, whose ghost shell is bounded by planes parallel to
+  // its faces at the ghost cutoff.
+  tessera::Region3 sub;
+  if (!domain->triclinic) {
+    for (int d = 0; d < 3; d++) {
+      sub.o[d] = domain->sublo[d];
+      sub.a[d] = sub.b[d] = sub.c[d] = 0.0;
+    }
+    sub.a[0] = domain->subhi[0] - domain->sublo[0];
+    sub.b[1] = domain->subhi[1] - domain->sublo[1];
+    sub.c[2] = domain->subhi[2] - domain->sublo[2];
+  } else {
+    double lo[3] = {domain->sublo_lamda[0], domain->sublo_lamda[1], domain->sublo_lamda[2]};
+    domain->lamda2x(lo, sub.o);
+    const double f[3] = {domain->subhi_lamda[0] - domain->sublo_lamda[0],
+                         domain->subhi_lamda[1] - domain->sublo_lamda[1],
+                         domain->subhi_lamda[2] - domain->sublo_lamda[2]};
+    sub.a[0] = f[0] * domain->xprd;
+    sub.a[1] = sub.a[2] = 0.0;
+    sub.b[0] = f[1] * domain->xy;
+    sub.b[1] = f[1] * domain->yprd;
+    sub.b[2] = 0.0;
+    sub.c[0] = f[2] * domain->xz;
+    sub.c[1] = f[2] * domain->yz;
+    sub.c[2] = f[2] * domain->zprd;
+  }
+  const tessera::Coverage cov = tessera::check_coverage_3d(tess3, sub, ghost_width());
   double need = cov.needed_margin, need_all;
   MPI_Allreduce(&need, &need_all, 1, MPI_DOUBLE, MPI_MAX, world);
   if (need_all > 0.0) {

@@ -391,6 +391,115 @@ print "E1 $(pe:%.17g) $(fnorm:%.17g)"
         self.assertLammpsError(run, "too small")
 
 
+def triclinic(script, tilt="1 -0.5 0.7"):
+    """The tissue of tissue3d() (n = 5) in a box tilted by xy xz yz."""
+    return script.replace("region box block 0 5 0 5 0 5", "region box prism 0 5 0 5 0 5 " + tilt)
+
+
+class Triclinic(LammpsTestCase):
+    """A tilted (triclinic) 3D box: volumes, surfaces and face counts equal
+    voro++'s; forces equal central differences; the shear pressures equal
+    -dE/d(shear)/V; 1 rank == 2 ranks."""
+
+    def against_voro(self, n):
+        run = self.run_lmp(triclinic(tissue3d()) + """
+compute voro all voronoi/atom surface all
+compute cells all vertex/atom
+dump d all custom 1 c.dump id c_voro[1] c_voro[2] c_voro[3] c_cells[1] c_cells[2] c_cells[4]
+dump_modify d sort id format float %.17g
+run 0
+""", nprocs=n)
+        fr = run.dump("c.dump")[0]
+        np.testing.assert_allclose(fr["c_cells[1]"], fr["c_voro[1]"], rtol=0, atol=1e-11)
+        np.testing.assert_allclose(fr["c_cells[2]"], fr["c_voro[3]"], rtol=0, atol=1e-10)
+        np.testing.assert_array_equal(fr["c_cells[4]"], fr["c_voro[2]"])
+        self.assertAlmostEqual(fr["c_cells[1]"].sum(), 125.0, delta=1e-9)
+
+    def test_against_voro(self):
+        self.against_voro(1)
+
+    @nprocs(2)
+    def test_against_voro_two_ranks(self):
+        self.against_voro(2)
+
+    def test_forces(self):
+        h = 1e-6
+        atoms = [2, 40, 77, 125]
+        script = triclinic(tissue3d()) + """
+dump d all custom 1 cfg.dump id fx fy fz
+dump_modify d sort id format float %.17g
+run 0
+undump d
+"""
+        for a in atoms:
+            script += f"group g{a} id {a}\n"
+            for move in ((h, 0, 0), (0, h, 0), (0, 0, h)):
+                plus = " ".join(repr(w) for w in move)
+                minus = " ".join(repr(-2 * w) for w in move)
+                script += f"""
+displace_atoms g{a} move {plus} units box
+run 0
+print "E $(pe:%.17g)"
+displace_atoms g{a} move {minus} units box
+run 0
+print "E $(pe:%.17g)"
+displace_atoms g{a} move {plus} units box
+"""
+        run = self.run_lmp(script)
+        frame = run.dump("cfg.dump")[0]
+        e = [v[0] for v in printed(run, "E")]
+        k = 0
+        for a in atoms:
+            row = np.where(frame["id"] == a)[0][0]
+            for col in ("fx", "fy", "fz"):
+                fd = -(e[k] - e[k + 1]) / (2 * h)
+                k += 2
+                self.assertAlmostEqual(frame[col][row], fd, delta=1e-6 * max(1.0, abs(fd)),
+                                       msg=f"atom {a} {col}")
+
+    def test_shear_pressure(self):
+        # change_box ... xz delta d remap: x += d lamda_z = d (z - zlo)/lz, so
+        # dE/dd = -pxz V / lz, likewise yz; xy: x += d lamda_y with
+        # lamda_y = (y - ylo - yz lamda_z)/ly, so dE/dd = -(pxy - yz/lz pxz) V / ly.
+        d = 1e-6
+        script = triclinic(tissue3d()) + """
+run 0
+print "P $(pxy:%.17g) $(pxz:%.17g) $(pyz:%.17g) $(vol:%.17g) $(ly:%.17g) $(lz:%.17g) $(yz:%.17g)"
+"""
+        for tilt in ("xy", "xz", "yz"):
+            script += f"""
+change_box all {tilt} delta {d!r} remap units box
+run 0
+print "E $(pe:%.17g)"
+change_box all {tilt} delta {-2 * d!r} remap units box
+run 0
+print "E $(pe:%.17g)"
+change_box all {tilt} delta {d!r} remap units box
+"""
+        run = self.run_lmp(script)
+        pxy, pxz, pyz, vol, ly, lz, yz = printed(run, "P")[0]
+        self.assertNotEqual(yz, 0.0)
+        e = [v[0] for v in printed(run, "E")]
+        for k, (p, l) in enumerate(((pxy - yz / lz * pxz, ly), (pxz, lz), (pyz, lz))):
+            dE = (e[2 * k] - e[2 * k + 1]) / (2 * d)
+            self.assertAlmostEqual(-p * vol / l, dE, delta=1e-5 * max(1.0, abs(dE)), msg=f"component {k}")
+        self.assertGreater(abs(pxy), 1e-4)
+
+    @nprocs(2)
+    def test_ranks(self):
+        make = self.run_lmp(triclinic(tissue3d()) + "write_data cfg.data\n")
+        script = from_data("""
+dump d all custom 1 f.dump id fx fy fz
+dump_modify d sort id format float %.17g
+run 0
+""")
+        res = []
+        for n in (1, 2):
+            fr = self.run_lmp(script, nprocs=n, files={"cfg.data": make.text("cfg.data")}).dump("f.dump")[0]
+            res.append(np.column_stack([fr["fx"], fr["fy"], fr["fz"]]))
+        np.testing.assert_allclose(res[1], res[0], rtol=0, atol=1e-11)
+
+
 class Restart(LammpsTestCase):
     """A restart file carries the 3D settings: the same energy and forces
     after read_restart, without pair_coeff."""
@@ -416,12 +525,6 @@ class Errors(LammpsTestCase):
     def test_vertex_local(self):
         run = self.run_lmp(tissue3d() + "compute l all vertex/local\nrun 0\n", ok=False)
         self.assertLammpsError(run, "not available in 3d")
-
-    def test_triclinic(self):
-        run = self.run_lmp(tissue3d().replace("region box block 0 5 0 5 0 5",
-                                              "region box prism 0 5 0 5 0 5 1 0 0") + "run 0\n",
-                           ok=False)
-        self.assertLammpsError(run, "orthogonal boxes only")
 
     def test_non_periodic_z(self):
         run = self.run_lmp(tissue3d().replace("boundary p p p", "boundary p p f") + "run 0\n",

@@ -33,6 +33,10 @@ void PairVertexVoronoi::init_style_3d()
     error->all(FLERR,
                "pair_style vertex/voronoi in 3d requires periodic x, y and z boundaries "
                "('boundary p p p')");
+  if (reference_every > 0)
+    error->all(FLERR,
+               "pair_style vertex/voronoi: 'reference' times the 2d triangulation; in 3d every "
+               "step is a from-scratch triangulation already");
   if (incremental == 2)
     error->all(FLERR,
                "pair_style vertex/voronoi: 'incremental check' is for 2d; in 3d the cells are "

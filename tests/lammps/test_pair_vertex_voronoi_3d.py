@@ -522,6 +522,13 @@ print "E $(pe:%.17g)"
 
 
 class Errors(LammpsTestCase):
+    def test_2d_only_keywords(self):
+        for kw, msg in (("incremental check", "'incremental check' is for 2d"),
+                        ("reference 10", "'reference' times the 2d")):
+            run = self.run_lmp(tissue3d().replace("vertex/voronoi 3.0", "vertex/voronoi 3.0 " + kw)
+                               + "run 0\n", ok=False)
+            self.assertLammpsError(run, msg)
+
     def test_vertex_local(self):
         run = self.run_lmp(tissue3d() + "compute l all vertex/local\nrun 0\n", ok=False)
         self.assertLammpsError(run, "not available in 3d")

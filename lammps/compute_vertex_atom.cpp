@@ -15,12 +15,12 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
-#include "fix_store.h"
 #include "force.h"
 #include "group.h"
 #include "memory.h"
 #include "modify.h"
 #include "pair_vertex_voronoi.h"
+#include "tessera_compat.h"
 #include "update.h"
 
 #include "tessera/polarity.h"
@@ -35,7 +35,7 @@ using namespace LAMMPS_NS;
 
 namespace {
 
-constexpr int NCOLS = 7;
+constexpr int NCOLS = 9;
 
 // Same criterion as Tessellation::coordination_number: an edge counts as a
 // neighbour relation if it is longer than this fraction of the cell's mean
@@ -84,7 +84,7 @@ ComputeVertexAtom::ComputeVertexAtom(LAMMPS *lmp, int narg, char **arg) :
   peratom_flag = 1;
   size_peratom_cols = NCOLS;
   vector_flag = 1;
-  size_vector = 3;
+  size_vector = 5;
   extvector = 0;
   comm_forward = 3;
   create_attribute = 1;
@@ -100,8 +100,9 @@ ComputeVertexAtom::ComputeVertexAtom(LAMMPS *lmp, int narg, char **arg) :
   // neighbours with larger IDs, ascending.  Not written to restart files: a
   // restarted run starts counting afresh.
   id_fix = utils::strdup(std::string(id) + "_COMPUTE_STORE");
-  fix = static_cast<FixStore *>(modify->add_fix(
-      fmt::format("{} {} STORE peratom 0 {}", id_fix, group->names[igroup], MAXNEIGH + 1)));
+  fix = static_cast<tessera_compat::FixStorePerAtom *>(
+      modify->add_fix(fmt::format("{} {} {}", id_fix, group->names[igroup],
+                                  tessera_compat::store_peratom(MAXNEIGH + 1, false))));
   for (int i = 0; i < atom->nlocal; i++) fix->astore[i][0] = -1.0;
 }
 
@@ -129,7 +130,12 @@ void ComputeVertexAtom::init()
                "compute vertex/atom: its internal fix {} was deleted; re-create the compute "
                "(uncompute, then compute)",
                id_fix);
-  fix = static_cast<FixStore *>(modify->fix[ifix]);
+  fix = static_cast<tessera_compat::FixStorePerAtom *>(modify->fix[ifix]);
+  if (rosette > 0.0 && pair->finite_radius() > 0.0)
+    error->all(FLERR,
+               "compute vertex/atom {}: 'rosette' needs the confluent tessellation; finite "
+               "cells (pair_style vertex/voronoi ... radius r) have no Voronoi vertex clusters",
+               id);
   if (domain->dimension == 3 && rosette > 0.0)
     error->all(FLERR, "compute vertex/atom: keyword 'rosette' is for 2d tissues only");
 }
@@ -169,7 +175,7 @@ void ComputeVertexAtom::communicate_velocities()
     vel[3 * i + 1] = v[i][1];
     vel[3 * i + 2] = v[i][2];
   }
-  comm->forward_comm_compute(this);
+  tessera_compat::forward_comm(comm, this);
 }
 
 int ComputeVertexAtom::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
@@ -236,6 +242,10 @@ void ComputeVertexAtom::compute_peratom()
     row[4] = energy[i];
     row[5] = coordination[i];
     row[6] = orientation[i];
+    // Finite cells: free (cell-medium) arc length, and 1 for a cell at an edge.
+    const bool finite = pair->finite_radius() > 0.0;
+    row[7] = finite ? pair->finite_cells().free_length[i] : 0.0;
+    row[8] = finite && pair->finite_cells().at_edge(i) ? 1.0 : 0.0;
   }
 }
 
@@ -252,16 +262,24 @@ void ComputeVertexAtom::compute_vector()
 
   const tessera::Tessellation &t = pair->tessellation();
   const int *mask = atom->mask;
-  double local[2] = {0.0, 0.0}, all[2];
+  double local[4] = {0.0, 0.0, 0.0, 0.0}, all[4];
+  const bool finite = pair->finite_radius() > 0.0;
   for (int i = 0; i < atom->nlocal; i++) {
-    if (!(mask[i] & groupbit) || !(t.area[i] > 0.0)) continue;
+    if (!(mask[i] & groupbit)) continue;
+    if (finite && pair->finite_cells().at_edge(i)) {
+      local[2] += 1.0;
+      local[3] += pair->finite_cells().free_length[i];
+    }
+    if (!(t.area[i] > 0.0)) continue;
     local[0] += t.perimeter[i] / std::sqrt(t.area[i]);
     local[1] += 1.0;
   }
-  MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_SUM, world);
+  MPI_Allreduce(local, all, 4, MPI_DOUBLE, MPI_SUM, world);
   vector[0] = all[1] > 0.0 ? all[0] / all[1] : 0.0;
   vector[1] = count_multifold();
   vector[2] = count_new_neighbors();
+  vector[3] = all[2];    // cells at an edge (free arcs)
+  vector[4] = all[3];    // free perimeter of the tissue
 }
 
 /* Voronoi vertices where four or more cells of the group meet, each counted

@@ -13,6 +13,7 @@ ComputeStyle(vertex/atom,ComputeVertexAtom);
 #define LMP_COMPUTE_VERTEX_ATOM_H
 
 #include "compute.h"
+#include "tessera_compat.h"
 
 #include <vector>
 
@@ -39,7 +40,7 @@ class ComputeVertexAtom : public Compute {
   std::vector<double> vel;    // stride-3 velocities of owned and ghost atoms
   std::vector<double> coordination, orientation;
   char *id_fix;
-  class FixStore *fix;
+  tessera_compat::FixStorePerAtom *fix;
   class PairVertexVoronoi *pair;
   int warned_overflow;
 

@@ -32,9 +32,9 @@ FixBrownianTessera::FixBrownianTessera(LAMMPS *lmp, int narg, char **arg) :
 {
   if (narg < 5)
     error->all(FLERR,
-               "Illegal fix brownian command (fix ID {}): expected "
-               "'fix ID group brownian T seed gamma_t value [rng uniform|gaussian|none]'",
-               id);
+               "Illegal fix {} command (fix ID {}): expected "
+               "'fix ID group {} T seed gamma_t value [rng uniform|gaussian|none]'",
+               style, id, style);
 
   time_integrate = 1;
   dynamic_group_allow = 1;
@@ -42,15 +42,14 @@ FixBrownianTessera::FixBrownianTessera(LAMMPS *lmp, int narg, char **arg) :
   temperature = parse_number("temperature T", arg[3]);
   if (temperature <= 0.0)
     error->all(FLERR,
-               "Fix brownian (ID {}): temperature T = {} must be > 0 "
-               "(for dynamics without noise keep T > 0 and add 'rng none')",
-               id, arg[3]);
+               "Fix {} (ID {}): temperature T = {} must be > 0 "
+               "(for dynamics without noise keep T > 0 and add 'rng none')", style, id, arg[3]);
 
   if (!utils::is_integer(arg[4]))
-    error->all(FLERR, "Fix brownian (ID {}): seed must be an integer, got '{}'", id, arg[4]);
+    error->all(FLERR, "Fix {} (ID {}): seed must be an integer, got '{}'", style, id, arg[4]);
   seed = utils::inumeric(FLERR, arg[4], false, lmp);
   if (seed <= 0 || seed > MAX_MARSAGLIA_SEED - (comm->nprocs - 1))
-    error->all(FLERR, "Fix brownian (ID {}): seed = {} must be in [1, {}] on {} MPI rank(s)", id,
+    error->all(FLERR, "Fix {} (ID {}): seed = {} must be in [1, {}] on {} MPI rank(s)", style, id,
                arg[4], MAX_MARSAGLIA_SEED - (comm->nprocs - 1), comm->nprocs);
 
   gamma_t = 0.0;
@@ -61,12 +60,12 @@ FixBrownianTessera::FixBrownianTessera(LAMMPS *lmp, int narg, char **arg) :
     const char *keyword = arg[iarg];
     if (strcmp(keyword, "gamma_t") == 0 || strcmp(keyword, "rng") == 0) {
       if (iarg + 1 >= narg)
-        error->all(FLERR, "Fix brownian (ID {}): keyword {} needs a value", id, keyword);
+        error->all(FLERR, "Fix {} (ID {}): keyword {} needs a value", style, id, keyword);
       const char *value = arg[iarg + 1];
       if (strcmp(keyword, "gamma_t") == 0) {
         gamma_t = parse_number("gamma_t", value);
         if (gamma_t <= 0.0)
-          error->all(FLERR, "Fix brownian (ID {}): gamma_t = {} must be > 0", id, value);
+          error->all(FLERR, "Fix {} (ID {}): gamma_t = {} must be > 0", style, id, value);
       } else if (strcmp(value, "uniform") == 0) {
         noise = NOISE_UNIFORM;
       } else if (strcmp(value, "gaussian") == 0) {
@@ -74,8 +73,7 @@ FixBrownianTessera::FixBrownianTessera(LAMMPS *lmp, int narg, char **arg) :
       } else if (strcmp(value, "none") == 0) {
         noise = NOISE_NONE;
       } else {
-        error->all(FLERR, "Fix brownian (ID {}): rng must be uniform, gaussian or none, got '{}'",
-                   id, value);
+        error->all(FLERR, "Fix {} (ID {}): rng must be uniform, gaussian or none, got '{}'", style, id, value);
       }
       iarg += 2;
     } else if (strcmp(keyword, "gamma_r") == 0 || strcmp(keyword, "gamma_t_eigen") == 0 ||
@@ -83,16 +81,15 @@ FixBrownianTessera::FixBrownianTessera(LAMMPS *lmp, int narg, char **arg) :
                strcmp(keyword, "rotation_temp") == 0 || strcmp(keyword, "rotation_style") == 0 ||
                strcmp(keyword, "planar_rotation") == 0) {
       error->all(FLERR,
-                 "Fix brownian (ID {}): keyword {} belongs to upstream's fix brownian/sphere or "
+                 "Fix {} (ID {}): keyword {} belongs to upstream's fix brownian/sphere or "
                  "brownian/asphere, which Tessera does not provide; fix brownian moves positions "
-                 "only (polarity dynamics: fix polarity)",
-                 id, keyword);
+                 "only (polarity dynamics: fix polarity)", style, id, keyword);
     } else {
-      error->all(FLERR, "Fix brownian (ID {}): unknown keyword '{}' (expected gamma_t or rng)", id,
+      error->all(FLERR, "Fix {} (ID {}): unknown keyword '{}' (expected gamma_t or rng)", style, id,
                  keyword);
     }
   }
-  if (gamma_t == 0.0) error->all(FLERR, "Fix brownian (ID {}): keyword gamma_t is required", id);
+  if (gamma_t == 0.0) error->all(FLERR, "Fix {} (ID {}): keyword gamma_t is required", style, id);
 
   // A different stream on each rank, as upstream does.
   random = new RanMars(lmp, seed + comm->me);
@@ -117,7 +114,7 @@ int FixBrownianTessera::setmask()
 void FixBrownianTessera::init()
 {
   if (utils::strmatch(update->integrate_style, "^respa"))
-    error->all(FLERR, "Fix brownian (ID {}) does not support run_style respa", id);
+    error->all(FLERR, "Fix {} (ID {}) does not support run_style respa", style, id);
   set_step();
 }
 
@@ -205,6 +202,6 @@ template <int NOISE, int THREE_D> void FixBrownianTessera::move()
 double FixBrownianTessera::parse_number(const char *what, const char *text)
 {
   if (!utils::is_double(text))
-    error->all(FLERR, "Fix brownian (ID {}): {} must be a number, got '{}'", id, what, text);
+    error->all(FLERR, "Fix {} (ID {}): {} must be a number, got '{}'", style, id, what, text);
   return utils::numeric(FLERR, text, false, lmp);
 }

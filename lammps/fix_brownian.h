@@ -24,7 +24,9 @@ class FixBrownianTessera : public Fix {
   void initial_integrate(int) override;
   void reset_dt() override;
 
- private:
+ protected:
+  // Shared with fix brownian/heun (fix_brownian_heun.h), which parses the
+  // same arguments and draws the same noise.
   enum Noise { NOISE_UNIFORM, NOISE_GAUSSIAN, NOISE_NONE };
 
   double temperature;    // T, in temperature units

@@ -16,6 +16,7 @@
 #include "error.h"
 #include "force.h"
 #include "math_const.h"
+#include "modify.h"
 #include "pair_vertex_voronoi.h"
 #include "update.h"
 
@@ -29,8 +30,8 @@ using namespace FixConst;
 namespace {
 
 // Counter-based random numbers: a value depends only on (seed, atom ID,
-// timestep, stream), so runs are identical on any number of ranks and
-// continue exactly from a restart.
+// timestep, stream), not on the rank or the order of atoms (runs on other
+// rank counts and restarts then agree to round-off; see the doc).
 inline uint64_t mix(uint64_t z)
 {
   z += 0x9e3779b97f4a7c15ULL;
@@ -217,6 +218,12 @@ void FixPolarity::init()
     init_angles_3d();
   else
     init_angles();
+  find_driver();
+  if (driven && domain->dimension == 3)
+    error->all(FLERR,
+               "fix polarity {}: fix brownian/heun integrates 2d polarity angles only; in 3d use "
+               "fix brownian (forward Euler)",
+               id);
 }
 
 /* Atoms with mu = 0 get a uniformly random polarity angle (thesis 4.1.4: a
@@ -252,6 +259,29 @@ void FixPolarity::init_angles()
   }
 }
 
+/* Cells that appeared since the last step (fix deposit, fix pour, create_atoms
+   between runs, cell division) with mu = 0 in the plane get a uniformly
+   random angle from the seed and their atom ID, owned and ghost copies alike
+   (a ghost's image position differs from its owner's, its ID does not), so
+   every copy agrees without communication.  A non-zero mu (set by whatever
+   created the cell) is kept. */
+
+void FixPolarity::fresh_angles(int n)
+{
+  double **mu = atom->mu;
+  const int *mask = atom->mask;
+  const tagint *tag = atom->tag;
+  for (int i = 0; i < n; i++) {
+    if (!(mask[i] & groupbit) || mu[i][0] != 0.0 || mu[i][1] != 0.0) continue;
+    const double th = MathConst::MY_2PI * uniform01(seed, tag[i], 0, 5);
+    const double m = mu[i][3] > 0.0 ? mu[i][3] : 1.0;
+    mu[i][0] = m * std::cos(th);
+    mu[i][1] = m * std::sin(th);
+    mu[i][2] = 0.0;
+    mu[i][3] = m;
+  }
+}
+
 void FixPolarity::setup(int vflag)
 {
   post_force(vflag);
@@ -272,6 +302,7 @@ void FixPolarity::post_force(int /*vflag*/)
   double **v = atom->v;
   const int *mask = atom->mask;
   const int nlocal = atom->nlocal;
+  fresh_angles(nlocal + atom->nghost);
   vhat.resize(2 * nlocal);
   has_v.resize(nlocal);
   const bool need_v = params.J_V != 0.0;  // only velocity alignment needs it
@@ -296,12 +327,13 @@ void FixPolarity::post_force(int /*vflag*/)
    of step n, the same state whose active force moves the positions in this
    step.  Doing it here rather than at the end of step n keeps mu at the end
    of every step equal to the angle that step's force used, so that a new
-   run or a restart continues exactly.  The torque works on unit vectors
+   run or a restart continues from the same state.  The torque works on unit vectors
    (cross products instead of sines of angle differences); the angle change
    is applied as a rotation of mu. */
 
 void FixPolarity::initial_integrate(int /*vflag*/)
 {
+  if (driven) return;    // fix brownian/heun advances the angles (coupled_*)
   if (domain->dimension == 3) {
     initial_integrate_3d();
     return;
@@ -310,8 +342,21 @@ void FixPolarity::initial_integrate(int /*vflag*/)
   double **mu = atom->mu;
   const int *mask = atom->mask;
   const tagint *tag = atom->tag;
-  if (static_cast<int>(has_v.size()) != nlocal)
-    error->one(FLERR, "fix polarity: internal error: velocity directions not recorded");
+  // Atoms appended since the last post_force (create_atoms before 'run N pre
+  // no') have no recorded velocity: no velocity torque on their first step.
+  // Removed atoms have shifted the others' indices: that needs a setup.
+  const int nrec = static_cast<int>(has_v.size());
+  if (nrec > nlocal || (nrec < nlocal && params.J_S != 0.0))
+    error->one(FLERR,
+               "fix polarity: {} atoms on this rank at step {}, but {} when forces were last "
+               "computed: atoms were {} without a setup; use 'run N pre yes' after "
+               "create_atoms or delete_atoms",
+               nlocal, update->ntimestep, nrec, nrec > nlocal ? "removed" : "added");
+  if (nrec < nlocal) {
+    has_v.resize(nlocal, 0);
+    vhat.resize(2 * nlocal, 0.0);
+  }
+  fresh_angles(nlocal + atom->nghost);
 
   // Unit polarities: mu[i][0..1] / |mu|.  mu is stored with |mu| in mu[i][3];
   // every cell's moment has length mu[i][3] > 0 after init().
@@ -552,4 +597,116 @@ void FixPolarity::polar_orders_3d(double &polar, double &nematic)
   } else {
     polar = nematic = 0.0;
   }
+}
+
+/* ----------------------------------------------------------------------
+   Integration by fix brownian/heun (the CoupledDof interface of
+   coupled_dof.h).  The degree of freedom is the polarity angle; its rate
+   is tau / gamma_R at the current positions, polarities and velocities
+   (the integrator puts the velocity of the state, F / gamma_t, into v),
+   its noise the same Gaussian increment that the Euler step above draws.
+------------------------------------------------------------------------- */
+
+void FixPolarity::find_driver()
+{
+  int n = 0;
+  for (int i = 0; i < modify->nfix; i++)
+    if (dynamic_cast<CoupledIntegrator *>(modify->fix[i])) n++;
+  if (n > 1)
+    error->all(FLERR,
+               "fix polarity {}: {} fixes (brownian/heun) want to integrate its angles; "
+               "keep one",
+               id, n);
+  driven = n;
+}
+
+/* tau of the local atoms (in the vector tau) from the tessellation of
+   state_step (the current positions) and the current polarities, including
+   the ghosts', and velocity directions. */
+
+void FixPolarity::angle_torques(bigint state_step)
+{
+  const int nlocal = atom->nlocal;
+  double **mu = atom->mu;
+  if (static_cast<int>(has_v.size()) != nlocal)
+    error->one(FLERR, "fix polarity: internal error: velocity directions not recorded");
+  const int nall = nlocal + atom->nghost;
+  unit.resize(2 * nall);
+  for (int i = 0; i < nall; i++) {
+    const double inv = mu[i][3] > 0.0 ? 1.0 / mu[i][3] : 0.0;
+    unit[2 * i] = mu[i][0] * inv;
+    unit[2 * i + 1] = mu[i][1] * inv;
+  }
+  tau.resize(nlocal);
+  if (params.J_S != 0.0) {
+    const tessera::Tessellation &t = pair->tessellation();
+    if (pair->tessellation_step() != state_step || t.n_owned != nlocal)
+      error->one(FLERR,
+                 "fix polarity: the tessellation of pair vertex/voronoi is from step {}, the "
+                 "integrator needs it for step {}",
+                 pair->tessellation_step(), state_step);
+    tessera::polarity_torque_vec(t, unit.data(), 2, params, vhat.data(), has_v.data(),
+                                 tau.data());
+  } else {
+    none.n_owned = nlocal;
+    none.cell_offset.assign(nlocal + 1, 0);
+    tessera::polarity_torque_vec(none, unit.data(), 2, params, vhat.data(), has_v.data(),
+                                 tau.data());
+  }
+}
+
+void FixPolarity::coupled_rate(double *rate, int stride, bigint state_step)
+{
+  // The integrator has put the velocity of this state into v.
+  double **v = atom->v;
+  const int nlocal = atom->nlocal;
+  vhat.resize(2 * nlocal);
+  has_v.assign(nlocal, 0);
+  if (params.J_V != 0.0)
+    for (int i = 0; i < nlocal; i++) {
+      const double s = std::sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1]);
+      has_v[i] = s > 0.0;
+      vhat[2 * i] = has_v[i] ? v[i][0] / s : 0.0;
+      vhat[2 * i + 1] = has_v[i] ? v[i][1] / s : 0.0;
+    }
+  angle_torques(state_step);
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++)
+    rate[i * stride] = (mask[i] & groupbit) ? tau[i] / gamma_r : 0.0;
+}
+
+void FixPolarity::coupled_noise(double *w, int stride)
+{
+  const int *mask = atom->mask;
+  const tagint *tag = atom->tag;
+  const double noise = std::sqrt(2.0 * d_rot * update->dt);
+  const bigint step = update->ntimestep;
+  for (int i = 0; i < atom->nlocal; i++)
+    w[i * stride] =
+        (d_rot > 0.0 && (mask[i] & groupbit)) ? noise * gaussian(seed, tag[i], step) : 0.0;
+}
+
+void FixPolarity::coupled_advance(const double *dq, int stride)
+{
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mask[i] & groupbit) rotate(i, dq[i * stride]);
+}
+
+/* mu of local atom i turned by dth, its length kept (1 if it had none). */
+
+void FixPolarity::rotate(int i, double dth)
+{
+  double **mu = atom->mu;
+  const double m = mu[i][3] > 0.0 ? mu[i][3] : 1.0;
+  const double nx = mu[i][3] > 0.0 ? mu[i][0] / m : 1.0;
+  const double ny = mu[i][3] > 0.0 ? mu[i][1] / m : 0.0;
+  double s, c;
+  sincos_small(dth, s, c);
+  const double rx = c * nx - s * ny, ry = s * nx + c * ny;
+  const double r = 1.0 / std::sqrt(rx * rx + ry * ry);
+  mu[i][0] = m * rx * r;
+  mu[i][1] = m * ry * r;
+  mu[i][2] = 0.0;
+  mu[i][3] = m;
 }

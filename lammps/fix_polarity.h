@@ -12,6 +12,7 @@ FixStyle(polarity,FixPolarity);
 #ifndef LMP_FIX_POLARITY_H
 #define LMP_FIX_POLARITY_H
 
+#include "coupled_dof.h"
 #include "fix.h"
 
 #include "tessera/polarity.h"
@@ -22,7 +23,7 @@ FixStyle(polarity,FixPolarity);
 
 namespace LAMMPS_NS {
 
-class FixPolarity : public Fix {
+class FixPolarity : public Fix, public CoupledDof {
  public:
   FixPolarity(class LAMMPS *, int, char **);
   int setmask() override;
@@ -43,6 +44,7 @@ class FixPolarity : public Fix {
   std::vector<unsigned char> has_v;
 
   void init_angles();
+  void fresh_angles(int);
   void polar_orders(double &polar, double &nematic);
 
   // dimension 3: a unit vector per cell (end of fix_polarity.cpp)
@@ -50,6 +52,19 @@ class FixPolarity : public Fix {
   void post_force_3d();
   void initial_integrate_3d();
   void polar_orders_3d(double &polar, double &nematic);
+  // Integration by a predictor-corrector integrator (fix brownian/heun, see
+  // coupled_dof.h): the angle of each cell is its degree of freedom.
+ public:
+  int coupled_size() const override { return 1; }
+  void coupled_rate(double *, int, bigint) override;
+  void coupled_noise(double *, int) override;
+  void coupled_advance(const double *, int) override;
+
+ protected:
+  int driven = 0;    // 1: a CoupledIntegrator advances the angles, not initial_integrate
+  void find_driver();
+  void angle_torques(bigint state_step);
+  void rotate(int i, double dth);
 };
 
 }    // namespace LAMMPS_NS

@@ -10,6 +10,7 @@
 // included) and -restart2data/-restart2dump (a restart file can name our
 // pair style; we convert after registering).
 
+#include "tessera_compat.h"
 #include "tessera_styles.h"
 
 #include "error.h"
@@ -197,7 +198,7 @@ int main(int argc, char **argv)
     }
   } catch (LAMMPSAbortException &abort) {
     // Only thrown by a liblammps.so built with LAMMPS_EXCEPTIONS.
-    MPI_Abort(abort.universe, 1);
+    MPI_Abort(tessera_compat::abort_universe(abort), 1);
   } catch (LAMMPSException &) {
     MPI_Barrier(MPI_COMM_WORLD);
     MPI_Finalize();

@@ -15,10 +15,12 @@ PairStyle(vertex/voronoi,PairVertexVoronoi);
 #include "pair.h"
 
 #include "tessera/energy.h"
+#include "tessera/finite.h"
 #include "tessera/mesh.h"
 #include "tessera/tessellation.h"
 #include "tessera/voronoi3d.h"
 
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -37,6 +39,7 @@ class PairVertexVoronoi : public Pair {
   void write_restart_settings(FILE *) override;
   void read_restart_settings(FILE *) override;
   void *extract(const char *, int &) override;
+  void reinit() override;
   double memory_usage() override;
 
   // The tessellation of the last force computation: owned cells are the local
@@ -52,6 +55,15 @@ class PairVertexVoronoi : public Pair {
   const tessera::Tessellation3 &tessellation3() const { return tess3; }
   bigint tessellation3_step() const { return tess3_step; }
   bool tessellation3_current() const;
+  // For the step guard: sqrt(A0) of a type, and owned atom i's closest
+  // Voronoi neighbour (ID, distance) at the last force computation.
+  double cell_size(int type) const;
+  bool closest_neighbour(int i, tagint &j, double &d) const;
+  // Finite Voronoi cells ('radius r'): r, or 0 for the confluent model; the
+  // cells of the last force computation (tessellation() then holds their
+  // contact edges only).
+  double finite_radius() const { return radius; }
+  const tessera::FiniteTessellation &finite_cells() const { return ftess; }
 
  protected:
   double cut_global;
@@ -61,6 +73,14 @@ class PairVertexVoronoi : public Pair {
   int **lambda_set;               // 1 if pair_coeff I J gave Lambda_IJ explicitly
   int *type_set;                  // 1 if pair_coeff I I gave the cell parameters
   tessera::Model model;
+  // Model-parameter plumbing for fix adapt and the quadratic heterotypic
+  // tension (see build_model() and reinit()).
+  double **lambda_extra;  // lambda_set == 2: Lambda_IJ = mean + this (pair_coeff I J quadratic)
+  double **adapt_kappa, **adapt_area0, **adapt_gamma;  // type-pair views of the per-type values
+  double **lambda_built;  // lambda as build_model() left it: what fix adapt changed since
+  void build_model();
+  int read_restart_settings_version(FILE *);
+  void print_model() const;
 
   tessera::Tessellation tess;
   bigint tess_step;
@@ -73,11 +93,28 @@ class PairVertexVoronoi : public Pair {
   std::vector<double> cell_e;
   std::vector<double> cell_w;  // per-cell virial (2d: xx, yy, xy, yx; 3d: 9) when asked for
 
+  double radius;                 // finite Voronoi radius (0: confluent model)
+  double *free_tension;          // per type: tension of free arcs (internal F)
+  int free_set;                  // 1 if some pair_coeff gave 'free'
+  tessera::FiniteTessellation ftess;
+  std::vector<double> free_t0;   // free_tension, 0-based
+  void compute_finite();
+
   void allocate();
   bool tessellate();  // true if the ghost shell had to grow (atoms re-acquired)
   void grow_ghost_shell(double);
   int grow;             // widen the ghost shell when a cell needs it (default) or stop
   double cutghost_saved;  // comm->cutghostuser before this style raised it, or -1
+  // Closest pair of centres among the owned cells' Voronoi neighbours at the
+  // last force computation (atom IDs, distance, step), to name in errors.
+  tagint close_i, close_j;
+  double close_d;
+  bigint close_step;
+  std::vector<double> close_pos;  // positions and IDs of the last tessellated points
+  std::vector<tagint> close_tag;
+  void note_closest_pair();
+  void check_lost_atoms();
+  std::string guard_id;
   void check_against_scratch(const tessera::Points &, const tessera::Region &, double);
   tessera::Region subdomain() const;
   double ghost_width() const;

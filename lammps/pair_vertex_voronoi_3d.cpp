@@ -29,10 +29,19 @@ using namespace LAMMPS_NS;
 
 void PairVertexVoronoi::init_style_3d()
 {
-  if (!domain->zperiodic)
+  if (!domain->xperiodic || !domain->yperiodic || !domain->zperiodic)
     error->all(FLERR,
                "pair_style vertex/voronoi in 3d requires periodic x, y and z boundaries "
                "('boundary p p p')");
+  if (radius > 0.0)
+    error->all(FLERR,
+               "pair_style vertex/voronoi: finite cells ('radius') are for 2d tissues; in 3d "
+               "the cells are confluent Voronoi polyhedra");
+  int flag = -1, cols = -1;
+  if (atom->find_custom("area0", flag, cols) >= 0)
+    error->all(FLERR,
+               "pair_style vertex/voronoi: per-atom preferred areas (d_area0) are for 2d; in 3d "
+               "the preferred volume V0 is set per type by pair_coeff");
   if (reference_every > 0)
     error->all(FLERR,
                "pair_style vertex/voronoi: 'reference' times the 2d triangulation; in 3d every "

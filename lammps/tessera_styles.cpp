@@ -8,13 +8,18 @@
 #include "error.h"
 #include "force.h"
 #include "lammps.h"
+#include "lammpsplugin.h"
 #include "modify.h"
 #include "utils.h"
+#include "version.h"
 
 // One include per style in the table below.
 #include "compute_vertex_atom.h"
 #include "compute_vertex_local.h"
+#include "fix_cell_death.h"
+#include "fix_cell_divide.h"
 #include "fix_brownian.h"
+#include "fix_brownian_heun.h"
 #include "fix_polarity.h"
 #include "pair_vertex_voronoi.h"
 
@@ -84,8 +89,11 @@ const std::vector<Entry> &style_table()
       pair_style<PairVertexVoronoi>("vertex/voronoi"),
       fix_style<FixPolarity>("polarity"),
       fix_style<FixBrownianTessera>("brownian", Policy::IF_MISSING),
+      fix_style<FixBrownianHeun>("brownian/heun"),
       compute_style<ComputeVertexAtom>("vertex/atom"),
       compute_style<ComputeVertexLocal>("vertex/local"),
+      fix_style<FixCellDivide>("cell/divide"),
+      fix_style<FixCellDeath>("cell/death"),
   };
   return table;
 }
@@ -110,6 +118,45 @@ void insert(Map *map, const Entry &entry, Creator creator, TesseraStyle &result)
   result.provided = true;
 }
 
+// Logs one line naming the styles Tessera serves (and those the host kept).
+void log_styles(LAMMPS *lmp, const std::vector<TesseraStyle> &results)
+{
+  std::string ours, hosts;
+  for (const TesseraStyle &result : results) {
+    const std::string label = result.command + " " + result.name;
+    if (result.provided)
+      ours += (ours.empty() ? "" : ", ") + label;
+    else
+      hosts += (hosts.empty() ? "" : ", ") + label;
+  }
+  if (lmp->comm->me == 0) {
+    std::string mesg =
+        fmt::format("Tessera {} styles: {}\n", tessera_version(), ours.empty() ? "(none)" : ours);
+    if (!hosts.empty()) mesg += fmt::format("  kept the host LAMMPS's own: {}\n", hosts);
+    utils::logmesg(lmp, mesg);
+  }
+}
+
+// True if map serves name with a creator that is not ours.
+template <class Map, class Creator> bool host_has(Map *map, const char *name, Creator ours)
+{
+  auto found = map->find(name);
+  return found != map->end() && found->second != ours;
+}
+
+// True if map serves name with our creator.
+template <class Map, class Creator> bool is_ours(Map *map, const char *name, Creator ours)
+{
+  auto found = map->find(name);
+  return found != map->end() && found->second == ours;
+}
+
+// The LAMMPS plugin API's name of a command ("pair_style" -> "pair").
+const char *plugin_style(const Entry &entry)
+{
+  return entry.pair ? "pair" : entry.fix ? "fix" : "compute";
+}
+
 }    // namespace
 
 /* ---------------------------------------------------------------------- */
@@ -117,7 +164,6 @@ void insert(Map *map, const Entry &entry, Creator creator, TesseraStyle &result)
 std::vector<TesseraStyle> LAMMPS_NS::tessera_register_styles(LAMMPS *lmp)
 {
   std::vector<TesseraStyle> results;
-  std::string ours, hosts;
   for (const Entry &entry : style_table()) {
     TesseraStyle result{entry.command, entry.name, false, false};
     if (entry.pair)
@@ -127,23 +173,65 @@ std::vector<TesseraStyle> LAMMPS_NS::tessera_register_styles(LAMMPS *lmp)
     else
       insert(lmp->modify->compute_map, entry, entry.compute, result);
 
-    const std::string label = result.command + " " + result.name;
-    if (result.provided)
-      ours += (ours.empty() ? "" : ", ") + label;
-    else
-      hosts += (hosts.empty() ? "" : ", ") + label;
     if (result.replaced_host && lmp->comm->me == 0)
       lmp->error->warning(FLERR, "Tessera's {} replaces the host LAMMPS's style of that name",
-                          label);
+                          result.command + " " + result.name);
     results.push_back(result);
   }
+  log_styles(lmp, results);
+  return results;
+}
 
-  if (lmp->comm->me == 0) {
-    std::string mesg =
-        fmt::format("Tessera {} styles: {}\n", tessera_version(), ours.empty() ? "(none)" : ours);
-    if (!hosts.empty()) mesg += fmt::format("  kept the host LAMMPS's own: {}\n", hosts);
-    utils::logmesg(lmp, mesg);
+/* ----------------------------------------------------------------------
+   The plugin route: LAMMPS's `plugin load` calls lammpsplugin_init(), which
+   hands us its registration function.  Each table entry becomes one
+   lammpsplugin_t; LAMMPS keeps copies of them (all strings are literals),
+   inserts the creators into its maps and lists them under `plugin list`.
+------------------------------------------------------------------------- */
+
+std::vector<TesseraStyle> LAMMPS_NS::tessera_register_plugin(LAMMPS *lmp, void *handle,
+                                                            void *regfunc)
+{
+  auto reg = reinterpret_cast<lammpsplugin_regfunc>(regfunc);
+  std::vector<TesseraStyle> results;
+  int fresh = 0;
+  for (const Entry &entry : style_table()) {
+    TesseraStyle result{entry.command, entry.name, true, false};
+    lammpsplugin_t plugin;
+    plugin.version = LAMMPS_VERSION;
+    plugin.style = plugin_style(entry);
+    plugin.name = entry.name;
+    plugin.info = "Tessera: active Voronoi vertex model";
+    plugin.author = "the Tessera developers";
+    plugin.handle = handle;
+    // LAMMPS casts these back to Force::PairCreator / Modify::FixCreator /
+    // Modify::ComputeCreator before calling them, i.e. to their own types.
+    if (entry.pair) {
+      plugin.creator.v1 = reinterpret_cast<lammpsplugin_factory1 *>(entry.pair);
+    } else {
+      plugin.creator.v2 = entry.fix ? reinterpret_cast<lammpsplugin_factory2 *>(entry.fix)
+                                    : reinterpret_cast<lammpsplugin_factory2 *>(entry.compute);
+    }
+    // the host's own (an upstream package) wins; ours only fills a gap
+    if (entry.policy == Policy::IF_MISSING) {
+      if (entry.pair)
+        result.provided = !host_has(lmp->force->pair_map, entry.name, entry.pair);
+      else if (entry.fix)
+        result.provided = !host_has(lmp->modify->fix_map, entry.name, entry.fix);
+      else
+        result.provided = !host_has(lmp->modify->compute_map, entry.name, entry.compute);
+    }
+    // a second `plugin load` of the same file: those entries are ours already
+    const bool loaded = entry.pair      ? is_ours(lmp->force->pair_map, entry.name, entry.pair)
+                        : entry.fix     ? is_ours(lmp->modify->fix_map, entry.name, entry.fix)
+                                        : is_ours(lmp->modify->compute_map, entry.name, entry.compute);
+    if (result.provided && !loaded) {
+      reg(&plugin, lmp);
+      fresh++;
+    }
+    results.push_back(result);
   }
+  if (fresh > 0) log_styles(lmp, results);
   return results;
 }
 

@@ -34,6 +34,14 @@ struct TesseraStyle {
 // the styles.
 TESSERA_LAMMPS_API std::vector<TesseraStyle> tessera_register_styles(LAMMPS *lmp);
 
+// The plugin route (LAMMPS's `plugin load`, tessera_plugin.cpp): hands every
+// table entry to LAMMPS's plugin registration function regfunc (a
+// lammpsplugin_regfunc) with the plugin's dlopen handle, except a
+// Policy::IF_MISSING entry whose name the host already serves; logs the same
+// line as tessera_register_styles().
+TESSERA_LAMMPS_API std::vector<TesseraStyle> tessera_register_plugin(LAMMPS *lmp, void *handle,
+                                                                     void *regfunc);
+
 }    // namespace LAMMPS_NS
 
 extern "C" {

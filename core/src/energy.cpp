@@ -56,7 +56,7 @@ namespace {
 
 inline double cell_energy_of(const Tessellation &t, int c, const int *type, const Model &m) {
   const CellType &ct = m.types[type[c]];
-  const double dA = t.area[c] - ct.A0;
+  const double dA = t.area[c] - m.area0_of(c, type[c]);
   double e = 0.5 * ct.K * dA * dA + 0.5 * ct.Gamma * t.perimeter[c] * t.perimeter[c];
   double tension = 0.0;
   for (int k = t.cell_offset[c]; k < t.cell_offset[c + 1]; ++k)
@@ -76,6 +76,38 @@ double compute_energy(const Tessellation &t, const int *type, const Model &model
   }
   return e;
 }
+
+namespace {
+
+// The error for non-finite results (compute_forces' last check).
+[[noreturn]] void throw_not_finite(const Tessellation &t, const Points &pts, double energy,
+                                   const double *f, int f_stride) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "tessera: the energy or forces are not finite (energy " << energy << ")";
+  int bad = -1;
+  for (int p = 0; p < t.n_points && bad < 0; ++p)
+    if (!std::isfinite(f[static_cast<long>(p) * f_stride]) ||
+        !std::isfinite(f[static_cast<long>(p) * f_stride + 1]))
+      bad = p;
+  int cell = -1;
+  for (int c = 0; c < t.n_owned && cell < 0; ++c)
+    if (!std::isfinite(t.area[c]) || !std::isfinite(t.perimeter[c])) cell = c;
+  if (bad >= 0) {
+    const int o = t.origin.empty() ? bad : t.origin[bad];
+    s << "; first at point " << o << " (" << pts.x(bad) << ", " << pts.y(bad) << "), force ("
+      << f[static_cast<long>(bad) * f_stride] << ", " << f[static_cast<long>(bad) * f_stride + 1]
+      << ")";
+  }
+  if (cell >= 0)
+    s << "; the cell of point " << cell << " has area " << t.area[cell] << " and perimeter "
+      << t.perimeter[cell];
+  s << ": the moduli and lengths overflow double precision; rescale the units (length, "
+       "energy) so that K A0^2, Gamma P^2 and Lambda P stay well below 1e300";
+  throw Error(s.str());
+}
+
+}  // namespace
 
 ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *type,
                            const Model &model, double *f, int f_stride, double *cell_energy,
@@ -172,7 +204,7 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
     const int o = t.cell_offset[c], m = t.cell_size(c);
     const int tc = type[c];
     const CellType &ct = model.types[tc];
-    const double dA = t.area[c] - ct.A0;
+    const double dA = t.area[c] - model.area0_of(c, tc);
     const double dEdA = ct.K * dA;
     const double dEdP = ct.Gamma * t.perimeter[c];
     const double *lam_row = &model.lambda[static_cast<size_t>(tc) * ntypes];
@@ -301,6 +333,16 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
     if (g.x == 0.0 && g.y == 0.0) continue;
     push(t.triangles[tri][0], t.triangles[tri][1], t.triangles[tri][2], g.x, g.y);
   }
+  // Never return NaN or infinity silently.  The virial sums r (x) F over
+  // every force contribution (a non-finite force makes it non-finite, also
+  // at r = 0 where 0 * inf is NaN), so checking it and the energy costs
+  // O(1); the search for the point to name runs only on failure.  With the
+  // tessellation's input limits this is reached when the energy itself
+  // overflows (moduli times lengths beyond double's range).
+  if (!std::isfinite(out.energy) || !std::isfinite(out.virial[0]) ||
+      !std::isfinite(out.virial[1]) || !std::isfinite(out.virial[2]) ||
+      !std::isfinite(out.virial[3]))
+    throw_not_finite(t, pts, out.energy, f, f_stride);
   return out;
 }
 

@@ -34,6 +34,26 @@ using CPoint = Kernel::Point_2;
 // by round-off; they get length exactly 0.
 constexpr double kZeroEdge = 1e-10;
 
+// Input limits (doc/model.md, "Limits of the input").  Two centres closer
+// than kMinSeparation times the largest coordinate magnitude S are refused:
+// a periodic image or ghost is a rounded translate, off by up to ulp(S), so
+// the bisector of two points d apart is only known to an angle ~ eps S / d
+// and the vertices on it to eps S / d of their distance; at the limit that
+// is ~2e-6, and below it the cell boundary between them is round-off.
+// Lengths are kept within [kMinLength, kMaxCoordinate] so that the cubes of
+// lengths in the circumcentre formula neither overflow nor underflow
+// (double's range is 2e-308 .. 2e308; (1e100)^3 keeps a factor 1e8 to spare).
+constexpr double kMinSeparation = 1e-10;
+constexpr double kMinLength = 1e-100;
+constexpr double kMaxCoordinate = 1e100;
+
+// The squared distance below which two points are refused, for points whose
+// largest coordinate magnitude is S.
+inline double min_separation2(double S) {
+  const double d = std::max(kMinSeparation * S, kMinLength);
+  return d * d;
+}
+
 // Orientation of (a, b, c): > 0 counter-clockwise.  Shewchuk's static error
 // bound decides almost every case in double precision; the rest go to CGAL's
 // exact predicate.
@@ -82,10 +102,37 @@ inline void circumcentre(double ax, double ay, double bx, double by, double cx, 
 
 } // namespace
 
+void Mesh::throw_too_close(const Points &pts, int i, int j, double scale, const long *ids,
+                           const int *report) {
+  auto rep = [&](int k) { return report ? report[k] : k; };
+  auto name = [&](int k) {
+    std::ostringstream s;
+    s.precision(17);
+    s << point_name(rep(k), ids) << " at (" << pts.x(rep(k)) << ", " << pts.y(rep(k)) << ")";
+    if (rep(k) != k) s << " (its periodic image at (" << pts.x(k) << ", " << pts.y(k) << "))";
+    return s.str();
+  };
+  const double d = std::hypot(pts.x(i) - pts.x(j), pts.y(i) - pts.y(j));
+  std::ostringstream s;
+  s << "tessera: two cell centres nearly coincide: " << name(std::min(i, j)) << " and "
+    << name(std::max(i, j)) << " are " << d << " apart, ";
+  if (kMinSeparation * scale >= kMinLength)
+    s << "closer than " << kMinSeparation << " times the largest coordinate magnitude "
+      << scale << " (limit " << kMinSeparation * scale
+      << "): double precision cannot resolve the cell boundary between them; move or delete "
+         "one of them";
+  else
+    s << "closer than " << kMinLength
+      << ": lengths this small underflow in double precision; rescale the length unit";
+  throw Error(s.str());
+}
+
 void Mesh::build(const Points &pts, const long *ids, const int *report) {
   valid_ = false;
+  collinear_ = false;
   const int n = pts.n;
   auto rep = [&](int i) { return report ? report[i] : i; };
+  double scale = 0.0;  // largest coordinate magnitude, for the separation limit
   for (int i = 0; i < n; ++i) {
     if (!std::isfinite(pts.x(i)) || !std::isfinite(pts.y(i))) {
       std::ostringstream s;
@@ -93,6 +140,18 @@ void Mesh::build(const Points &pts, const long *ids, const int *report) {
         << ", " << pts.y(i) << ")";
       throw Error(s.str());
     }
+    const double m = std::max(std::fabs(pts.x(i)), std::fabs(pts.y(i)));
+    if (m > kMaxCoordinate) {
+      std::ostringstream s;
+      s.precision(17);
+      s << "tessera: " << point_name(rep(i), ids) << " at (" << pts.x(i) << ", " << pts.y(i)
+        << ") is beyond " << kMaxCoordinate
+        << " in magnitude: the geometry's squares and cubes would overflow double precision; "
+           "rescale the length unit (and the box) so that coordinates stay below "
+        << kMaxCoordinate;
+      throw Error(s.str());
+    }
+    scale = std::max(scale, m);
   }
   if (n < 3) {
     std::ostringstream s;
@@ -132,10 +191,21 @@ void Mesh::build(const Points &pts, const long *ids, const int *report) {
       }
     }
     if (dt.dimension() < 2) {
+      collinear_ = true;
       std::ostringstream s;
       s << "tessera: need at least 3 non-collinear points to tessellate; all " << n
         << " points are on one line";
       throw Error(s.str());
+    }
+    // Nearly coincident centres (the closest pair of points is always a
+    // Delaunay edge, so checking the edges finds it).  One pass over the
+    // edges, cheap next to the triangulation itself.
+    const double sep2 = min_separation2(scale);
+    for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
+      const int i = e->first->vertex(Delaunay::cw(e->second))->info();
+      const int j = e->first->vertex(Delaunay::ccw(e->second))->info();
+      const double dx = pts.x(i) - pts.x(j), dy = pts.y(i) - pts.y(j);
+      if (dx * dx + dy * dy < sep2) throw_too_close(pts, i, j, scale, ids, report);
     }
 
     // Export, with the infinite vertex as -1 (faces in CGAL's order; they
@@ -250,11 +320,27 @@ bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi)
     valid_ = false;
     return false;
   }
-  for (int i = 0; i < pts.n; ++i)
+  double scale = 0.0;
+  for (int i = 0; i < pts.n; ++i) {
     if (!std::isfinite(pts.x(i)) || !std::isfinite(pts.y(i))) { // build() names it
       valid_ = false;
       return false;
     }
+    scale = std::max({scale, std::fabs(pts.x(i)), std::fabs(pts.y(i))});
+  }
+  if (scale > kMaxCoordinate) { // build() names it
+    valid_ = false;
+    return false;
+  }
+  // Points that came too close are left to build(), which names them: every
+  // edge is checked in the pass below and every edge a flip creates.
+  const double sep2 = min_separation2(scale);
+  auto too_close = [&](int a, int b) {
+    if (a == kInfinite || b == kInfinite)
+      return false;
+    const double dx = pts.x(a) - pts.x(b), dy = pts.y(a) - pts.y(b);
+    return dx * dx + dy * dy < sep2;
+  };
   const int nt = static_cast<int>(v_.size() / 3);
   // One pass over the triangles: a finite triangle that is no longer
   // counter-clockwise has folded over, which flips cannot repair (outside the
@@ -285,6 +371,10 @@ bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi)
       if (u < t)
         continue;
       const int r = v_[3 * t + k], p = v_[3 * t + (k + 1) % 3], q = v_[3 * t + (k + 2) % 3];
+      if (too_close(p, q)) {
+        valid_ = false;
+        return false;
+      }
       const int j = (nb_[3 * u + 1] == t) + 2 * (nb_[3 * u + 2] == t);
       if (flip_needed(pts, p, q, r, v_[3 * u + j])) {
         stack_.push_back(t);
@@ -309,6 +399,10 @@ bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi)
     const int r = v_[3 * t + k], p = v_[3 * t + (k + 1) % 3], q = v_[3 * t + (k + 2) % 3];
     if (!flip_needed(pts, p, q, r, v_[3 * u + j]))
       continue;
+    if (too_close(r, v_[3 * u + j])) { // the edge the flip would create
+      valid_ = false;
+      return false;
+    }
     flip(t, k, u, j);
     if (++flips_ > max_flips) { // cannot happen for a valid mesh; be safe
       valid_ = false;
@@ -355,9 +449,15 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
   t.radius.resize(nft);
   mesh_of_.resize(nft);
 
+  // The tolerance is a fraction of the smaller circumradius: a nearly flat
+  // triangle (on the hull of a ghost shell, or a row of collinear images)
+  // has a huge or infinite radius, and with the larger one its tolerance
+  // would swallow its neighbours into one "vertex" with an infinite centre.
+  // A vertex that is not finite is never the same as another (the
+  // comparisons below are false for NaN).
   auto same_vertex = [&](int a, int b) {
     const double dx = t.vertices[a].x - t.vertices[b].x, dy = t.vertices[a].y - t.vertices[b].y;
-    const double tol = kZeroEdge * std::max(t.radius[a], t.radius[b]);
+    const double tol = kZeroEdge * std::min(t.radius[a], t.radius[b]);
     return dx * dx + dy * dy <= tol * tol;
   };
   // Multifold vertices (triangles sharing one circumcentre) are seeded while
@@ -429,7 +529,7 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
       area2 += (h0.x - cx) * (h1.y - cy) - (h1.x - cx) * (h0.y - cy);
       const double dx = h1.x - h0.x, dy = h1.y - h0.y;
       const double d = std::sqrt(dx * dx + dy * dy);
-      const double l = d > kZeroEdge * std::max(t.radius[t0], t.radius[t1]) ? d : 0.0;
+      const double l = d > kZeroEdge * std::min(t.radius[t0], t.radius[t1]) ? d : 0.0;
       el[k] = l;
       perim += l;
       if (l == 0.0)

@@ -188,11 +188,9 @@ void wrap_into_box(const Box &box, std::vector<double> &xy) {
 Tessellation tessellate_periodic(const Box &box, const Points &pts, const long *ids) {
   box.validate();
   const int n = pts.n;
-  if (n < 3) {
-    std::ostringstream s;
-    s << "tessera: need at least 3 non-collinear points to tessellate, got " << n;
-    throw Error(s.str());
-  }
+  // One or two cells, or cells on one line, are a valid periodic tiling:
+  // their images complete it (the margin grows below until they do).
+  if (n < 1) throw Error("tessera: no points to tessellate in the periodic box");
   std::vector<double> own(2 * static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) {
     own[2 * i] = pts.x(i);
@@ -235,7 +233,17 @@ Tessellation tessellate_periodic(const Box &box, const Points &pts, const long *
     }
     Points ext{all.data(), static_cast<int>(origin.size()), 2};
     Mesh mesh;
-    mesh.build(ext, ids, origin.data());
+    try {
+      mesh.build(ext, ids, origin.data());
+    } catch (const Error &) {
+      // Fewer than 3 points, or all on one line, within this margin (a
+      // single cell, or a row of cells whose images across the box are
+      // still outside it): images further out make the set two-dimensional.
+      // Any other error (coincident points, ...) stands.
+      if (!(origin.size() < 3 || mesh.collinear()) || margin >= max_margin) throw;
+      margin = std::min(2.0 * margin, max_margin);
+      continue;
+    }
     Tessellation t;
     mesh.cells(ext, n, t);
     double grow = 0.0;

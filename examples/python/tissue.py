@@ -59,8 +59,8 @@ run 0
         lmp.command(f"run {args.steps}")
         # gather per-atom data on every rank (numpy arrays of all atoms)
         mu = np.array(lmp.gather_atoms("mu", 1, 3)).reshape(-1, 3)
-        # the 7 per-cell columns of compute vertex/atom, from all ranks
-        cells = np.array(lmp.gather("c_cell", 1, 7)).reshape(-1, 7)
+        # the 9 per-cell columns of compute vertex/atom, from all ranks
+        cells = np.array(lmp.gather("c_cell", 1, 9)).reshape(-1, 9)
         q = cells[:, 2]
         n = mu[:, :2] / np.linalg.norm(mu[:, :2], axis=1)[:, None]
         polar = float(np.hypot(*n.mean(axis=0)))

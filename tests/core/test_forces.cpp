@@ -162,6 +162,43 @@ TEST(Forces, MatchFiniteDifferencesInhomogeneous) {
   }
 }
 
+TEST(Forces, PerCellPreferredAreaMatchesFiniteDifferences) {
+  // Model::cell_area0 gives every cell its own A0.  The reference knows only
+  // per-type parameters, so it gets one type per cell: the cell's base-type
+  // K, Gamma and Lambdas with the cell's own A0.
+  for (bool cell : {false, true}) {
+    SCOPED_TRACE(name(cell));
+    const Config cfg = nondegenerate_config(40, 7.0, 6.0, 410, 0.3, 2e-3);
+    const reftess::RefParams base = testutil::random_params(411, cell);
+    testutil::Rng rng(412);
+    std::vector<double> a0(cfg.n());
+    for (double &a : a0) a = rng.uniform(0.5, 2.0);
+    const int n = cfg.n(), nt = base.ntypes();
+    reftess::RefParams p;
+    p.cell_tension = cell;
+    p.Lambda.assign(static_cast<size_t>(n) * n, 0.0);
+    Config per_cell = cfg;
+    for (int i = 0; i < n; ++i) {
+      const int t = cfg.type[i];
+      p.K.push_back(base.K[t]);
+      p.A0.push_back(a0[i]);
+      p.Gamma.push_back(base.Gamma[t]);
+      per_cell.type[i] = i;
+      for (int j = 0; j < n; ++j) p.Lambda[i * n + j] = base.Lambda[t * nt + cfg.type[j]];
+    }
+    tessera::Model m = testutil::to_model(base);
+    m.cell_area0 = a0.data();
+    const Result r = forces(cfg, m);
+    expect_forces_match(r.f, fd_forces(per_cell, p, 1e-6), 1e-6);
+    expect_sum_zero(r.f);
+    const double eref = reftess::total_energy(reftess::voronoi(cfg.refbox(), cfg.xy), per_cell.type, p);
+    EXPECT_NEAR(r.out.energy, eref, 1e-11 * std::max(1.0, std::abs(eref)));
+    // Without the per-cell array the energy is the types' (a different value).
+    const Result r0 = forces(cfg, testutil::to_model(base));
+    EXPECT_GT(std::abs(r0.out.energy - r.out.energy), 1e-3);
+  }
+}
+
 TEST(Forces, SumToZero) {
   for (bool cell : {false, true}) {
     for (uint64_t seed = 400; seed < 404; ++seed) {

@@ -10,6 +10,13 @@ passes, or from the environment for running a module by hand:
 
 Decorate a test that starts more than one MPI rank with ``@nprocs(n)`` so
 CTest reserves that many cores and can skip it without mpiexec.
+
+Every test runs on either host LAMMPS (``--host``, which CMake passes):
+``tessera-lmp`` (Debian's LAMMPS with our styles built in; the default) or
+``plugin`` (a current LAMMPS's ``lmp`` given by ``--lmp``, with
+tesseraplugin.so loaded through LAMMPS_PLUGIN_PATH, and that LAMMPS's Python
+module for run_python).  A test whose expectation differs by host asks
+``Config.host`` (or ``self.plugin_host``) and checks each host's value.
 """
 
 import argparse
@@ -24,11 +31,18 @@ import unittest
 import numpy as np
 
 SKIP_RETURN_CODE = 77
+TOOLS = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "tools")
 
 
 class Config:
-    lmp = None          # tessera-lmp
-    lib = None          # libtessera_lammps.so
+    host = "tessera-lmp"    # or "plugin"
+    lmp = None          # tessera-lmp, or the plugin host's lmp
+    lib = None          # libtessera_lammps.so (tessera-lmp host)
+    plugin = None       # tesseraplugin.so (plugin host)
+    build = None        # Tessera's build directory (tests/core_forces, ...)
+    python_paths = {}   # plugin host: PYTHONPATH, LD_LIBRARY_PATH entries for run_python
+    tessera_lmp = None  # plugin host: Debian's tessera-lmp, to compare the hosts
+    intree_lmp = None   # plugin host: an lmp with the TESSERA package compiled in, or None
     mpiexec = None      # mpiexec, or None
     workdir = None      # where each test gets a fresh directory
     keep = False        # keep the directories of passing tests
@@ -128,8 +142,28 @@ mass * 1.0
 """
 
 
+def use_plugin_host(plugin, lammps_python=None, lammps_libdir=None):
+    """Every LAMMPS this process starts (lmp, or Python's lammps module)
+    loads tesseraplugin.so: LAMMPS_PLUGIN_PATH names its directory.  For
+    run_python, the host's Python module and liblammps.so come first on the
+    search paths (only there: tessera-lmp must keep Debian's liblammps.so.0)."""
+    os.environ["LAMMPS_PLUGIN_PATH"] = os.path.dirname(plugin)
+    os.environ["TESSERA_PLUGIN"] = plugin
+    Config.python_paths = {"PYTHONPATH": lammps_python, "LD_LIBRARY_PATH": lammps_libdir}
+
+
+def _prepended(env, var, path):
+    if path:
+        env[var] = os.pathsep.join([path] + [p for p in env.get(var, "").split(os.pathsep) if p])
+
+
 class LammpsTestCase(unittest.TestCase):
     """Base class: self.run_lmp() runs an input script in a fresh directory."""
+
+    @property
+    def plugin_host(self):
+        """True when the tests run on a current LAMMPS through the plugin."""
+        return Config.host == "plugin"
 
     def setUp(self):
         os.makedirs(Config.workdir, exist_ok=True)
@@ -150,16 +184,17 @@ class LammpsTestCase(unittest.TestCase):
         return d
 
     def run_lmp(self, script, nprocs=1, variables=None, args=None, stdin=None, files=None,
-                ok=True, timeout=240):
-        """Runs tessera-lmp on `script` (written to in.test and passed with
+                ok=True, timeout=240, lmp=None):
+        """Runs the host's lmp (tessera-lmp) on `script` (written to in.test and passed with
         -in; None: no -in) on nprocs ranks, in a fresh directory that also
         holds `files` (name: text).  With ok=True a failing run fails the test
-        and shows LAMMPS's output."""
+        and shows LAMMPS's output.  `lmp`: another executable than the host's
+        (e.g. Config.tessera_lmp, to compare hosts)."""
         d = self.new_dir()
         for name, text in (files or {}).items():
             with open(os.path.join(d, name), "w") as f:
                 f.write(text)
-        cmd = mpiexec_command(nprocs) + [Config.lmp]
+        cmd = mpiexec_command(nprocs) + [lmp or Config.lmp]
         if script is not None:
             with open(os.path.join(d, "in.test"), "w") as f:
                 f.write(script)
@@ -169,19 +204,25 @@ class LammpsTestCase(unittest.TestCase):
         cmd += list(args or [])
         proc = subprocess.run(cmd, cwd=d, input=stdin, capture_output=True, text=True,
                               timeout=timeout)
-        return self._checked(Run(d, proc), cmd, "tessera-lmp", ok)
+        return self._checked(Run(d, proc), cmd, os.path.basename(lmp or Config.lmp), ok)
 
     def run_python(self, code=None, nprocs=1, script=None, args=(), timeout=240, ok=True):
         """Runs Python `code` (or the file `script` with `args`) under the
         interpreter running these tests (Debian's /usr/bin/python3) in a fresh
         directory, on nprocs ranks.  libtessera_lammps.so is in the
-        environment as TESSERA_LAMMPS_LIB."""
+        environment as TESSERA_LAMMPS_LIB (and, on the plugin host,
+        tesseraplugin.so as TESSERA_PLUGIN, with that LAMMPS's Python module
+        first on PYTHONPATH); tessera_tools.host.register(lmp) uses either."""
         d = self.new_dir()
         if script is None:
             script = os.path.join(d, "script.py")
             with open(script, "w") as f:
                 f.write(code)
         env = dict(os.environ, TESSERA_LAMMPS_LIB=Config.lib, PYTHONDONTWRITEBYTECODE="1")
+        for var, path in Config.python_paths.items():
+            _prepended(env, var, path)
+        # tessera_tools (tools/), for tessera_tools.host.register(lmp)
+        env["PYTHONPATH"] = os.pathsep.join(p for p in (env.get("PYTHONPATH"), TOOLS) if p)
         cmd = mpiexec_command(nprocs) + [sys.executable, script] + list(args)
         proc = subprocess.run(cmd, cwd=d, capture_output=True, text=True, env=env,
                               timeout=timeout)
@@ -222,6 +263,20 @@ def main():
     parser.add_argument("--build", default=build, help="build directory (default $TESSERA_BUILD or build)")
     parser.add_argument("--lmp", default=os.environ.get("TESSERA_LMP"))
     parser.add_argument("--lib", default=os.environ.get("TESSERA_LAMMPS_LIB"))
+    parser.add_argument("--host", choices=("tessera-lmp", "plugin"),
+                        default=os.environ.get("TESSERA_TEST_HOST", "tessera-lmp"),
+                        help="host LAMMPS: tessera-lmp (default) or plugin (--lmp is a current "
+                        "LAMMPS's lmp, --plugin its tesseraplugin.so)")
+    parser.add_argument("--plugin", default=os.environ.get("TESSERA_PLUGIN"))
+    parser.add_argument("--lammps-python", default=os.environ.get("TESSERA_LAMMPS_PYTHON"),
+                        help="plugin host: directory of that LAMMPS's Python module (default: "
+                        "src-tree/python beside the install prefix of --lmp, if there)")
+    parser.add_argument("--lammps-libdir", default=None,
+                        help="plugin host: directory of its liblammps.so (default: ../lib of --lmp)")
+    parser.add_argument("--tessera-lmp", default=os.environ.get("TESSERA_TEST_TESSERA_LMP"),
+                        help="plugin host: Debian's tessera-lmp, for tests comparing the hosts")
+    parser.add_argument("--intree-lmp", default=os.environ.get("TESSERA_TEST_INTREE_LMP"),
+                        help="plugin host: also compare an lmp built with -D PKG_TESSERA=on")
     parser.add_argument("--mpiexec", default=os.environ.get("TESSERA_MPIEXEC", shutil.which("mpiexec")))
     parser.add_argument("--workdir", default=os.environ.get("TESSERA_TEST_WORKDIR"))
     parser.add_argument("--keep", action="store_true", help="keep run directories")
@@ -238,6 +293,20 @@ def main():
             print(name, getattr(method, "nprocs", 1))
         return
 
+    Config.host = opts.host
+    Config.build = os.path.abspath(opts.build)
+    if opts.host == "plugin":
+        if not opts.lmp:
+            parser.error("--host plugin needs --lmp (the lmp of the LAMMPS the plugin is for)")
+        Config.plugin = os.path.abspath(opts.plugin or os.path.join(opts.build, "lammps", "tesseraplugin.so"))
+        libdir = opts.lammps_libdir or os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(opts.lmp))), "lib")
+        python = opts.lammps_python    # default: scripts/lammps-current's layout
+        guess = os.path.join(os.path.dirname(os.path.dirname(libdir)), "src-tree", "python")
+        if not python and os.path.isdir(guess):
+            python = guess
+        use_plugin_host(Config.plugin, python, libdir)
+        Config.tessera_lmp = opts.tessera_lmp and os.path.abspath(opts.tessera_lmp)
+        Config.intree_lmp = opts.intree_lmp and os.path.abspath(opts.intree_lmp)
     Config.lmp = os.path.abspath(opts.lmp or os.path.join(opts.build, "lammps", "tessera-lmp"))
     Config.lib = os.path.abspath(opts.lib or os.path.join(opts.build, "lammps", "libtessera_lammps.so"))
     Config.mpiexec = opts.mpiexec

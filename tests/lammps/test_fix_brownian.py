@@ -280,60 +280,97 @@ timestep {dt}
 
 
 class Errors(LammpsTestCase):
-    """Bad input stops LAMMPS with an ERROR naming the fix, argument and value."""
+    """Bad input stops LAMMPS with an ERROR naming the fix, argument and value.
+    On the plugin host `fix brownian` is upstream BROWNIAN's (ours is only
+    registered where the host has none): its ERROR lines, in `upstream`."""
 
-    def fail_with(self, fix_args, *fragments, extra=""):
+    def fail_with(self, fix_args, *fragments, extra="", upstream=()):
         script = free_particles(4) + extra + f"fix 7 all brownian {fix_args}\nrun 1\n"
+        if self.plugin_host:
+            self.assertTrue(upstream, "no expectation for upstream's fix brownian")
+            fragments = upstream
         self.assertLammpsError(self.run_lmp(script, ok=False), *fragments)
 
     def test_too_few_arguments(self):
-        self.fail_with("1.0", "Illegal fix brownian command", "fix ID 7")
+        self.fail_with("1.0", "Illegal fix brownian command", "fix ID 7",
+                       upstream=("Illegal fix brownian command: missing argument(s)",))
 
     def test_gamma_t_missing(self):
-        self.fail_with("1.0 5 rng none", "(ID 7)", "gamma_t is required")
+        self.fail_with("1.0 5 rng none", "(ID 7)", "gamma_t is required",
+                       upstream=("Keyword gamma_t is required for fix brownian",))
 
     def test_gamma_t_zero(self):
-        self.fail_with("1.0 5 gamma_t 0", "(ID 7)", "gamma_t = 0 must be > 0")
+        self.fail_with("1.0 5 gamma_t 0", "(ID 7)", "gamma_t = 0 must be > 0",
+                       upstream=("Fix brownian gamma_t value must be > 0",))
 
     def test_gamma_t_negative(self):
-        self.fail_with("1.0 5 gamma_t -1.5", "gamma_t = -1.5 must be > 0")
+        self.fail_with("1.0 5 gamma_t -1.5", "gamma_t = -1.5 must be > 0",
+                       upstream=("Fix brownian gamma_t value must be > 0",))
 
     def test_gamma_t_not_a_number(self):
-        self.fail_with("1.0 5 gamma_t abc", "gamma_t must be a number, got 'abc'")
+        self.fail_with("1.0 5 gamma_t abc", "gamma_t must be a number, got 'abc'",
+                       upstream=("Expected floating point parameter instead of 'abc'",))
 
     def test_gamma_t_without_value(self):
-        self.fail_with("1.0 5 gamma_t", "keyword gamma_t needs a value")
+        self.fail_with("1.0 5 gamma_t", "keyword gamma_t needs a value",
+                       upstream=("Illegal fix brownian gamma_t command: missing argument(s)",))
 
     def test_bad_rng(self):
         self.fail_with("1.0 5 gamma_t 1 rng poisson",
-                       "rng must be uniform, gaussian or none, got 'poisson'")
+                       "rng must be uniform, gaussian or none, got 'poisson'",
+                       upstream=("Unknown fix brownian rng keyword poisson",))
 
     def test_rng_without_value(self):
-        self.fail_with("1.0 5 gamma_t 1 rng", "keyword rng needs a value")
+        self.fail_with("1.0 5 gamma_t 1 rng", "keyword rng needs a value",
+                       upstream=("Illegal fix brownian rng command: missing argument(s)",))
 
     def test_temperature_not_positive(self):
-        self.fail_with("0.0 5 gamma_t 1 rng none", "temperature T = 0.0 must be > 0")
+        self.fail_with("0.0 5 gamma_t 1 rng none", "temperature T = 0.0 must be > 0",
+                       upstream=("Fix brownian temp must be > 0.0",))
 
     def test_seed_not_positive(self):
-        self.fail_with("1.0 0 gamma_t 1", "seed = 0 must be in [1, 900000000]")
+        self.fail_with("1.0 0 gamma_t 1", "seed = 0 must be in [1, 900000000]",
+                       upstream=("Fix brownian seed must be > 0",))
 
     def test_thesis_typo(self):
         """The thesis prints 'brownian 1.012908410 gamma_t ...' (space lost)."""
-        self.fail_with("1.012908410 gamma_t 1.0 rng none", "seed must be an integer, got 'gamma_t'")
+        self.fail_with("1.012908410 gamma_t 1.0 rng none", "seed must be an integer, got 'gamma_t'",
+                       upstream=("Expected integer parameter instead of 'gamma_t'",))
 
     def test_sphere_keyword(self):
-        self.fail_with("1.0 5 gamma_t 1 gamma_r 1", "keyword gamma_r belongs to upstream's fix brownian/sphere")
+        self.fail_with("1.0 5 gamma_t 1 gamma_r 1", "keyword gamma_r belongs to upstream's fix brownian/sphere",
+                       upstream=("Using keyword(s) not compatible with fix brownian",))
 
     def test_unknown_keyword(self):
-        self.fail_with("1.0 5 gamma_t 1 colour red", "unknown keyword 'colour'")
+        self.fail_with("1.0 5 gamma_t 1 colour red", "unknown keyword 'colour'",
+                       upstream=("Unknown fix brownian keyword colour",))
 
     def test_respa(self):
-        self.fail_with("1.0 5 gamma_t 1", "does not support run_style respa", extra="run_style respa 2 2\n")
+        if not self.plugin_host:
+            self.fail_with("1.0 5 gamma_t 1", "does not support run_style respa",
+                           extra="run_style respa 2 2\n")
+            return
+        # Upstream's fix brownian has no respa hook: it runs, and nothing moves
+        # (why ours refuses respa instead).
+        script = free_particles(1) + """
+run_style respa 2 2
+fix f all addforce 3.0 0.0 0.0
+fix 7 all brownian 1.0 5 gamma_t 2.0 rng none
+print "X0 $(xcm(all,x):%.12f)"
+run 10
+print "X1 $(xcm(all,x):%.12f)"
+"""
+        run = self.run_lmp(script)
+        x = {w[0]: float(w[1]) for w in (l.split() for l in run.stdout.splitlines())
+             if len(w) == 2 and w[0] in ("X0", "X1")}
+        self.assertEqual(x["X0"], x["X1"], run.output[-2000:])
 
     @nprocs(2)
     def test_error_on_two_ranks(self):
         script = free_particles(4) + "fix 7 all brownian 1.0 5 gamma_t -2\nrun 1\n"
-        self.assertLammpsError(self.run_lmp(script, nprocs=2, ok=False), "gamma_t = -2 must be > 0")
+        self.assertLammpsError(self.run_lmp(script, nprocs=2, ok=False),
+                               "Fix brownian gamma_t value must be > 0" if self.plugin_host
+                               else "gamma_t = -2 must be > 0")
 
 
 if __name__ == "__main__":

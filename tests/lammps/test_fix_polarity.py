@@ -241,7 +241,7 @@ thermo 50
         one = self.run_lmp(script, files={"cfg.data": data}).dump("pol.dump")[-1]
         two = self.run_lmp(script, nprocs=2, files={"cfg.data": data}).dump("pol.dump")[-1]
         for col in ("xu", "yu", "mux", "muy"):
-            np.testing.assert_allclose(one[col], two[col], rtol=0, atol=1e-8)
+            np.testing.assert_allclose(one[col], two[col], rtol=0, atol=1e-12)
 
     def test_split_run(self):
         """run 100 + run 100 == run 200 (the second setup recomputes forces)."""

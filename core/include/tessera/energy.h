@@ -30,6 +30,10 @@ struct Model {
   std::vector<CellType> types;
   std::vector<double> lambda;  // ntypes * ntypes, symmetric, Lambda_IJ
   Tension tension = Tension::Edge;
+  // Optional per-cell preferred areas, indexed like the type array (one per
+  // point; only owned cells' entries are read).  When set they replace the
+  // types' A0; the caller keeps the array alive and valid (> 0, finite).
+  const double *cell_area0 = nullptr;
 
   explicit Model(int ntypes = 1);
   int ntypes() const { return static_cast<int>(types.size()); }
@@ -37,6 +41,7 @@ struct Model {
   void set_lambda(int ti, int tj, double value);
   // Weight of a junction's Lambda * l in one adjacent cell's energy: 1/2 for
   // Edge (so the two cells add up to one junction), 1 for Cell.
+  double area0_of(int c, int tc) const { return cell_area0 ? cell_area0[c] : types[tc].A0; }
   double tension_weight() const { return tension == Tension::Edge ? 0.5 : 1.0; }
   // Throws Error naming the type and the value if K <= 0, A0 <= 0 or anything
   // is non-finite.  Gamma may be zero; Lambda may have either sign.

@@ -22,14 +22,19 @@ class Mesh {
 public:
   // Triangulates the points from scratch.  ids (optional) name points in
   // error messages; report (optional) maps a point to the index reported in
-  // them (periodic images report their owner).  Throws Error on non-finite
-  // coordinates, coincident points, or fewer than 3 non-collinear points.
+  // them, itself an index into pts (periodic images report their owner).
+  // Throws Error on non-finite coordinates, coordinates beyond 1e100 in
+  // magnitude, coincident points or points closer than 1e-10 times the
+  // largest coordinate magnitude (or than 1e-100), or fewer than 3
+  // non-collinear points (doc/model.md, "Limits of the input").
   void build(const Points &pts, const long *ids = nullptr, const int *report = nullptr);
 
   // The same points (same number, same order) at new positions: restores the
   // Delaunay property by flips.  Returns false when the mesh cannot follow
-  // (a triangle folded over, or the point count changed); the mesh is then
-  // invalid and build() must be called.
+  // (a triangle folded over, or the point count changed) or the input is bad
+  // (non-finite or out-of-range coordinates, two points joined by an edge
+  // closer than the separation limit); the mesh is then invalid and build()
+  // must be called, which names the bad points.
   //
   // With a region of interest [roi_lo, roi_hi], triangles that fold over
   // entirely outside it (thin triangles on the convex hull of a ghost shell)
@@ -45,12 +50,15 @@ public:
   void cells(const Points &pts, int n_owned, Tessellation &t) const;
 
   bool valid() const { return valid_; }
+  // Whether the last build() failed because all points lie on one line.
+  bool collinear() const { return collinear_; }
   int n_points() const { return n_points_; }
   long flips_last_update() const { return flips_; }
 
 private:
   static constexpr int kInfinite = -1;
   bool valid_ = false;
+  bool collinear_ = false;
   int n_points_ = 0;
   long flips_ = 0;
   std::vector<int> v_;   // 3 per triangle: point indices, counter-clockwise; -1 = infinity
@@ -62,6 +70,8 @@ private:
   mutable std::vector<int> mesh_of_;
   mutable std::vector<int> seeds_;  // finite triangle index -> mesh triangle
 
+  [[noreturn]] static void throw_too_close(const Points &pts, int i, int j, double scale,
+                                           const long *ids, const int *report);
   void flip(int t, int k, int u, int j);
   bool flip_needed(const Points &pts, int p, int q, int r, int s) const;
 };

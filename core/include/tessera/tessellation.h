@@ -183,7 +183,10 @@ Coverage check_coverage(const Tessellation &t, const Region &region, double marg
 // Tessellate n points in a periodic box.  Builds periodic images within a
 // margin of the box, and grows the margin until check_coverage passes, so the
 // result is exact for any configuration.  All points must lie in the box
-// (wrap them first; wrap_into_box helps).
+// (wrap them first; wrap_into_box helps).  Any n >= 1 works, also points on
+// one line (their images complete the tiling).  Throws Error as
+// Mesh::build does for coincident or nearly coincident points and
+// coordinates out of range (doc/model.md, "Limits of the input").
 Tessellation tessellate_periodic(const Box &box, const Points &pts, const long *ids = nullptr);
 
 // Wrap coordinates (stride 2) into the box (fractional coordinates in [0, 1)).

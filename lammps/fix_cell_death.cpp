@@ -1,0 +1,230 @@
+/* ----------------------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   fix cell/death: apoptosis (rate R) or extrusion (area below Amin).  As in
+   fix cell/divide, cells decide at the end of a step with counter-based
+   random numbers of (seed, atom ID, step), and are removed in the
+   pre_exchange of the next step, which re-neighbors; the neighbouring
+   Voronoi cells fill the space at once, so the tissue stays confluent.
+------------------------------------------------------------------------- */
+
+#include "fix_cell_death.h"
+
+#include "atom.h"
+#include "atom_vec.h"
+#include "cell_events.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "output.h"
+#include "pair_vertex_voronoi.h"
+#include "region.h"
+#include "update.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+using namespace cell_events;
+
+static const char SYNTAX[] =
+    "fix ID group cell/death rate R | area Amin, seed S [region ID] [min N]";
+
+FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), region(nullptr), pair(nullptr)
+{
+  trigger = -1;
+  seed = -1;
+  rate = area_min = 0.0;
+  min_cells = 0;
+  ndied_total = 0;
+  ndied_last = 0;
+  last_event_step = -1;
+
+  auto need = [&](int iarg, const char *kw) {
+    if (iarg + 1 >= narg)
+      error->all(FLERR, "fix cell/death: keyword '{}' needs a value; syntax: {}", kw, SYNTAX);
+  };
+  int iarg = 3;
+  while (iarg < narg) {
+    const char *kw = arg[iarg];
+    need(iarg, kw);
+    const char *v = arg[iarg + 1];
+    if (strcmp(kw, "rate") == 0) {
+      trigger = RATE;
+      rate = utils::numeric(FLERR, v, false, lmp);
+      if (!(rate >= 0.0) || !std::isfinite(rate))
+        error->all(FLERR, "fix cell/death: rate R must be >= 0 (deaths per cell per time), got {}", v);
+    } else if (strcmp(kw, "area") == 0) {
+      trigger = AREA;
+      area_min = utils::numeric(FLERR, v, false, lmp);
+      if (!(area_min > 0.0) || !std::isfinite(area_min))
+        error->all(FLERR, "fix cell/death: area Amin must be > 0, got {}", v);
+    } else if (strcmp(kw, "seed") == 0) {
+      seed = utils::inumeric(FLERR, v, false, lmp);
+      if (seed <= 0) error->all(FLERR, "fix cell/death: seed must be > 0, got {}", v);
+    } else if (strcmp(kw, "region") == 0) {
+      region_id = v;
+      if (!find_region(domain, region_id))
+        error->all(FLERR, "fix cell/death: region '{}' does not exist; define it with 'region' first",
+                   region_id);
+    } else if (strcmp(kw, "min") == 0) {
+      min_cells = utils::bnumeric(FLERR, v, false, lmp);
+      if (min_cells < 0) error->all(FLERR, "fix cell/death: min N must be >= 0 cells, got {}", v);
+    } else {
+      error->all(FLERR, "fix cell/death: unknown keyword '{}'; syntax: {}", kw, SYNTAX);
+    }
+    iarg += 2;
+  }
+  if (trigger < 0)
+    error->all(FLERR, "fix cell/death: give a trigger: rate R or area Amin; syntax: {}", SYNTAX);
+  if (seed < 0) error->all(FLERR, "fix cell/death: keyword 'seed S' is required");
+  if (!atom->tag_enable) error->all(FLERR, "fix cell/death requires atom IDs");
+  if (atom->molecular) error->all(FLERR, "fix cell/death cannot remove atoms of a molecular system");
+
+  force_reneighbor = 1;
+  next_reneighbor = -1;
+  scalar_flag = 1;
+  vector_flag = 1;
+  size_vector = 2;
+  global_freq = 1;
+  extscalar = 0;
+  extvector = 0;
+  restart_global = 1;
+}
+
+int FixCellDeath::setmask()
+{
+  return END_OF_STEP | PRE_EXCHANGE;
+}
+
+void FixCellDeath::init()
+{
+  region = nullptr;
+  if (!region_id.empty()) {
+    region = find_region(domain, region_id);
+    if (!region) error->all(FLERR, "fix cell/death: region '{}' no longer exists", region_id);
+  }
+  pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  if (!pair && trigger == AREA)
+    error->all(FLERR,
+               "fix cell/death: the area trigger needs pair_style vertex/voronoi (its "
+               "tessellation gives the cells' areas)");
+}
+
+/* As for fix cell/divide, a run's setup re-makes the current step's decisions. */
+
+void FixCellDeath::setup(int /*vflag*/)
+{
+  decide();
+}
+
+void FixCellDeath::end_of_step()
+{
+  decide();
+}
+
+void FixCellDeath::decide()
+{
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  const tagint *tag = atom->tag;
+  double **x = atom->x;
+  const uint64_t step = update->ntimestep;
+  if (trigger == AREA && !pair->tessellation_current())
+    error->all(FLERR,
+               "fix cell/death: the tessellation of this step is not available (pair_style "
+               "vertex/voronoi must compute forces every step)");
+  if (region) region->prematch();
+
+  std::vector<std::pair<double, tagint>> mine;
+  pending.clear();
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    if (region && !region->match(x[i][0], x[i][1], x[i][2])) continue;
+    const bool die = trigger == RATE ? uniform01(seed, tag[i], step, DEATH) < rate * update->dt
+                                     : pair->tessellation().area[i] < area_min;
+    if (!die) continue;
+    pending.insert(tag[i]);
+    mine.push_back({uniform01(seed, tag[i], step, DEATH_PRIORITY), tag[i]});
+  }
+  int nmine = static_cast<int>(mine.size()), nall = 0;
+  MPI_Allreduce(&nmine, &nall, 1, MPI_INT, MPI_SUM, world);
+  if (nall == 0) return;
+  if (min_cells > 0 || nall >= atom->natoms) {
+    // Keep at least min N cells (and at least one): the first of the sorted
+    // list die, the same ones on any number of ranks.
+    std::vector<std::pair<double, tagint>> all = gather_sorted(mine, world);
+    const bigint room = MAX((bigint) 0, atom->natoms - MAX(min_cells, (bigint) 1));
+    if ((bigint) all.size() > room) {
+      all.resize(room);
+      pending.clear();
+      std::unordered_set<tagint> chosen;
+      for (const auto &c : all) chosen.insert(c.second);
+      for (const auto &m : mine)
+        if (chosen.count(m.second)) pending.insert(m.second);
+    }
+    if (all.empty()) return;
+  }
+  next_reneighbor = update->ntimestep + 1;
+}
+
+void FixCellDeath::pre_exchange()
+{
+  if (next_reneighbor != update->ntimestep) return;
+  next_reneighbor = -1;
+  int ndel = 0;
+  int i = 0;
+  while (i < atom->nlocal) {
+    if (pending.count(atom->tag[i])) {
+      atom->avec->copy(atom->nlocal - 1, i, 1);
+      atom->nlocal--;
+      ndel++;
+    } else {
+      i++;
+    }
+  }
+  pending.clear();
+  int nall = 0;
+  MPI_Allreduce(&ndel, &nall, 1, MPI_INT, MPI_SUM, world);
+  atom->natoms -= nall;
+  ndied_total += nall;
+  ndied_last = nall;
+  last_event_step = update->ntimestep;
+  if (atom->map_style) {
+    atom->nghost = 0;
+    atom->map_init();
+    atom->map_set();
+  }
+  if (nall > 0) refresh_dumps(output);
+}
+
+double FixCellDeath::compute_scalar()
+{
+  return (double) ndied_total;
+}
+
+double FixCellDeath::compute_vector(int n)
+{
+  if (n == 0) return last_event_step == update->ntimestep ? ndied_last : 0.0;
+  return (double) ndied_total;
+}
+
+void FixCellDeath::write_restart(FILE *fp)
+{
+  if (comm->me != 0) return;
+  double list[2] = {(double) ndied_total, (double) last_event_step};
+  const int size = sizeof(list);
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(list, sizeof(double), 2, fp);
+}
+
+void FixCellDeath::restart(char *buf)
+{
+  const double *list = reinterpret_cast<double *>(buf);
+  ndied_total = static_cast<bigint>(list[0]);
+  last_event_step = static_cast<bigint>(list[1]);
+}

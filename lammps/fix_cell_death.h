@@ -1,0 +1,54 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(cell/death,FixCellDeath);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_CELL_DEATH_H
+#define LMP_FIX_CELL_DEATH_H
+
+#include "fix.h"
+
+#include <string>
+#include <unordered_set>
+
+namespace LAMMPS_NS {
+
+class FixCellDeath : public Fix {
+ public:
+  FixCellDeath(class LAMMPS *, int, char **);
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void end_of_step() override;
+  void pre_exchange() override;
+  double compute_scalar() override;
+  double compute_vector(int) override;
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+
+ protected:
+  enum Trigger { RATE, AREA };
+  int trigger, seed;
+  double rate, area_min;
+  bigint min_cells;
+  std::string region_id;
+  class Region *region;
+  class PairVertexVoronoi *pair;
+  std::unordered_set<tagint> pending;    // cells that die at the next step
+  bigint ndied_total;
+  int ndied_last;
+  bigint last_event_step;
+
+  void decide();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,551 @@
+/* ----------------------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   fix cell/divide: cell division.  At the end of each step every cell of
+   the group decides whether it divides (rate, cycle time or area trigger);
+   the decision uses counter-based random numbers of (seed, atom ID, step),
+   so the same cells divide on any number of ranks.  If any cell divides,
+   the next step re-neighbors, and in its pre_exchange each mother is
+   replaced by two daughters at +-d/2 along the division axis.  A daughter
+   is a copy of its mother (velocity, polarity, image flags, every fix's
+   per-atom state) with a new atom ID; IDs are given in the order of a
+   global sorted list, again independent of the number of ranks.
+------------------------------------------------------------------------- */
+
+#include "fix_cell_divide.h"
+
+#include "atom.h"
+#include "atom_vec.h"
+#include "cell_events.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "math_const.h"
+#include "memory.h"
+#include "output.h"
+#include "pair_vertex_voronoi.h"
+#include "region.h"
+#include "update.h"
+
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+using namespace cell_events;
+
+static const char SYNTAX[] =
+    "fix ID group cell/divide rate R | cycle T spread s | area Ac, seed S [axis "
+    "random|long|short|polarity] [separation d] [growth none|linear] [region ID] [max N] "
+    "[noise eta]";
+
+FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), region(nullptr), pair(nullptr), area0_index(-1), cellstate(nullptr)
+{
+  trigger = -1;
+  axis = RANDOM;
+  growth = 0;
+  rate = cycle_mean = cycle_spread = area_max = 0.0;
+  separation = 0.1;
+  noise = 0.0;
+  max_cells = -1;
+  seed = -1;
+  ndivided_total = 0;
+  ndivided_last = 0;
+  last_event_step = -1;
+
+  auto need = [&](int iarg, int n, const char *kw) {
+    if (iarg + n >= narg)
+      error->all(FLERR, "fix cell/divide: keyword '{}' needs {} value(s); syntax: {}", kw, n,
+                 SYNTAX);
+  };
+  int iarg = 3;
+  while (iarg < narg) {
+    const char *kw = arg[iarg];
+    if (strcmp(kw, "rate") == 0) {
+      need(iarg, 1, kw);
+      trigger = RATE;
+      rate = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(rate >= 0.0) || !std::isfinite(rate))
+        error->all(FLERR, "fix cell/divide: rate R must be >= 0 (divisions per cell per time), got {}",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else if (strcmp(kw, "cycle") == 0) {
+      need(iarg, 3, kw);
+      trigger = CYCLE;
+      cycle_mean = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (strcmp(arg[iarg + 2], "spread") != 0)
+        error->all(FLERR, "fix cell/divide: expected 'cycle T spread s', got 'cycle {} {}'",
+                   arg[iarg + 1], arg[iarg + 2]);
+      cycle_spread = utils::numeric(FLERR, arg[iarg + 3], false, lmp);
+      if (!(cycle_mean > 0.0) || !std::isfinite(cycle_mean))
+        error->all(FLERR, "fix cell/divide: cycle time T must be > 0, got {}", arg[iarg + 1]);
+      if (!(cycle_spread >= 0.0) || !(cycle_spread < cycle_mean))
+        error->all(FLERR,
+                   "fix cell/divide: cycle spread s must be >= 0 and < T = {} (cycle times are "
+                   "uniform in [T-s, T+s]), got {}",
+                   cycle_mean, arg[iarg + 3]);
+      iarg += 4;
+    } else if (strcmp(kw, "area") == 0) {
+      need(iarg, 1, kw);
+      trigger = AREA;
+      area_max = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(area_max > 0.0) || !std::isfinite(area_max))
+        error->all(FLERR, "fix cell/divide: area Ac must be > 0, got {}", arg[iarg + 1]);
+      iarg += 2;
+    } else if (strcmp(kw, "seed") == 0) {
+      need(iarg, 1, kw);
+      seed = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (seed <= 0) error->all(FLERR, "fix cell/divide: seed must be > 0, got {}", arg[iarg + 1]);
+      iarg += 2;
+    } else if (strcmp(kw, "axis") == 0) {
+      need(iarg, 1, kw);
+      const char *v = arg[iarg + 1];
+      if (strcmp(v, "random") == 0)
+        axis = RANDOM;
+      else if (strcmp(v, "long") == 0)
+        axis = LONG;
+      else if (strcmp(v, "short") == 0)
+        axis = SHORT;
+      else if (strcmp(v, "polarity") == 0)
+        axis = POLARITY;
+      else
+        error->all(FLERR, "fix cell/divide: axis must be random, long, short or polarity, got '{}'",
+                   v);
+      iarg += 2;
+    } else if (strcmp(kw, "separation") == 0) {
+      need(iarg, 1, kw);
+      separation = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(separation > 0.0) || !std::isfinite(separation))
+        error->all(FLERR,
+                   "fix cell/divide: separation d must be > 0 (daughters at +-d/2 from the "
+                   "mother's centre), got {}",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else if (strcmp(kw, "growth") == 0) {
+      need(iarg, 1, kw);
+      if (strcmp(arg[iarg + 1], "none") == 0)
+        growth = 0;
+      else if (strcmp(arg[iarg + 1], "linear") == 0)
+        growth = 1;
+      else
+        error->all(FLERR, "fix cell/divide: growth must be none or linear, got '{}'", arg[iarg + 1]);
+      iarg += 2;
+    } else if (strcmp(kw, "region") == 0) {
+      need(iarg, 1, kw);
+      region_id = arg[iarg + 1];
+      if (!find_region(domain, region_id))
+        error->all(FLERR, "fix cell/divide: region '{}' does not exist; define it with 'region' first",
+                   region_id);
+      iarg += 2;
+    } else if (strcmp(kw, "max") == 0) {
+      need(iarg, 1, kw);
+      max_cells = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (max_cells < 1)
+        error->all(FLERR, "fix cell/divide: max N must be >= 1 cells, got {}", arg[iarg + 1]);
+      iarg += 2;
+    } else if (strcmp(kw, "noise") == 0) {
+      need(iarg, 1, kw);
+      noise = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(noise >= 0.0) || !std::isfinite(noise))
+        error->all(FLERR,
+                   "fix cell/divide: noise eta must be >= 0 (radians; daughters' polarities "
+                   "turn by a uniform angle in [-eta, eta]), got {}",
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else {
+      error->all(FLERR, "fix cell/divide: unknown keyword '{}'; syntax: {}", kw, SYNTAX);
+    }
+  }
+  if (trigger < 0)
+    error->all(FLERR, "fix cell/divide: give a trigger: rate R, cycle T spread s, or area Ac; syntax: {}",
+               SYNTAX);
+  if (seed < 0) error->all(FLERR, "fix cell/divide: keyword 'seed S' is required");
+  if (growth && trigger == AREA)
+    error->all(FLERR,
+               "fix cell/divide: growth linear needs a cycle time (trigger 'rate R', mean cycle "
+               "1/R, or 'cycle T spread s'), not 'area'");
+  if (growth && trigger == RATE && rate == 0.0)
+    error->all(FLERR, "fix cell/divide: growth linear with rate 0 has no cycle time (1/R)");
+  if (axis == POLARITY && !atom->mu_flag)
+    error->all(FLERR, "fix cell/divide: axis polarity needs atom_style dipole (the polarity is mu)");
+  if (!atom->tag_enable) error->all(FLERR, "fix cell/divide requires atom IDs");
+  if (domain->dimension != 2) error->all(FLERR, "fix cell/divide requires a 2d simulation");
+
+  force_reneighbor = 1;
+  next_reneighbor = -1;
+  scalar_flag = 1;
+  vector_flag = 1;
+  size_vector = 2;
+  global_freq = 1;
+  extscalar = 0;
+  extvector = 0;
+  peratom_flag = 1;
+  size_peratom_cols = NCOL;
+  peratom_freq = 1;
+  restart_global = 1;
+  restart_peratom = 1;
+  create_attribute = 1;
+
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+
+  for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
+  if (trigger == CYCLE) {
+    // A random phase, so that the first generation does not divide at once.
+    const tagint *tag = atom->tag;
+    for (int i = 0; i < atom->nlocal; i++)
+      cellstate[i][AGE] = uniform01(seed, tag[i], CREATION, PHASE) * cellstate[i][CYCLE_TIME];
+  }
+}
+
+FixCellDivide::~FixCellDivide()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  memory->destroy(cellstate);
+}
+
+int FixCellDivide::setmask()
+{
+  return END_OF_STEP | PRE_EXCHANGE;
+}
+
+void FixCellDivide::init()
+{
+  region = nullptr;
+  if (!region_id.empty()) {
+    region = find_region(domain, region_id);
+    if (!region) error->all(FLERR, "fix cell/divide: region '{}' no longer exists", region_id);
+  }
+  pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  if (!pair && (trigger == AREA || axis == LONG || axis == SHORT))
+    error->all(FLERR,
+               "fix cell/divide: the area trigger and axis long/short need pair_style "
+               "vertex/voronoi (its tessellation gives the cells' shapes)");
+  int flag = -1, cols = -1;
+  area0_index = atom->find_custom("area0", flag, cols);
+  if (area0_index >= 0 && (flag != 1 || cols != 0)) area0_index = -1;
+  if (growth && area0_index < 0)
+    error->all(FLERR,
+               "fix cell/divide: growth linear changes each cell's preferred area, which needs "
+               "'fix property/atom d_area0' (and 'set group all d_area0 A0')");
+}
+
+/* The base preferred area of cells that have none yet (before the first run,
+   or cells that entered the group): their d_area0 now. */
+
+void FixCellDivide::fill_base_area0()
+{
+  if (area0_index < 0) return;
+  const double *a0 = atom->dvector[area0_index];
+  for (int i = 0; i < atom->nlocal; i++)
+    if (!(cellstate[i][AREA0_BASE] > 0.0)) cellstate[i][AREA0_BASE] = a0[i];
+}
+
+/* The decisions of the current step are (re)made at the setup of every run:
+   they are kept in memory only until the event at the next step, so a run
+   continued from a restart file makes the same ones as an uninterrupted run
+   (the restart holds the ages and positions they depend on). */
+
+void FixCellDivide::setup(int /*vflag*/)
+{
+  fill_base_area0();
+  decide();
+}
+
+double FixCellDivide::draw_cycle(tagint tag, uint64_t step) const
+{
+  if (trigger != CYCLE) return 0.0;
+  return cycle_mean + cycle_spread * (2.0 * uniform01(seed, tag, step, CYCLE) - 1.0);
+}
+
+/* Direction (ux, uy) along which the daughters of local atom i are placed. */
+
+void FixCellDivide::cell_axis(int i, double &ux, double &uy) const
+{
+  const tagint t = atom->tag[i];
+  const uint64_t step = update->ntimestep;
+  double theta = MathConst::MY_2PI * uniform01(seed, t, step, AXIS);
+  if (axis == POLARITY) {
+    const double *mu = atom->mu[i];
+    if (std::hypot(mu[0], mu[1]) > 0.0) theta = std::atan2(mu[1], mu[0]);
+  } else if (axis == LONG || axis == SHORT) {
+    // Second moments of the cell polygon about its centroid (triangle fan).
+    const tessera::Tessellation &tess = pair->tessellation();
+    double a = 0.0, cx = 0.0, cy = 0.0, sxx = 0.0, syy = 0.0, sxy = 0.0;
+    const int o = tess.cell_offset[i], m = tess.cell_offset[i + 1] - o;
+    const double px = atom->x[i][0], py = atom->x[i][1];
+    for (int k = 0; k < m; k++) {
+      const tessera::Vec2 &p = tess.vertices[tess.cell_vertex[o + k]];
+      const tessera::Vec2 &q = tess.vertices[tess.cell_vertex[o + (k + 1) % m]];
+      const double x0 = p.x - px, y0 = p.y - py, x1 = q.x - px, y1 = q.y - py;
+      const double cr = x0 * y1 - x1 * y0;
+      a += 0.5 * cr;
+      cx += cr * (x0 + x1) / 6.0;
+      cy += cr * (y0 + y1) / 6.0;
+      sxx += cr * (x0 * x0 + x0 * x1 + x1 * x1) / 12.0;
+      syy += cr * (y0 * y0 + y0 * y1 + y1 * y1) / 12.0;
+      sxy += cr * (2 * x0 * y0 + x0 * y1 + x1 * y0 + 2 * x1 * y1) / 24.0;
+    }
+    if (a > 0.0) {
+      cx /= a;
+      cy /= a;
+      sxx -= a * cx * cx;
+      syy -= a * cy * cy;
+      sxy -= a * cx * cy;
+      // A round cell (isotropic tensor) keeps the random axis.
+      if (std::hypot(sxx - syy, 2.0 * sxy) > 1e-12 * (sxx + syy)) {
+        theta = 0.5 * std::atan2(2.0 * sxy, sxx - syy);    // the long axis
+        if (axis == SHORT) theta += 0.5 * MathConst::MY_PI;
+      }
+    }
+  }
+  ux = std::cos(theta);
+  uy = std::sin(theta);
+}
+
+/* Ages, then preferred-area growth and this step's division decisions. */
+
+void FixCellDivide::end_of_step()
+{
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mask[i] & groupbit) cellstate[i][AGE] += update->dt;
+  decide();
+}
+
+void FixCellDivide::decide()
+{
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  const tagint *tag = atom->tag;
+  double **x = atom->x;
+  const double dt = update->dt;
+  const uint64_t step = update->ntimestep;
+
+  const bool need_tess = trigger == AREA || axis == LONG || axis == SHORT;
+  if (need_tess && !pair->tessellation_current())
+    error->all(FLERR,
+               "fix cell/divide: the tessellation of this step is not available (pair_style "
+               "vertex/voronoi must compute forces every step)");
+  if (region) region->prematch();
+
+  std::vector<std::pair<double, tagint>> mine;
+  pending.clear();
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    if (region && !region->match(x[i][0], x[i][1], x[i][2])) continue;
+    bool divide = false;
+    if (trigger == RATE)
+      divide = uniform01(seed, tag[i], step, DIVIDE) < rate * dt;
+    else if (trigger == CYCLE)
+      divide = cellstate[i][AGE] >= cellstate[i][CYCLE_TIME];
+    else
+      divide = pair->tessellation().area[i] > area_max;
+    if (!divide) continue;
+    double ux, uy;
+    cell_axis(i, ux, uy);
+    pending[tag[i]] = {ux, uy};
+    mine.push_back({uniform01(seed, tag[i], step, PRIORITY), tag[i]});
+  }
+
+  // Preferred areas for the next step: A0 grows linearly from its base to
+  // twice the base over the cell's cycle.
+  if (growth) {
+    double *a0 = atom->dvector[area0_index];
+    for (int i = 0; i < nlocal; i++) {
+      if (!(mask[i] & groupbit)) continue;
+      const double cyc = trigger == CYCLE ? cellstate[i][CYCLE_TIME] : 1.0 / rate;
+      const double base = cellstate[i][AREA0_BASE];
+      if (base > 0.0) a0[i] = base * (1.0 + MIN(cellstate[i][AGE] / cyc, 1.0));
+    }
+  }
+
+  int nmine = static_cast<int>(mine.size()), nall = 0;
+  MPI_Allreduce(&nmine, &nall, 1, MPI_INT, MPI_SUM, world);
+  daughter_tag.clear();
+  if (nall == 0) return;
+  std::vector<std::pair<double, tagint>> all = gather_sorted(mine, world);
+  if (max_cells > 0) {
+    const bigint room = MAX((bigint) 0, max_cells - atom->natoms);
+    if ((bigint) all.size() > room) all.resize(room);
+  }
+  if (all.empty()) {
+    pending.clear();
+    return;
+  }
+  // Daughter IDs are assigned at the event (after any deaths) from this order.
+  for (size_t k = 0; k < all.size(); k++) daughter_tag[all[k].second] = static_cast<tagint>(k);
+  next_reneighbor = update->ntimestep + 1;
+}
+
+/* The divisions decided at the end of the previous step. */
+
+void FixCellDivide::pre_exchange()
+{
+  if (next_reneighbor != update->ntimestep) return;
+  next_reneighbor = -1;
+
+  tagint maxtag = 0, maxtag_all = 0;
+  for (int i = 0; i < atom->nlocal; i++) maxtag = MAX(maxtag, atom->tag[i]);
+  MPI_Allreduce(&maxtag, &maxtag_all, 1, MPI_LMP_TAGINT, MPI_MAX, world);
+  if ((double) maxtag_all + daughter_tag.size() >= (double) MAXTAGINT)
+    error->all(FLERR, "fix cell/divide: new atom IDs would exceed the largest atom ID");
+
+  // Ghost atoms are rebuilt by this re-neighboring; their slots take daughters.
+  atom->nghost = 0;
+  const uint64_t step = update->ntimestep;
+  const int nold = atom->nlocal;
+  int ncreated = 0;
+  for (int i = 0; i < nold; i++) {
+    const auto found = pending.find(atom->tag[i]);
+    if (found == pending.end()) continue;
+    const auto rank = daughter_tag.find(atom->tag[i]);
+    if (rank == daughter_tag.end()) continue;    // over the cap
+    const double ux = found->second.first, uy = found->second.second;
+    if (atom->nlocal == atom->nmax) atom->avec->grow(0);
+    const int j = atom->nlocal;
+    atom->avec->copy(i, j, 0);    // every per-atom value, and every fix's
+    atom->nlocal++;
+    ncreated++;
+    atom->tag[j] = maxtag_all + 1 + rank->second;
+    double **x = atom->x;
+    const double h = 0.5 * separation;
+    x[i][0] -= h * ux;
+    x[i][1] -= h * uy;
+    x[j][0] += h * ux;
+    x[j][1] += h * uy;
+    for (const int k : {i, j}) {
+      cellstate[k][AGE] = 0.0;
+      cellstate[k][GENERATION] += 1.0;
+      cellstate[k][CYCLE_TIME] = draw_cycle(atom->tag[k], step);
+      if (growth && cellstate[k][AREA0_BASE] > 0.0)
+        atom->dvector[area0_index][k] = cellstate[k][AREA0_BASE];
+      if (atom->mu_flag) {
+        // A unit in-plane polarity: the mother's direction (or a random one
+        // if she had none), turned by the noise.
+        double *mu = atom->mu[k];
+        double th = std::hypot(mu[0], mu[1]) > 0.0
+            ? std::atan2(mu[1], mu[0])
+            : MathConst::MY_2PI * uniform01(seed, atom->tag[k], step, DIRECTION);
+        if (noise > 0.0) th += noise * (2.0 * uniform01(seed, atom->tag[k], step, NOISE) - 1.0);
+        mu[0] = std::cos(th);
+        mu[1] = std::sin(th);
+        mu[2] = 0.0;
+        mu[3] = 1.0;
+      }
+    }
+  }
+  pending.clear();
+  daughter_tag.clear();
+
+  int nall = 0;
+  MPI_Allreduce(&ncreated, &nall, 1, MPI_INT, MPI_SUM, world);
+  atom->natoms += nall;
+  ndivided_total += nall;
+  ndivided_last = nall;
+  last_event_step = update->ntimestep;
+  if (atom->map_style) {
+    atom->map_init();
+    atom->map_set();
+  }
+  if (nall > 0) refresh_dumps(output);
+}
+
+double FixCellDivide::compute_scalar()
+{
+  return (double) ndivided_total;
+}
+
+double FixCellDivide::compute_vector(int n)
+{
+  if (n == 0) return last_event_step == update->ntimestep ? ndivided_last : 0.0;
+  return (double) ndivided_total;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixCellDivide::write_restart(FILE *fp)
+{
+  if (comm->me != 0) return;
+  double list[2] = {(double) ndivided_total, (double) last_event_step};
+  const int size = sizeof(list);
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(list, sizeof(double), 2, fp);
+}
+
+void FixCellDivide::restart(char *buf)
+{
+  const double *list = reinterpret_cast<double *>(buf);
+  ndivided_total = static_cast<bigint>(list[0]);
+  last_event_step = static_cast<bigint>(list[1]);
+}
+
+double FixCellDivide::memory_usage()
+{
+  return (double) atom->nmax * NCOL * sizeof(double);
+}
+
+void FixCellDivide::grow_arrays(int nmax)
+{
+  memory->grow(cellstate, nmax, NCOL, "cell/divide:cellstate");
+  array_atom = cellstate;
+}
+
+void FixCellDivide::copy_arrays(int i, int j, int /*delflag*/)
+{
+  for (int c = 0; c < NCOL; c++) cellstate[j][c] = cellstate[i][c];
+}
+
+/* A cell that appears other than by division (create_atoms, read_data after
+   this fix, fix deposit): age 0, generation 0, its own cycle time. */
+
+void FixCellDivide::set_arrays(int i)
+{
+  cellstate[i][AGE] = 0.0;
+  cellstate[i][GENERATION] = 0.0;
+  cellstate[i][CYCLE_TIME] = draw_cycle(atom->tag[i], CREATION);
+  cellstate[i][AREA0_BASE] = 0.0;
+}
+
+int FixCellDivide::pack_exchange(int i, double *buf)
+{
+  for (int c = 0; c < NCOL; c++) buf[c] = cellstate[i][c];
+  return NCOL;
+}
+
+int FixCellDivide::unpack_exchange(int nlocal, double *buf)
+{
+  for (int c = 0; c < NCOL; c++) cellstate[nlocal][c] = buf[c];
+  return NCOL;
+}
+
+int FixCellDivide::pack_restart(int i, double *buf)
+{
+  buf[0] = NCOL + 1;
+  for (int c = 0; c < NCOL; c++) buf[c + 1] = cellstate[i][c];
+  return NCOL + 1;
+}
+
+void FixCellDivide::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  m++;
+  for (int c = 0; c < NCOL; c++) cellstate[nlocal][c] = extra[nlocal][m++];
+}
+
+int FixCellDivide::size_restart(int /*nlocal*/)
+{
+  return NCOL + 1;
+}
+
+int FixCellDivide::maxsize_restart()
+{
+  return NCOL + 1;
+}

@@ -1,0 +1,79 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(cell/divide,FixCellDivide);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_CELL_DIVIDE_H
+#define LMP_FIX_CELL_DIVIDE_H
+
+#include "fix.h"
+
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixCellDivide : public Fix {
+ public:
+  FixCellDivide(class LAMMPS *, int, char **);
+  ~FixCellDivide() override;
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void end_of_step() override;
+  void pre_exchange() override;
+  double compute_scalar() override;
+  double compute_vector(int) override;
+
+  void write_restart(FILE *) override;
+  void restart(char *) override;
+  double memory_usage() override;
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
+
+ protected:
+  enum Trigger { RATE, CYCLE, AREA };
+  enum Axis { RANDOM, LONG, SHORT, POLARITY };
+  enum Col { AGE, GENERATION, CYCLE_TIME, AREA0_BASE, NCOL };
+  int trigger, axis, growth;
+  double rate, cycle_mean, cycle_spread, area_max, separation, noise;
+  bigint max_cells;
+  int seed;
+  std::string region_id;
+  class Region *region;
+  class PairVertexVoronoi *pair;
+  int area0_index;    // d_area0 in atom->dvector, or -1
+
+  double **cellstate;    // per atom: age, generation, cycle time, base A0
+  // Mothers of the next event step: atom ID -> division axis (ux, uy), and
+  // the daughters' atom IDs assigned from the global sorted list.
+  std::unordered_map<tagint, std::pair<double, double>> pending;
+  std::unordered_map<tagint, tagint> daughter_tag;
+  bigint ndivided_total;
+  int ndivided_last;
+  bigint last_event_step;
+
+  double draw_cycle(tagint, uint64_t) const;
+  void cell_axis(int, double &, double &) const;
+  void fill_base_area0();
+  void decide();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

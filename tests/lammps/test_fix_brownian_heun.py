@@ -1,0 +1,346 @@
+#!/usr/bin/python3
+# Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
+"""fix brownian/heun: the order of convergence of positions and polarity
+angles of a deterministic active tissue (Richardson ratios of runs at dt,
+dt/2, dt/4, ...: about 2 for brownian/heun, about 1 for fix brownian's
+forward Euler), exact drift and the diffusion constant of free particles,
+1 rank == 2 ranks, restarts and `run N; run M` continuing the run, fix
+dt/reset with both integrators, and errors for bad input."""
+
+import math
+import os
+import re
+
+import numpy as np
+
+import lmptest
+from lmptest import LammpsTestCase, nprocs
+
+DUMP = "write_dump all custom {name} id xu yu mux muy vx vy modify sort id format float %.17g\n"
+
+
+def active_tissue(integrator, extra_polarity="", nx=6, ny=4):
+    """A jittered solid tissue (p0 = 2.5) of 2 nx ny cells with active force,
+    neighbour and groove alignment, no noise, integrated by `integrator`;
+    more fix polarity keywords in extra_polarity."""
+    return lmptest.tissue(nx, ny) + f"""
+displace_atoms all random 0.15 0.15 0 4821 units box
+pair_style vertex/voronoi 3.0
+pair_coeff * * 1.0 1.0 0.1 -0.5
+fix p all polarity 0.3 1.0 neighbor 1.0 groove 1.0 30 {extra_polarity}
+fix b all {integrator} 1.0 1 gamma_t 1.0 rng none
+thermo 0
+"""
+
+
+def state(frame):
+    return np.column_stack([frame["xu"], frame["yu"]]), np.column_stack([frame["mux"], frame["muy"]])
+
+
+class Order(LammpsTestCase):
+    """Richardson estimate of the order p from the final states y(h) at
+    h = T/n for n = 10, 20, 40, 80: |y(h) - y(h/2)| / |y(h/2) - y(h/4)| = 2^p
+    as h -> 0, for the positions and the polarity directions separately, with
+    every alignment of fix polarity (neighbour, groove, velocity)."""
+
+    TIME = 0.4
+    STEPS = (10, 20, 40, 80)
+
+    def final_states(self, integrator):
+        out = []
+        for n in self.STEPS:
+            script = active_tissue(integrator, "velocity 1.0") + f"timestep {self.TIME / n!r}\nrun {n}\n" + \
+                DUMP.format(name="final.dump")
+            (frame,) = self.run_lmp(script).dump("final.dump")
+            out.append(state(frame))
+        return out
+
+    def orders(self, integrator):
+        states = self.final_states(integrator)
+        result = {}
+        for k, name in enumerate(("positions", "polarities")):
+            diffs = [np.abs(states[j][k] - states[j + 1][k]).max() for j in range(len(states) - 1)]
+            self.assertGreater(diffs[0], 1e-5, "%s hardly move: no test" % name)
+            result[name] = [math.log2(diffs[j] / diffs[j + 1]) for j in range(len(diffs) - 1)]
+        return result
+
+    def test_heun_second_order(self):
+        for name, p in self.orders("brownian/heun").items():
+            for value in p:
+                self.assertGreaterEqual(value, 1.8, "%s: orders %s" % (name, p))
+                self.assertLess(value, 2.3, "%s: orders %s" % (name, p))
+
+    def test_euler_first_order(self):
+        for name, p in self.orders("brownian").items():
+            for value in p:
+                self.assertGreater(value, 0.8, "%s: orders %s" % (name, p))
+                self.assertLess(value, 1.2, "%s: orders %s" % (name, p))
+
+
+def free_particles(n, length=40.0, seed=4328):
+    return f"""
+units lj
+dimension 2
+atom_style atomic
+boundary p p p
+region box block 0 {length} 0 {length} -0.5 0.5
+create_box 1 box
+create_atoms 1 random {n} {seed} box
+mass * 1.0
+pair_style zero 1.0
+pair_coeff * *
+neighbor 0.3 bin
+thermo 0
+"""
+
+
+class FreeParticles(LammpsTestCase):
+    """Forces that do not depend on positions: Heun is exact (drift dt F /
+    gamma_t per step) and has fix brownian's noise (D = kT/gamma_t)."""
+
+    def test_drift(self):
+        script = free_particles(30) + """
+variable fx atom 0.01*id-0.2
+variable fy atom -0.03*id+0.5
+fix f all addforce v_fx v_fy 0.0
+fix b all brownian/heun 1.0 5 gamma_t 2.5 rng none
+timestep 0.01
+write_dump all custom a.dump id xu yu modify sort id format float %.17g
+run 40
+write_dump all custom b.dump id xu yu vx vy modify sort id format float %.17g
+"""
+        run = self.run_lmp(script)
+        (a,), (b,) = run.dump("a.dump"), run.dump("b.dump")
+        ids = a["id"]
+        for col, force in (("xu", 0.01 * ids - 0.2), ("yu", -0.03 * ids + 0.5)):
+            np.testing.assert_allclose(b[col] - a[col], 0.4 * force / 2.5, rtol=1e-12, atol=1e-12)
+            vcol = "v" + col[0]
+            np.testing.assert_allclose(b[vcol], force / 2.5, rtol=1e-12, atol=1e-14)
+
+    def test_msd(self):
+        n, temp, gamma_t, dt, steps = 8000, 0.5, 2.0, 0.01, 50
+        script = free_particles(n, length=100.0) + f"""
+fix b all brownian/heun {temp} 31415 gamma_t {gamma_t} rng gaussian
+timestep {dt}
+write_dump all custom a.dump id xu yu modify sort id format float %.17g
+run {steps}
+write_dump all custom b.dump id xu yu modify sort id format float %.17g
+"""
+        run = self.run_lmp(script)
+        (a,), (b,) = run.dump("a.dump"), run.dump("b.dump")
+        d2 = (b["xu"] - a["xu"]) ** 2 + (b["yu"] - a["yu"]) ** 2
+        expected = 4 * temp / gamma_t * dt * steps
+        sigma = expected / math.sqrt(n)    # |d|^2 / (2 D t) ~ chi^2 with 2 dof
+        self.assertLess(abs(d2.mean() - expected), 5 * sigma, (d2.mean(), expected))
+
+
+class RotationalDiffusion(LammpsTestCase):
+    """Free polarities under fix brownian/heun diffuse with fix polarity's D_r:
+    <cos(theta(t) - theta(0))> = exp(-D_r t) (the noise enters once per step,
+    not once per stage)."""
+
+    def test_decorrelation(self):
+        n_side, d_rot, dt, steps = 64, 0.5, 0.05, 20
+        script = f"""
+dimension 2
+units lj
+atom_style dipole
+boundary p p p
+lattice sq 1.0
+region box block 0 {n_side} 0 {n_side} -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+mass * 1.0
+pair_style zero 0.5
+pair_coeff * *
+fix p all polarity 0.0 1.0 noise {d_rot} 3301
+fix b all brownian/heun 1.0 1 gamma_t 1.0 rng none
+timestep {dt}
+thermo 0
+run 0
+""" + DUMP.format(name="a.dump") + f"run {steps}\n" + DUMP.format(name="b.dump")
+        run = self.run_lmp(script)
+        (a,), (b,) = run.dump("a.dump"), run.dump("b.dump")
+        c = a["mux"] * b["mux"] + a["muy"] * b["muy"]
+        expected = math.exp(-d_rot * dt * steps)
+        # cos of a Gaussian angle of variance s2 = 2 D_r t: variance (1 - e^-s2)^2 / 2
+        s2 = 2 * d_rot * dt * steps
+        sigma = math.sqrt(0.5 * (1 - math.exp(-s2)) ** 2 / len(c))
+        self.assertLess(abs(c.mean() - expected), 5 * sigma, (c.mean(), expected, sigma))
+        np.testing.assert_array_equal(b["xu"], a["xu"])
+
+
+class Continuation(LammpsTestCase):
+    """Without position noise (rotational noise is counter-based), `run N;
+    run M`, a restart and 1 vs 2 ranks all give the same trajectory up to the
+    rounding of sums."""
+
+    POLARITY = "velocity 0.5 noise 0.3 77"
+
+    def test_run_split_and_restart(self):
+        base = active_tissue("brownian/heun", self.POLARITY) + "timestep 0.01\n"
+        whole = self.run_lmp(base + "run 40\n" + DUMP.format(name="end.dump")).dump("end.dump")[0]
+        split = self.run_lmp(base + "run 25\nrun 15\n" + DUMP.format(name="end.dump")).dump("end.dump")[0]
+        first = self.run_lmp(base + "run 25\nwrite_restart half.restart\n")
+        restart = f"""
+read_restart {first.path('half.restart')}
+fix p all polarity 0.3 1.0 neighbor 1.0 groove 1.0 30 {self.POLARITY}
+fix b all brownian/heun 1.0 1 gamma_t 1.0 rng none
+timestep 0.01
+thermo 0
+run 15
+""" + DUMP.format(name="end.dump")
+        restarted = self.run_lmp(restart).dump("end.dump")[0]
+        half = self.run_lmp(base + "run 25\n" + DUMP.format(name="half.dump")).dump("half.dump")[0]
+        self.assertGreater(np.abs(whole["xu"] - half["xu"]).max(), 1e-3)
+        self.assertGreater(np.abs(whole["mux"] - half["mux"]).max(), 1e-3)
+        for other in (split, restarted):
+            for col in ("xu", "yu", "mux", "muy", "vx", "vy"):
+                np.testing.assert_allclose(other[col], whole[col], rtol=0, atol=1e-11, err_msg=col)
+
+    def test_fix_order(self):
+        """fix brownian/heun finds fix polarity whichever is defined first."""
+        base = active_tissue("brownian/heun", self.POLARITY) + "timestep 0.01\nrun 30\n" + \
+            DUMP.format(name="end.dump")
+        lines = base.split("\n")
+        p = next(i for i, line in enumerate(lines) if line.startswith("fix p "))
+        b = next(i for i, line in enumerate(lines) if line.startswith("fix b "))
+        lines[p], lines[b] = lines[b], lines[p]
+        swapped = "\n".join(lines)
+        self.assertLess(swapped.index("fix b "), swapped.index("fix p "))
+        one = self.run_lmp(base).dump("end.dump")[0]
+        two = self.run_lmp(swapped).dump("end.dump")[0]
+        for col in ("xu", "yu", "mux", "muy"):
+            np.testing.assert_allclose(two[col], one[col], rtol=0, atol=1e-12, err_msg=col)
+
+    @nprocs(2)
+    def test_one_vs_two_ranks(self):
+        make = active_tissue("brownian/heun", self.POLARITY, nx=8, ny=6) + \
+            "run 0\nwrite_data cells.data\n"
+        data = self.run_lmp(make).text("cells.data")
+        script = """
+dimension 2
+units lj
+atom_style dipole
+boundary p p p
+read_data cells.data
+pair_style vertex/voronoi 3.0
+pair_coeff * * 1.0 1.0 0.1 -0.5
+""" + f"""
+fix p all polarity 0.3 1.0 neighbor 1.0 groove 1.0 30 {self.POLARITY}
+fix b all brownian/heun 1.0 1 gamma_t 1.0 rng none
+timestep 0.02
+thermo 0
+run 60
+""" + DUMP.format(name="end.dump")
+        files = {"cells.data": data}
+        serial = self.run_lmp(script, files=files).dump("end.dump")[0]
+        parallel = self.run_lmp(script, nprocs=2, files=files).dump("end.dump")[0]
+        start = self.run_lmp(script.replace("run 60", "run 0"), files=files).dump("end.dump")[0]
+        self.assertGreater(np.abs(serial["xu"] - start["xu"]).max(), 0.02)
+        self.assertGreater(np.abs(serial["mux"] - start["mux"]).max(), 0.02)
+        for col in ("xu", "yu", "mux", "muy", "vx", "vy"):
+            np.testing.assert_allclose(parallel[col], serial[col], rtol=0, atol=1e-11, err_msg=col)
+
+
+class DtReset(LammpsTestCase):
+    """fix dt/reset changes the timestep; both integrators must use the new
+    one (reset_dt): constant forces move each atom by exactly t F / gamma_t,
+    t the elapsed simulated time, and in a tissue no step moves a cell
+    much farther than Xmax."""
+
+    INTEGRATORS = ("brownian", "brownian/heun")
+
+    def test_constant_force(self):
+        for integrator in self.INTEGRATORS:
+            script = free_particles(20) + f"""
+variable fx atom 0.1*id
+fix f all addforce v_fx 0.5 0.0
+fix b all {integrator} 1.0 5 gamma_t 2.0 rng none
+fix r all dt/reset 1 NULL NULL 0.01 units box
+timestep 1.0e-4
+write_dump all custom a.dump id xu yu modify sort id format float %.17g
+run 30
+variable t equal time
+print "elapsed ${{t}}"
+variable d equal dt
+print "last dt ${{d}}"
+write_dump all custom b.dump id xu yu modify sort id format float %.17g
+"""
+            run = self.run_lmp(script)
+            elapsed = float(run.stdout.split("elapsed ")[1].split()[0])
+            last_dt = float(run.stdout.split("last dt ")[1].split()[0])
+            # The fastest atom (id 20, F = (2, 0.5), v = F / 2) sets dt: fix
+            # dt/reset takes dt_v = Xmax / |v| and scales it by Xmax / |dt_v v +
+            # dt_v^2 F / (2 m)| (its inertial term; here m = 1).
+            speed, fnorm = math.hypot(1.0, 0.25), math.hypot(2.0, 0.5)
+            dt_v = 0.01 / speed
+            np.testing.assert_allclose(last_dt, dt_v * 0.01 / (0.01 + 0.5 * dt_v**2 * fnorm),
+                                       rtol=1e-12)
+            (a,), (b,) = run.dump("a.dump"), run.dump("b.dump")
+            self.assertGreater(elapsed, 50 * 30 * 1e-4)    # dt grew from 1e-4
+            np.testing.assert_allclose(b["xu"] - a["xu"], elapsed * 0.1 * a["id"] / 2.0, rtol=1e-10,
+                                       err_msg=integrator)
+            np.testing.assert_allclose(b["yu"] - a["yu"], elapsed * 0.25, rtol=1e-10, err_msg=integrator)
+
+    def test_tissue_displacement_capped(self):
+        xmax = 0.004
+        for integrator in self.INTEGRATORS:
+            script = active_tissue(integrator) + f"""
+fix r all dt/reset 1 NULL 0.05 {xmax} units box
+timestep 0.05
+dump d all custom 1 traj.dump id xu yu
+dump_modify d sort id format float %.17g
+thermo_style custom step dt
+thermo 1
+run 30
+"""
+            frames = self.run_lmp(script).dump("traj.dump")
+            steps = [np.hypot(b["xu"] - a["xu"], b["yu"] - a["yu"]).max()
+                     for a, b in zip(frames[1:], frames[2:])]
+            self.assertLess(max(steps), 1.1 * xmax, integrator)
+            self.assertGreater(max(steps), 0.9 * xmax, integrator)
+
+
+class Example(LammpsTestCase):
+    """examples/heun (brownian/heun + fix dt/reset) runs to its end time with
+    a timestep that fix dt/reset changes, starting from the cells' speeds."""
+
+    INPUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples",
+                         "heun", "in.heun")
+
+    def test_example_short(self):
+        with open(self.INPUT) as f:
+            script = f.read()
+        run = self.run_lmp(script, variables={"tend": 0.3})
+        self.assertIn("Fix halt condition", run.output)
+        # (the thermo header's spacing differs between LAMMPS versions)
+        log = re.split(r"(?m)^\s*Step\s+Time\s+Dt\b.*$", run.stdout)[1].split("Loop time")[0].split("\n")[1:]
+        rows = np.array([[float(w) for w in line.split()] for line in log
+                         if line.strip() and line.split()[0].isdigit()])
+        # Step 0: dt from the speed f_a / gamma_t = 10 of the cells (0.1 / 10),
+        # not from v = 0 (which would give dtmax = 0.05).
+        self.assertLess(rows[0, 2], 0.0101)
+        self.assertGreater(rows[0, 2], 0.009)
+        self.assertNotEqual(rows[1, 2], rows[0, 2])
+
+
+class Errors(LammpsTestCase):
+
+    def test_too_few_arguments(self):
+        run = self.run_lmp(free_particles(4) + "fix 7 all brownian/heun 1.0\nrun 1\n", ok=False)
+        self.assertLammpsError(run, "Illegal fix brownian/heun command", "fix ID 7")
+
+    def test_gamma_t(self):
+        run = self.run_lmp(free_particles(4) + "fix 7 all brownian/heun 1.0 5 gamma_t -1\nrun 1\n",
+                           ok=False)
+        self.assertLammpsError(run, "Fix brownian/heun (ID 7)", "gamma_t = -1 must be > 0")
+
+    def test_two_drivers(self):
+        script = active_tissue("brownian/heun") + \
+            "fix b2 all brownian/heun 1.0 1 gamma_t 1.0 rng none\nrun 1\n"
+        self.assertLammpsError(self.run_lmp(script, ok=False), "fix polarity p", "keep one")
+
+
+if __name__ == "__main__":
+    lmptest.main()

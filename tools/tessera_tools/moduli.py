@@ -1,0 +1,209 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""Linear elastic moduli and vibrational spectrum of an energy-minimised tissue.
+
+The exact Hessian H = d2E/dr dr of the vertex-model energy and the affine
+strain terms come from the ``tessera-hessian`` executable (built with the
+core: ``build/core/tessera-hessian``); this module runs it on a periodic
+configuration and does the linear algebra with numpy/scipy:
+
+* Born term ``d2E/dgamma^2`` at fixed reduced coordinates and
+  ``Xi = d2E/dr dgamma`` for simple shear x += gamma y (LAMMPS's xy tilt) and
+  for dilation r += eps r;
+* relaxed second derivatives ``Born - Xi^T H^+ Xi`` (the non-affine
+  relaxation removes the part of the response that moving the cells can
+  undo; H^+ is the pseudo-inverse, which ignores the two translations);
+* shear modulus ``G = (d2E/dgamma^2)_relaxed / V`` (the slope of -pxy
+  against the tilt strain xy/ly after minimisation), bulk modulus
+  ``B = V d2E/dV^2 = ((d2E/deps^2)_relaxed / V + 2 P) / 4`` with the
+  pressure ``P = -dE/dV = (Wxx + Wyy) / (2 V)`` (the slope of -press against
+  ln V after minimisation), Young's modulus ``E = 4 B G / (B + G)`` and
+  Poisson's ratio ``nu = (B - G) / (B + G)`` (2D isotropic elasticity);
+* the spectrum: eigenvalues of H (squared angular frequencies of the normal
+  modes at unit mass).  Two zero modes are the translations; more zero modes
+  mean floppy motions, and negative eigenvalues mean the configuration is not
+  a minimum (e.g. the hexagonal lattice above p0 = sqrt(8 sqrt 3) = 3.7224).
+
+The configuration must be an energy minimum (forces ~ 0) for G and B to be
+the moduli; ``max_force`` is reported so callers can check.  At a multifold
+vertex the energy is not twice differentiable and tessera-hessian refuses.
+"""
+
+import os
+import subprocess
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+
+
+def find_hessian_exe(explicit=None):
+    """tessera-hessian: explicit path, $TESSERA_HESSIAN, $TESSERA_BUILD/core, build/core."""
+    candidates = [explicit, os.environ.get("TESSERA_HESSIAN")]
+    if os.environ.get("TESSERA_BUILD"):
+        candidates.append(os.path.join(os.environ["TESSERA_BUILD"], "core", "tessera-hessian"))
+    candidates.append(os.path.join(ROOT, "build", "core", "tessera-hessian"))
+    for path in candidates:
+        if path and os.path.isfile(path):
+            return os.path.abspath(path)
+    raise FileNotFoundError("tessera-hessian not found: build it (cmake --build build --target "
+                            "tessera-hessian), or pass its path (or set TESSERA_HESSIAN)")
+
+
+class Model:
+    """Energy parameters per type (0-based): K, A0, Gamma lists and the Lambda matrix.
+
+    E = sum_i K/2 (A_i - A0)^2 + Gamma/2 P_i^2 + tension term, as pair_coeff's
+    ``K A0 Gamma Lambda`` form; ``tension`` is "edge" (default) or "cell".
+    """
+
+    def __init__(self, K, A0, Gamma, Lambda, tension="edge"):
+        self.K = [float(v) for v in np.atleast_1d(K)]
+        self.A0 = [float(v) for v in np.atleast_1d(A0)]
+        self.Gamma = [float(v) for v in np.atleast_1d(Gamma)]
+        n = len(self.K)
+        self.Lambda = np.array(Lambda, dtype=float).reshape(n, n) if np.ndim(Lambda) else np.full((n, n), float(Lambda))
+        if tension not in ("edge", "cell"):
+            raise ValueError(f"tension must be 'edge' or 'cell', got {tension!r}")
+        self.tension = tension
+
+    @classmethod
+    def quadratic(cls, KA, A0, KP, P0, tension="edge"):
+        """E = sum KA (A - A0)^2 + KP (P - P0)^2 (pair_coeff ... quadratic KA A0 KP P0)."""
+        w = 0.5 if tension == "edge" else 1.0
+        return cls(2 * KA, A0, 2 * KP, -(2 * KP) * P0 / w, tension)
+
+
+class HessianResult:
+    """Output of tessera-hessian: energy, virial, forces, Born terms, Xi, H (scipy CSR)."""
+
+    def __init__(self, text):
+        import scipy.sparse
+
+        lines = text.split("\n")
+        head = {}
+        i = 0
+        while not lines[i].startswith("force"):
+            key, *vals = lines[i].split()
+            head[key] = [float(v) for v in vals]
+            i += 1
+        self.n = int(head["n"][0])
+        self.area = head["area"][0]
+        self.energy = head["energy"][0]
+        self.virial = np.array(head["virial"])
+        self.born_shear = head["born_shear"][0]
+        self.born_dilation = head["born_dilation"][0]
+        vec = {}
+        for name in ("force", "xi_shear", "xi_dilation"):
+            if lines[i].strip() != name:
+                raise ValueError(f"tessera-hessian output: expected '{name}', got {lines[i]!r}")
+            vec[name] = np.loadtxt(lines[i + 1:i + 1 + self.n]).reshape(-1)
+            i += 1 + self.n
+        self.force, self.xi_shear, self.xi_dilation = vec["force"], vec["xi_shear"], vec["xi_dilation"]
+        key, nnz = lines[i].split()
+        if key != "hessian":
+            raise ValueError(f"tessera-hessian output: expected 'hessian NNZ', got {lines[i]!r}")
+        nnz = int(nnz)
+        trip = np.loadtxt(lines[i + 1:i + 1 + nnz]).reshape(-1, 3)
+        m = 2 * self.n
+        self.H = scipy.sparse.csr_matrix((trip[:, 2], (trip[:, 0].astype(int), trip[:, 1].astype(int))),
+                                         shape=(m, m))
+
+
+def run_hessian(box, xy, model, types=None, exe=None):
+    """Run tessera-hessian on points xy (N x 2) in box (tessera_tools.dump.Box or (xlo, xhi, ylo, yhi, xy)).
+
+    types: 1-based types per point (default all 1).  Raises RuntimeError with
+    tessera-hessian's message on failure (e.g. a multifold vertex).
+    """
+    if hasattr(box, "xlo"):
+        b = (box.xlo, box.xhi, box.ylo, box.yhi, box.xy)
+    else:
+        b = tuple(float(v) for v in box)
+    xy = np.asarray(xy, dtype=float).reshape(-1, 2)
+    n = len(xy)
+    types = np.ones(n, dtype=int) if types is None else np.asarray(types, dtype=int)
+    nt = len(model.K)
+    out = [" ".join(repr(float(v)) for v in b) + f" {n} {nt} {model.tension}"]
+    out += [f"{model.K[t]!r} {model.A0[t]!r} {model.Gamma[t]!r}" for t in range(nt)]
+    out += [" ".join(repr(float(v)) for v in row) for row in model.Lambda]
+    out += [f"{x!r} {y!r} {t}" for (x, y), t in zip(xy.tolist(), types.tolist())]
+    proc = subprocess.run([find_hessian_exe(exe)], input="\n".join(out) + "\n", capture_output=True,
+                          text=True, check=False)
+    if proc.returncode != 0:
+        raise RuntimeError(proc.stderr.strip() or f"tessera-hessian failed with status {proc.returncode}")
+    return HessianResult(proc.stdout)
+
+
+def _spectrum_solve(H, vectors, dense_limit):
+    """Eigenvalues of H (dense path only) and x^T H^+ x for each vector."""
+    m = H.shape[0]
+    if m <= dense_limit:
+        lam, phi = np.linalg.eigh(H.toarray())
+        tol = 1e-9 * max(1.0, np.abs(lam).max())
+        keep = np.abs(lam) > tol
+        quad = [float(np.sum((phi[:, keep].T @ v) ** 2 / lam[keep])) for v in vectors]
+        return lam, quad
+    # Large: pin point 0 (removes the translations) and solve sparse.
+    import scipy.sparse.linalg
+
+    solve = scipy.sparse.linalg.factorized(H[2:, 2:].tocsc())  # one LU for all vectors
+    return None, [float(v[2:] @ solve(v[2:])) for v in vectors]
+
+
+def moduli(res, dense_limit=4000):
+    """G, B, E, nu and the diagnostics of a HessianResult, as a dict.
+
+    dense_limit: up to this many degrees of freedom (2N) H is diagonalised
+    densely (and the spectrum returned as 'eigenvalues'); above it the
+    non-affine terms come from a sparse solve and there is no spectrum.
+    """
+    V = res.area
+    lam, (na_s, na_d) = _spectrum_solve(res.H, [res.xi_shear, res.xi_dilation], dense_limit)
+    pressure = (res.virial[0] + res.virial[1]) / (2 * V)
+    G = (res.born_shear - na_s) / V
+    B = ((res.born_dilation - na_d) / V + 2 * pressure) / 4
+    out = dict(G=G, B=B, E=4 * B * G / (B + G), nu=(B - G) / (B + G), pressure=pressure,
+               shear_stress=-res.virial[2] / V, G_affine=res.born_shear / V,
+               B_affine=(res.born_dilation / V + 2 * pressure) / 4, energy=res.energy, area=V, n=res.n,
+               max_force=float(np.abs(res.force).max()))
+    if lam is not None:
+        tol = 1e-9 * max(1.0, np.abs(lam).max())
+        out.update(eigenvalues=lam, zero_modes=int(np.sum(np.abs(lam) <= tol)),
+                   negative_modes=int(np.sum(lam < -tol)), lowest_nonzero=float(lam[np.abs(lam) > tol][0]))
+    return out
+
+
+def frame_moduli(frame, model, exe=None, dense_limit=4000):
+    """moduli() of a tessera_tools.dump.Frame (positions x y, optional type column)."""
+    types = frame["type"] if "type" in frame else None
+    return moduli(run_hessian(frame.box, frame.positions(), model, types, exe), dense_limit)
+
+
+def fit_quasistatic(path):
+    """Slopes of the quasistatic strain steps written by examples/moduli/in.moduli.
+
+    Lines ``shear gamma pxy press pe fnorm`` and ``dilation eps pxy press pe
+    fnorm``: G = -d pxy / d gamma, B = -d press / d ln V = -(1/2) d press / d eps.
+    Returns a dict with G, G_err, B, B_err (standard errors of least-squares
+    slopes, from the scatter of the points about the line), and the raw arrays.
+    """
+    rows = {"shear": [], "dilation": []}
+    with open(path) as f:
+        for line in f:
+            w = line.split()
+            if w and w[0] in rows:
+                rows[w[0]].append([float(v) for v in w[1:]])
+    out = {}
+    for kind, y_col, factor, name in (("shear", 1, 1.0, "G"), ("dilation", 2, 0.5, "B")):
+        a = np.array(rows[kind])
+        if len(a) < 3:
+            raise ValueError(f"{path}: need at least 3 '{kind}' lines for a slope with an error, got {len(a)}")
+        x, y = a[:, 0], -a[:, y_col]
+        (slope, _), cov = np.polyfit(x, y, 1, cov="unscaled")
+        resid = y - np.polyval(np.polyfit(x, y, 1), x)
+        s2 = resid @ resid / max(1, len(x) - 2)
+        out[name] = factor * slope
+        out[name + "_err"] = factor * float(np.sqrt(cov[0, 0] * s2))
+        out[kind] = a
+    return out

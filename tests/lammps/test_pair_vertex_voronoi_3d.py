@@ -521,7 +521,39 @@ print "E $(pe:%.17g)"
             np.testing.assert_allclose(f1[c], f0[c], rtol=0, atol=1e-12)
 
 
+class Adapt(LammpsTestCase):
+    """fix adapt ... area0 changes the preferred volume V0 in 3D: unit cubes,
+    E = N (K/2 (1 - V0)^2 + Gamma/2 36 + Lambda/2 6) at every step."""
+
+    def test_adapt_v0(self):
+        run = self.run_lmp(tissue3d(n=3, disp=0, two_types=False) + """
+variable v0 equal 1.0+0.5*step
+fix a all adapt 1 pair vertex/voronoi area0 * * v_v0
+thermo 1
+run 3
+""")
+        K, _, G, L = TYPES[1]
+        rows = [line.split() for line in run.stdout.split("Step")[1].splitlines()[1:5]]
+        for row in rows:
+            step, pe = int(row[0]), float(row[1])
+            v0 = 1.0 + 0.5 * step
+            self.assertAlmostEqual(pe, 27 * (K / 2 * (1 - v0) ** 2 + G / 2 * 36 + L / 2 * 6),
+                                   delta=1e-9, msg=f"step {step}")
+
+
 class Errors(LammpsTestCase):
+    def test_2d_only_features(self):
+        run = self.run_lmp(tissue3d().replace("vertex/voronoi 3.0", "vertex/voronoi 3.0 radius 0.8")
+                           + "run 0\n", ok=False)
+        self.assertLammpsError(run, "finite cells ('radius') are for 2d")
+        run = self.run_lmp(tissue3d() + "fix pa all property/atom d_area0\nset group all d_area0 1.0\n"
+                           "run 0\n", ok=False)
+        self.assertLammpsError(run, "per-atom preferred areas (d_area0) are for 2d")
+        run = self.run_lmp(tissue3d().replace("atom_style atomic", "atom_style dipole") +
+                           "fix p all polarity 0.1 1.0\nfix h all brownian/heun 1.0 1 gamma_t 1.0\n"
+                           "run 1\n", ok=False)
+        self.assertLammpsError(run, "brownian/heun integrates 2d polarity angles only")
+
     def test_2d_only_keywords(self):
         for kw, msg in (("incremental check", "'incremental check' is for 2d"),
                         ("reference 10", "'reference' times the 2d")):

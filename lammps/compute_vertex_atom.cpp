@@ -13,6 +13,7 @@
 
 #include "atom.h"
 #include "comm.h"
+#include "domain.h"
 #include "error.h"
 #include "force.h"
 #include "group.h"
@@ -85,7 +86,7 @@ ComputeVertexAtom::ComputeVertexAtom(LAMMPS *lmp, int narg, char **arg) :
   vector_flag = 1;
   size_vector = 5;
   extvector = 0;
-  comm_forward = 2;
+  comm_forward = 3;
   create_attribute = 1;
   // The neighbour memory is for the members of a fixed group.
   dynamic_group_allow = 0;
@@ -135,6 +136,8 @@ void ComputeVertexAtom::init()
                "compute vertex/atom {}: 'rosette' needs the confluent tessellation; finite "
                "cells (pair_style vertex/voronoi ... radius r) have no Voronoi vertex clusters",
                id);
+  if (domain->dimension == 3 && rosette > 0.0)
+    error->all(FLERR, "compute vertex/atom: keyword 'rosette' is for 2d tissues only");
 }
 
 /* New atoms (create_atoms, fix deposit) have no neighbour memory yet. */
@@ -146,7 +149,9 @@ void ComputeVertexAtom::set_arrays(int i)
 
 void ComputeVertexAtom::check_tessellation()
 {
-  int stale = pair->tessellation_current() ? 0 : 1, any;
+  const bool current =
+      domain->dimension == 3 ? pair->tessellation3_current() : pair->tessellation_current();
+  int stale = current ? 0 : 1, any;
   MPI_Allreduce(&stale, &any, 1, MPI_INT, MPI_MAX, world);
   if (any)
     error->all(FLERR,
@@ -163,11 +168,12 @@ void ComputeVertexAtom::check_tessellation()
 void ComputeVertexAtom::communicate_velocities()
 {
   const int nlocal = atom->nlocal;
-  vel.resize(2 * static_cast<size_t>(atom->nmax));
+  vel.resize(3 * static_cast<size_t>(atom->nmax));
   double **v = atom->v;
   for (int i = 0; i < nlocal; i++) {
-    vel[2 * i] = v[i][0];
-    vel[2 * i + 1] = v[i][1];
+    vel[3 * i] = v[i][0];
+    vel[3 * i + 1] = v[i][1];
+    vel[3 * i + 2] = v[i][2];
   }
   tessera_compat::forward_comm(comm, this);
 }
@@ -178,8 +184,9 @@ int ComputeVertexAtom::pack_forward_comm(int n, int *list, double *buf, int /*pb
   int m = 0;
   for (int k = 0; k < n; k++) {
     const int j = list[k];
-    buf[m++] = vel[2 * j];
-    buf[m++] = vel[2 * j + 1];
+    buf[m++] = vel[3 * j];
+    buf[m++] = vel[3 * j + 1];
+    buf[m++] = vel[3 * j + 2];
   }
   return m;
 }
@@ -188,8 +195,9 @@ void ComputeVertexAtom::unpack_forward_comm(int n, int first, double *buf)
 {
   int m = 0;
   for (int i = first; i < first + n; i++) {
-    vel[2 * i] = buf[m++];
-    vel[2 * i + 1] = buf[m++];
+    vel[3 * i] = buf[m++];
+    vel[3 * i + 1] = buf[m++];
+    vel[3 * i + 2] = buf[m++];
   }
 }
 
@@ -199,6 +207,10 @@ void ComputeVertexAtom::compute_peratom()
 {
   invoked_peratom = update->ntimestep;
   check_tessellation();
+  if (domain->dimension == 3) {
+    compute_peratom_3d();    // compute_vertex_atom_3d.cpp
+    return;
+  }
 
   if (atom->nmax > nmax) {
     memory->destroy(values);
@@ -213,7 +225,7 @@ void ComputeVertexAtom::compute_peratom()
   const int nlocal = atom->nlocal;
   coordination.resize(nlocal);
   orientation.resize(nlocal);
-  tessera::velocity_observables(t, vel.data(), 2, coordination.data(), orientation.data());
+  tessera::velocity_observables(t, vel.data(), 3, coordination.data(), orientation.data());
 
   const int *mask = atom->mask;
   for (int i = 0; i < nlocal; i++) {
@@ -243,6 +255,10 @@ void ComputeVertexAtom::compute_vector()
 {
   invoked_vector = update->ntimestep;
   check_tessellation();
+  if (domain->dimension == 3) {
+    compute_vector_3d();    // compute_vertex_atom_3d.cpp
+    return;
+  }
 
   const tessera::Tessellation &t = pair->tessellation();
   const int *mask = atom->mask;
@@ -314,6 +330,10 @@ double ComputeVertexAtom::count_multifold()
 
 void ComputeVertexAtom::neighbor_tags(int c, std::vector<tagint> &out)
 {
+  if (domain->dimension == 3) {
+    neighbor_tags_3d(c, out);    // compute_vertex_atom_3d.cpp
+    return;
+  }
   const tessera::Tessellation &t = pair->tessellation();
   const int *mask = atom->mask;
   const tagint *tag = atom->tag;

@@ -37,7 +37,7 @@ class ComputeVertexAtom : public Compute {
  protected:
   int nmax;
   double **values;            // per-atom output, nmax x 7
-  std::vector<double> vel;    // stride-2 velocities of owned and ghost atoms
+  std::vector<double> vel;    // stride-3 velocities of owned and ghost atoms
   std::vector<double> coordination, orientation;
   char *id_fix;
   tessera_compat::FixStorePerAtom *fix;
@@ -51,6 +51,11 @@ class ComputeVertexAtom : public Compute {
   std::vector<int> cluster_offset, cluster_members;
   double count_new_neighbors();
   void neighbor_tags(int, std::vector<tagint> &);
+
+  // dimension 3 (compute_vertex_atom_3d.cpp)
+  void compute_peratom_3d();
+  void compute_vector_3d();
+  void neighbor_tags_3d(int, std::vector<tagint> &);
 };
 
 }    // namespace LAMMPS_NS

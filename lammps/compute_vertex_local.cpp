@@ -12,6 +12,7 @@
 #include "compute_vertex_local.h"
 
 #include "atom.h"
+#include "domain.h"
 #include "error.h"
 #include "force.h"
 #include "memory.h"
@@ -44,6 +45,10 @@ ComputeVertexLocal::ComputeVertexLocal(LAMMPS *lmp, int narg, char **arg) :
                arg[3]);
   if (atom->tag_enable == 0)
     error->all(FLERR, "compute vertex/local requires atom IDs (atom_modify id yes)");
+  if (domain->dimension == 3)
+    error->all(FLERR,
+               "compute vertex/local lists 2d junctions and is not available in 3d; use "
+               "compute vertex/atom for the 3d cells");
 
   local_flag = 1;
   size_local_rows = 0;

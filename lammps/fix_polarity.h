@@ -47,6 +47,11 @@ class FixPolarity : public Fix, public CoupledDof {
   void fresh_angles(int);
   void polar_orders(double &polar, double &nematic);
 
+  // dimension 3: a unit vector per cell (end of fix_polarity.cpp)
+  void init_angles_3d();
+  void post_force_3d();
+  void initial_integrate_3d();
+  void polar_orders_3d(double &polar, double &nematic);
   // Integration by a predictor-corrector integrator (fix brownian/heun, see
   // coupled_dof.h): the angle of each cell is its degree of freedom.
  public:

@@ -480,11 +480,8 @@ void PairVertexVoronoi::coeff(int narg, char **arg)
 
 void PairVertexVoronoi::init_style()
 {
-  if (domain->dimension != 2)
-    error->all(FLERR,
-               "pair_style vertex/voronoi requires a 2d simulation; add 'dimension 2' before "
-               "the box is created");
-  if (radius == 0.0 && (!domain->xperiodic || !domain->yperiodic))
+  if (domain->dimension == 3) init_style_3d();  // 3D cells: pair_vertex_voronoi_3d.cpp
+  if (domain->dimension == 2 && radius == 0.0 && (!domain->xperiodic || !domain->yperiodic))
     error->all(FLERR,
                "pair_style vertex/voronoi requires periodic x and y boundaries ('boundary p p "
                "p'); a confluent tissue has no free edge in this model (for tissue edges use "
@@ -849,6 +846,10 @@ void PairVertexVoronoi::check_against_scratch(const tessera::Points &pts,
 
 void PairVertexVoronoi::compute(int eflag, int vflag)
 {
+  if (domain->dimension == 3) {
+    compute_3d(eflag, vflag);    // pair_vertex_voronoi_3d.cpp
+    return;
+  }
   ev_init(eflag, vflag);
   check_lost_atoms();
   if (radius > 0.0) {

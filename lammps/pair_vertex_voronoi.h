@@ -18,6 +18,7 @@ PairStyle(vertex/voronoi,PairVertexVoronoi);
 #include "tessera/finite.h"
 #include "tessera/mesh.h"
 #include "tessera/tessellation.h"
+#include "tessera/voronoi3d.h"
 
 #include <string>
 #include <vector>
@@ -50,6 +51,10 @@ class PairVertexVoronoi : public Pair {
   const std::vector<double> &cell_energy() const { return cell_e; }
   // Whether the tessellation was computed at the current timestep.
   bool tessellation_current() const;
+  // dimension 3: the same for the 3D cells (pair_vertex_voronoi_3d.cpp).
+  const tessera::Tessellation3 &tessellation3() const { return tess3; }
+  bigint tessellation3_step() const { return tess3_step; }
+  bool tessellation3_current() const;
   // For the step guard: sqrt(A0) of a type, and owned atom i's closest
   // Voronoi neighbour (ID, distance) at the last force computation.
   double cell_size(int type) const;
@@ -86,7 +91,7 @@ class PairVertexVoronoi : public Pair {
   double stats[7];      // pvector: see the doc (times, rebuilds, flips, steps, reference)
   std::vector<int> type0;
   std::vector<double> cell_e;
-  std::vector<double> cell_w;  // per-cell virial (xx, yy, xy, yx) when asked for
+  std::vector<double> cell_w;  // per-cell virial (2d: xx, yy, xy, yx; 3d: 9) when asked for
 
   double radius;                 // finite Voronoi radius (0: confluent model)
   double *free_tension;          // per type: tension of free arcs (internal F)
@@ -113,6 +118,13 @@ class PairVertexVoronoi : public Pair {
   void check_against_scratch(const tessera::Points &, const tessera::Region &, double);
   tessera::Region subdomain() const;
   double ghost_width() const;
+
+  // dimension 3 (pair_vertex_voronoi_3d.cpp): a CGAL rebuild every step.
+  tessera::Tessellation3 tess3;
+  bigint tess3_step = -1;
+  void init_style_3d();
+  void compute_3d(int, int);
+  bool tessellate_3d();  // true if the ghost shell had to grow
 };
 
 }    // namespace LAMMPS_NS

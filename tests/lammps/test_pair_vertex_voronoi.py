@@ -409,6 +409,8 @@ run 0
         self.assertLammpsError(run, "too small", "use 'pair_style vertex/voronoi")
 
     def test_3d(self):
+        # dimension 3 is the 3D model (test_pair_vertex_voronoi_3d.py): a
+        # simple cubic lattice of unit cubes, E = N (Gamma/2 S^2 + Lambda S/2).
         run = self.run_lmp("""
 units lj
 atom_style dipole
@@ -420,9 +422,11 @@ create_atoms 1 box
 mass 1 1.0
 pair_style vertex/voronoi 3.0
 pair_coeff * * 1 1 0.1 -0.5
+thermo_modify norm no format float %.17g
 run 0
-""", ok=False)
-        self.assertLammpsError(run, "requires a 2d simulation")
+print "E $(pe:%.17g)"
+""")
+        self.assertAlmostEqual(thermo_values(run)[0], 64 * (0.05 * 36 - 0.25 * 6), delta=1e-10)
 
     def test_non_periodic(self):
         run = self.run_lmp(self.BASE.replace("boundary p p p", "boundary p f p") +

@@ -1,0 +1,574 @@
+// Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
+//
+// 3D Voronoi cells from CGAL's Delaunay tetrahedralisation (exact
+// predicates), their volumes and surfaces, and the energy's exact gradient.
+//
+// Geometry of the gradient.  Face f of cell i (towards j) is the polygon of
+// the circumcentres h_k of the tetrahedra around the Delaunay edge i-j; all of
+// them lie on the bisector plane of i and j, whatever the triangulation, so
+// the face is planar with unit normal n = (x_j - x_i)/|x_j - x_i|.  With
+// u_k = h_k - x_i:
+//   vector area  a_f = 1/2 sum_k u_k x u_{k+1},   face area S_f = a_f . n,
+//   volume       V   = 1/3 sum_f a_f . q_f,       q_f = mean of the face's u_k,
+//   dS_f/dh_k = 1/2 (u_{k+1} - u_{k-1}) x n,
+//   dV/dh_k   = sum_f 1/3 [ 1/2 (u_{k+1} - u_{k-1}) x q_f + a_f / m_f ].
+// S_f also depends on x_i, x_j through n, but a_f is parallel to n, so that
+// derivative (a_f . dn) vanishes; V does not depend on x_i (sum_f a_f = 0).
+// The circumcentre c of p0..p3, with e_m = p_m - p0 and A the matrix of rows
+// e_m, has dc/dp_m = A^{-1}[:, m] (p_m - c)^T (m = 1..3) and
+// dc/dp0 = I - sum_m dc/dp_m.
+//
+// Co-spherical points.  Several tetrahedra then share a circumcentre and CGAL
+// picks one of the triangulations.  Every triangulation of the points near
+// such a configuration gives planar faces on the right bisector planes; a
+// non-Delaunay one differs from the true cells only inside a ball of the size
+// e of the perturbation, by O(e^2) in face areas and O(e^3) in volumes.  So V
+// and S (unlike the 2D perimeter, which has |edge| terms) are continuously
+// differentiable there and the gradient through CGAL's triangulation is the
+// true gradient, whichever way the tie was broken.
+
+#include "tessera/voronoi3d.h"
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_cell_base_with_info_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <unordered_map>
+#include <utility>
+
+namespace tessera {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
+using Cb = CGAL::Triangulation_cell_base_with_info_3<int, K, CGAL::Delaunay_triangulation_cell_base_3<K>>;
+using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
+using DT = CGAL::Delaunay_triangulation_3<K, Tds>;
+using P3 = K::Point_3;
+
+struct V3 {
+  double x, y, z;
+};
+inline V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline V3 operator*(double s, V3 a) { return {s * a.x, s * a.y, s * a.z}; }
+inline double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline V3 cross(V3 a, V3 b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline V3 load(const Points3 &pts, int i) {
+  const double *p = pts.p(i);
+  return {p[0], p[1], p[2]};
+}
+inline V3 vv(const Vec3 &v) { return {v.x, v.y, v.z}; }
+
+std::string point_name(int i, const long *ids) {
+  std::ostringstream s;
+  if (ids)
+    s << "id " << ids[i];
+  else
+    s << "point " << i;
+  return s.str();
+}
+
+// Circumcentre of a tetrahedron, computed relative to p0.
+V3 circumcentre(V3 p0, V3 p1, V3 p2, V3 p3) {
+  const V3 e1 = p1 - p0, e2 = p2 - p0, e3 = p3 - p0;
+  const V3 c23 = cross(e2, e3), c31 = cross(e3, e1), c12 = cross(e1, e2);
+  const double det = dot(e1, c23);
+  const double s = 0.5 / det;
+  return p0 + s * (dot(e1, e1) * c23 + dot(e2, e2) * c31 + dot(e3, e3) * c12);
+}
+
+// Parity of the permutation (a, b, c, d) of (0, 1, 2, 3): +1 even, -1 odd.
+int parity(int a, int b, int c, int d) {
+  int p[4] = {a, b, c, d}, sign = 1;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j)
+      if (p[i] > p[j]) sign = -sign;
+  return sign;
+}
+
+}  // namespace
+
+void Box3::validate() const {
+  for (int d = 0; d < 3; ++d)
+    if (!std::isfinite(lo[d]) || !std::isfinite(hi[d]) || !(hi[d] > lo[d])) {
+      std::ostringstream s;
+      s << "tessera: box length in " << "xyz"[d] << " must be positive and finite, got [" << lo[d]
+        << ", " << hi[d] << "]";
+      throw Error(s.str());
+    }
+  if (!std::isfinite(xy) || !std::isfinite(xz) || !std::isfinite(yz))
+    throw Error("tessera: box tilts xy, xz, yz must be finite");
+}
+
+Region3 Box3::region() const {
+  Region3 r;
+  for (int d = 0; d < 3; ++d) r.o[d] = lo[d];
+  r.a[0] = length(0);
+  r.a[1] = r.a[2] = 0.0;
+  r.b[0] = xy;
+  r.b[1] = length(1);
+  r.b[2] = 0.0;
+  r.c[0] = xz;
+  r.c[1] = yz;
+  r.c[2] = length(2);
+  return r;
+}
+
+void Box3::fractional(const double x[3], double s[3]) const {
+  s[2] = (x[2] - lo[2]) / length(2);
+  s[1] = (x[1] - lo[1] - yz * s[2]) / length(1);
+  s[0] = (x[0] - lo[0] - xy * s[1] - xz * s[2]) / length(0);
+}
+
+namespace {
+
+// Unit normals of the three pairs of faces of a parallelepiped (normal k is
+// perpendicular to the two edges other than k, pointing along edge k) and
+// the widths along them.
+void slabs(const Region3 &r, V3 n[3], double width[3]) {
+  const V3 e[3] = {{r.a[0], r.a[1], r.a[2]}, {r.b[0], r.b[1], r.b[2]}, {r.c[0], r.c[1], r.c[2]}};
+  for (int k = 0; k < 3; ++k) {
+    V3 m = cross(e[(k + 1) % 3], e[(k + 2) % 3]);
+    m = (1.0 / std::sqrt(dot(m, m))) * m;
+    if (dot(m, e[k]) < 0) m = -1.0 * m;
+    n[k] = m;
+    width[k] = dot(m, e[k]);
+  }
+}
+
+}  // namespace
+
+int Tessellation3::face_count(int c, double rel_tol) const {
+  int z = 0;
+  for (int f = cell_offset[c]; f < cell_offset[c + 1]; ++f) z += face_area[f] > rel_tol * surface[c];
+  return z;
+}
+
+double Tessellation3::shape_index(int c) const { return surface[c] / std::cbrt(volume[c] * volume[c]); }
+
+Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *ids,
+                                  bool throw_if_unbounded) {
+  const int n = pts.n;
+  if (n_owned < 0 || n_owned > n) throw Error("tessera: n_owned out of range");
+  if (n_owned == 0) {
+    // No cells wanted (e.g. an MPI rank without atoms): nothing to triangulate.
+    Tessellation3 empty;
+    empty.n_points = n;
+    empty.cell_offset.assign(1, 0);
+    empty.face_offset.assign(1, 0);
+    return empty;
+  }
+  std::vector<std::pair<P3, int>> in(n);
+  for (int i = 0; i < n; ++i) {
+    const double *p = pts.p(i);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      throw Error("tessera: non-finite coordinates for " + point_name(i, ids));
+    in[i] = {P3(p[0], p[1], p[2]), i};
+  }
+  DT dt(in.begin(), in.end());
+  if (static_cast<int>(dt.number_of_vertices()) != n) {
+    // Coincident points: name a pair.
+    std::vector<int> order(n);
+    for (int i = 0; i < n; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      const double *p = pts.p(a), *q = pts.p(b);
+      return std::lexicographical_compare(p, p + 3, q, q + 3);
+    });
+    for (int k = 0; k + 1 < n; ++k) {
+      const double *p = pts.p(order[k]), *q = pts.p(order[k + 1]);
+      if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2])
+        throw Error("tessera: two cell centres at the same position (" + point_name(order[k], ids) +
+                    " and " + point_name(order[k + 1], ids) + ")");
+    }
+    throw Error("tessera: points were lost by the triangulation");
+  }
+  if (dt.dimension() < 3) throw Error("tessera: the points are coplanar; need a 3D configuration");
+
+  std::vector<DT::Vertex_handle> vh(n);
+  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) vh[v->info()] = v;
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) c->info() = -1;
+
+  Tessellation3 t;
+  t.n_points = n;
+  t.n_owned = n_owned;
+  t.cell_offset.assign(1, 0);
+  t.face_offset.assign(1, 0);
+  t.volume.assign(n_owned, 0.0);
+  t.surface.assign(n_owned, 0.0);
+
+  auto tet_of = [&](DT::Cell_handle c) {
+    if (c->info() >= 0) return c->info();
+    const int id = static_cast<int>(t.tets.size());
+    c->info() = id;
+    std::array<int, 4> q;
+    for (int k = 0; k < 4; ++k) q[k] = c->vertex(k)->info();
+    t.tets.push_back(q);
+    const V3 h = circumcentre(load(pts, q[0]), load(pts, q[1]), load(pts, q[2]), load(pts, q[3]));
+    t.vertices.push_back({h.x, h.y, h.z});
+    const V3 d = h - load(pts, q[0]);
+    t.radius.push_back(std::sqrt(dot(d, d)));
+    return id;
+  };
+
+  std::vector<DT::Edge> edges;
+  std::vector<DT::Cell_handle> ring;
+  for (int i = 0; i < n_owned; ++i) {
+    edges.clear();
+    dt.finite_incident_edges(vh[i], std::back_inserter(edges));
+    bool unbounded = false;
+    const V3 xi = load(pts, i);
+    double vol = 0.0, sur = 0.0;
+    for (const DT::Edge &e : edges) {
+      DT::Vertex_handle a = e.first->vertex(e.second), b = e.first->vertex(e.third);
+      const int j = (a->info() == i) ? b->info() : a->info();
+      ring.clear();
+      auto circ = dt.incident_cells(e), end = circ;
+      do {
+        if (dt.is_infinite(circ)) unbounded = true;
+        ring.push_back(circ);
+      } while (++circ != end);
+      if (unbounded) break;
+      // Orientation: rotating from the first tetrahedron to the next crosses
+      // the triangle (i, j, b); the ring runs counter-clockwise about
+      // x_j - x_i iff (i, j, a, b) is positively oriented.
+      const DT::Cell_handle c0 = ring[0], c1 = ring[1];
+      const int li = c0->index(vh[i]), lj = c0->index(vh[j]);
+      int la = -1, lb = -1;
+      for (int k = 0; k < 4; ++k) {
+        if (k == li || k == lj) continue;
+        if (c1->has_vertex(c0->vertex(k)))
+          lb = k;
+        else
+          la = k;
+      }
+      const bool ccw = parity(li, lj, la, lb) > 0;
+      if (!ccw) std::reverse(ring.begin(), ring.end());
+      for (const auto &c : ring) t.face_vertex.push_back(tet_of(c));
+      t.face_offset.push_back(static_cast<int>(t.face_vertex.size()));
+      t.face_neighbor.push_back(j);
+      // Area and volume contribution.
+      const int o = t.face_offset[t.face_offset.size() - 2], m = static_cast<int>(ring.size());
+      V3 av{0, 0, 0}, q{0, 0, 0};
+      for (int k = 0; k < m; ++k) {
+        const V3 u = vv(t.vertices[t.face_vertex[o + k]]) - xi;
+        const V3 w = vv(t.vertices[t.face_vertex[o + (k + 1) % m]]) - xi;
+        av = av + 0.5 * cross(u, w);
+        q = q + u;
+      }
+      q = (1.0 / m) * q;
+      const V3 d = load(pts, j) - xi;
+      const double area = dot(av, d) / std::sqrt(dot(d, d));
+      t.face_area.push_back(area);
+      sur += area;
+      vol += dot(av, q) / 3.0;
+    }
+    if (unbounded) {
+      if (throw_if_unbounded)
+        throw Error("tessera: the cell of " + point_name(i, ids) +
+                    " is unbounded (on the convex hull): the ghost shell is missing");
+      t.unbounded_cell = i;
+      // Drop the faces of this cell collected so far.
+      const int f_begin = t.cell_offset.back();
+      t.face_vertex.resize(t.face_offset[f_begin]);
+      t.face_offset.resize(f_begin + 1);
+      t.face_neighbor.resize(f_begin);
+      t.face_area.resize(f_begin);
+      vol = sur = 0.0;
+    }
+    t.volume[i] = vol;
+    t.surface[i] = sur;
+    t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
+  }
+  return t;
+}
+
+Coverage check_coverage_3d(const Tessellation3 &t, const double lo[3], const double hi[3],
+                           double margin) {
+  Coverage cov;
+  if (t.unbounded_cell >= 0) {
+    cov.ok = false;
+    cov.needed_margin = std::numeric_limits<double>::infinity();
+    cov.worst_cell = t.unbounded_cell;
+    return cov;
+  }
+  for (int c = 0; c < t.n_owned; ++c)
+    for (int f = t.cell_offset[c]; f < t.cell_offset[c + 1]; ++f)
+      for (int k = t.face_offset[f]; k < t.face_offset[f + 1]; ++k) {
+        const int v = t.face_vertex[k];
+        const double h[3] = {t.vertices[v].x, t.vertices[v].y, t.vertices[v].z};
+        const double r = t.radius[v];
+        for (int d = 0; d < 3; ++d) {
+          const double need = std::max(lo[d] - margin - (h[d] - r), (h[d] + r) - (hi[d] + margin));
+          if (need > cov.needed_margin) {
+            cov.ok = false;
+            cov.needed_margin = need;
+            cov.worst_cell = c;
+          }
+        }
+      }
+  return cov;
+}
+
+Coverage check_coverage_3d(const Tessellation3 &t, const Region3 &region, double margin) {
+  Coverage cov;
+  if (t.unbounded_cell >= 0) {
+    cov.ok = false;
+    cov.needed_margin = std::numeric_limits<double>::infinity();
+    cov.worst_cell = t.unbounded_cell;
+    return cov;
+  }
+  V3 n[3];
+  double width[3];
+  slabs(region, n, width);
+  const V3 o{region.o[0], region.o[1], region.o[2]};
+  for (int c = 0; c < t.n_owned; ++c)
+    for (int f = t.cell_offset[c]; f < t.cell_offset[c + 1]; ++f)
+      for (int k = t.face_offset[f]; k < t.face_offset[f + 1]; ++k) {
+        const int v = t.face_vertex[k];
+        const V3 h = vv(t.vertices[v]) - o;
+        const double r = t.radius[v];
+        for (int d = 0; d < 3; ++d) {
+          const double u = dot(n[d], h);
+          const double need = std::max(-margin - (u - r), (u + r) - (width[d] + margin));
+          if (need > cov.needed_margin) {
+            cov.ok = false;
+            cov.needed_margin = need;
+            cov.worst_cell = c;
+          }
+        }
+      }
+  return cov;
+}
+
+Tessellation3 tessellate_periodic_3d(const Box3 &box, const Points3 &pts, const long *ids) {
+  box.validate();
+  const int n = pts.n;
+  if (n < 1) throw Error("tessera: no points");
+  for (int i = 0; i < n; ++i) {
+    double s[3];
+    box.fractional(pts.p(i), s);
+    for (int d = 0; d < 3; ++d)
+      if (!(s[d] >= 0.0 && s[d] < 1.0))
+        throw Error("tessera: " + point_name(i, ids) + " lies outside the box; wrap it first");
+  }
+  const Region3 reg = box.region();
+  V3 nrm[3];
+  double width[3];
+  slabs(reg, nrm, width);
+  const V3 edge[3] = {{reg.a[0], reg.a[1], reg.a[2]}, {reg.b[0], reg.b[1], reg.b[2]},
+                      {reg.c[0], reg.c[1], reg.c[2]}};
+  const V3 origin0{reg.o[0], reg.o[1], reg.o[2]};
+  const double lmax = std::max({width[0], width[1], width[2]});
+  double margin = 2.0 * std::cbrt(box.volume() / n);
+  for (int attempt = 0; attempt < 40; ++attempt) {
+    std::vector<double> xyz;
+    std::vector<int> origin;
+    std::vector<long> pid;
+    xyz.reserve(3 * n);
+    for (int i = 0; i < n; ++i) {
+      const double *p = pts.p(i);
+      xyz.insert(xyz.end(), p, p + 3);
+      origin.push_back(i);
+      if (ids) pid.push_back(ids[i]);
+    }
+    int range[3];
+    for (int d = 0; d < 3; ++d) range[d] = static_cast<int>(std::ceil(margin / width[d]));
+    for (int a = -range[0]; a <= range[0]; ++a)
+      for (int b = -range[1]; b <= range[1]; ++b)
+        for (int c = -range[2]; c <= range[2]; ++c) {
+          if (a == 0 && b == 0 && c == 0) continue;
+          const V3 shift = (1.0 * a) * edge[0] + (1.0 * b) * edge[1] + (1.0 * c) * edge[2];
+          const double s[3] = {shift.x, shift.y, shift.z};
+          for (int i = 0; i < n; ++i) {
+            const double *p = pts.p(i);
+            double q[3];
+            for (int d = 0; d < 3; ++d) q[d] = p[d] + s[d];
+            const V3 rel = V3{q[0], q[1], q[2]} - origin0;
+            bool in = true;
+            for (int d = 0; d < 3; ++d) {
+              const double u = dot(nrm[d], rel);
+              if (u < -margin || u > width[d] + margin) in = false;
+            }
+            if (!in) continue;
+            xyz.insert(xyz.end(), q, q + 3);
+            origin.push_back(i);
+            if (ids) pid.push_back(ids[i]);
+          }
+        }
+    const Points3 all{xyz.data(), static_cast<int>(origin.size()), 3};
+    Tessellation3 t = tessellate_local_3d(all, n, ids ? pid.data() : nullptr, false);
+    const Coverage cov = check_coverage_3d(t, reg, margin);
+    if (cov.ok) {
+      t.origin = std::move(origin);
+      t.position = std::move(xyz);
+      return t;
+    }
+    margin = std::isinf(cov.needed_margin) ? 2.0 * margin
+                                           : std::max(1.5 * margin, margin + 1.1 * cov.needed_margin);
+    if (margin > 3.0 * lmax) margin = 3.0 * lmax;
+  }
+  throw Error("tessera: the periodic 3D tessellation did not converge");
+}
+
+namespace {
+
+// Per-cell energies and their sum.
+double energy_3d(const Tessellation3 &t, const int *type, const Model &model, double *cell_energy) {
+  const double w = model.tension_weight();
+  double total = 0.0;
+  for (int c = 0; c < t.n_owned; ++c) {
+    const CellType &ct = model.types[type[c]];
+    double tension = 0.0;
+    for (int f = t.cell_offset[c]; f < t.cell_offset[c + 1]; ++f)
+      tension += model.lambda_of(type[c], type[t.face_neighbor[f]]) * t.face_area[f];
+    const double dv = t.volume[c] - ct.A0;
+    const double e = 0.5 * ct.K * dv * dv + 0.5 * ct.Gamma * t.surface[c] * t.surface[c] + w * tension;
+    if (cell_energy) cell_energy[c] = e;
+    total += e;
+  }
+  return total;
+}
+
+}  // namespace
+
+double compute_energy_3d(const Tessellation3 &t, const int *type, const Model &model,
+                         double *cell_energy) {
+  return energy_3d(t, type, model, cell_energy);
+}
+
+namespace {
+
+// (dh/dp)^T g for the four points of tetrahedron v: calls add(point, force).
+template <class Add>
+void chain_rule(const Tessellation3 &t, const Points3 &pts, int v, V3 gv, Add add) {
+  const auto &q = t.tets[v];
+  const V3 p0 = load(pts, q[0]);
+  const V3 e[3] = {load(pts, q[1]) - p0, load(pts, q[2]) - p0, load(pts, q[3]) - p0};
+  const V3 col[3] = {cross(e[1], e[2]), cross(e[2], e[0]), cross(e[0], e[1])};
+  const double det = dot(e[0], col[0]);
+  const V3 h = vv(t.vertices[v]);
+  V3 sum{0, 0, 0};
+  for (int m = 0; m < 3; ++m) {
+    // (dh/dp_m)^T g = (p_m - h) (A^{-1}[:, m] . g)
+    const V3 df = (dot(col[m], gv) / det) * (load(pts, q[m + 1]) - h);
+    add(q[m + 1], -1.0 * df);
+    sum = sum + df;
+  }
+  // dh/dp0 = I - sum_m dh/dp_m
+  add(q[0], -1.0 * (gv - sum));
+}
+
+}  // namespace
+
+ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const int *type,
+                               const Model &model, double *f, int f_stride, double *cell_energy,
+                               double *cell_virial) {
+  ForceOutput3 out;
+  std::vector<double> ce(t.n_owned);
+  out.energy = energy_3d(t, type, model, ce.data());
+  if (cell_energy) std::copy(ce.begin(), ce.end(), cell_energy);
+
+  const double w = model.tension_weight();
+  std::vector<V3> g(t.tets.size(), V3{0, 0, 0});
+  std::vector<V3> u;
+  // With cell_virial: each cell's dE_c/dh on its own tetrahedra, then its
+  // forces and their virial about the cell's centre.
+  std::vector<int> own;
+  std::vector<V3> gc;
+  std::vector<int> stamp(cell_virial ? t.tets.size() : 0, -1);
+  if (cell_virial) gc.assign(t.tets.size(), V3{0, 0, 0});
+  for (int c = 0; c < t.n_owned; ++c) {
+    own.clear();
+    const CellType &ct = model.types[type[c]];
+    const double dedv = ct.K * (t.volume[c] - ct.A0);
+    const double deds = ct.Gamma * t.surface[c];
+    const V3 xc = load(pts, c);
+    for (int f = t.cell_offset[c]; f < t.cell_offset[c + 1]; ++f) {
+      const int o = t.face_offset[f], m = t.face_offset[f + 1] - o;
+      const double dedsf = deds + w * model.lambda_of(type[c], type[t.face_neighbor[f]]);
+      V3 d = load(pts, t.face_neighbor[f]) - xc;
+      const V3 nrm = (1.0 / std::sqrt(dot(d, d))) * d;
+      u.resize(m);
+      V3 av{0, 0, 0}, q{0, 0, 0};
+      for (int k = 0; k < m; ++k) u[k] = vv(t.vertices[t.face_vertex[o + k]]) - xc;
+      for (int k = 0; k < m; ++k) {
+        av = av + 0.5 * cross(u[k], u[(k + 1) % m]);
+        q = q + u[k];
+      }
+      q = (1.0 / m) * q;
+      for (int k = 0; k < m; ++k) {
+        const V3 diff = u[(k + 1) % m] - u[(k + m - 1) % m];
+        const V3 dS = 0.5 * cross(diff, nrm);
+        const V3 dV = (1.0 / 3.0) * (0.5 * cross(diff, q) + (1.0 / m) * av);
+        const int v = t.face_vertex[o + k];
+        const V3 dg = dedsf * dS + dedv * dV;
+        g[v] = g[v] + dg;
+        if (cell_virial) {
+          if (stamp[v] != c) {
+            stamp[v] = c;
+            gc[v] = V3{0, 0, 0};
+            own.push_back(v);
+          }
+          gc[v] = gc[v] + dg;
+        }
+      }
+    }
+    if (cell_virial) {
+      double *wc = cell_virial + 9 * static_cast<long>(c);
+      for (int a = 0; a < 9; ++a) wc[a] = 0.0;
+      for (int v : own)
+        chain_rule(t, pts, v, gc[v], [&](int p, V3 fp) {
+          const V3 r = load(pts, p) - xc;
+          const double ra[3] = {r.x, r.y, r.z}, fb[3] = {fp.x, fp.y, fp.z};
+          for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) wc[3 * a + b] += ra[a] * fb[b];
+        });
+    }
+  }
+  // Chain rule through the circumcentres.
+  std::vector<V3> force(t.n_points, V3{0, 0, 0});
+  for (size_t v = 0; v < t.tets.size(); ++v) {
+    const V3 gv = g[v];
+    if (gv.x == 0.0 && gv.y == 0.0 && gv.z == 0.0) continue;
+    chain_rule(t, pts, static_cast<int>(v), gv, [&](int p, V3 fp) { force[p] = force[p] + fp; });
+  }
+  for (int p = 0; p < t.n_points; ++p) {
+    double *fp = f + static_cast<long>(p) * f_stride;
+    fp[0] += force[p].x;
+    fp[1] += force[p].y;
+    fp[2] += force[p].z;
+    const V3 r = load(pts, p);
+    const double ra[3] = {r.x, r.y, r.z}, fb[3] = {force[p].x, force[p].y, force[p].z};
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) out.virial[3 * a + b] += ra[a] * fb[b];
+  }
+  return out;
+}
+
+ForceOutput3 periodic_forces_3d(const Box3 &box, const Points3 &pts, const int *type,
+                                const Model &model, std::vector<double> &f,
+                                std::vector<double> *cell_energy) {
+  const Tessellation3 t = tessellate_periodic_3d(box, pts);
+  std::vector<int> ty(t.n_points);
+  for (int p = 0; p < t.n_points; ++p) ty[p] = type[t.origin[p]];
+  std::vector<double> fall(3 * static_cast<size_t>(t.n_points), 0.0);
+  if (cell_energy) cell_energy->assign(t.n_owned, 0.0);
+  const Points3 all{t.position.data(), t.n_points, 3};
+  ForceOutput3 out = compute_forces_3d(t, all, ty.data(), model, fall.data(), 3,
+                                       cell_energy ? cell_energy->data() : nullptr);
+  f.assign(3 * static_cast<size_t>(pts.n), 0.0);
+  for (int p = 0; p < t.n_points; ++p)
+    for (int d = 0; d < 3; ++d) f[3 * t.origin[p] + d] += fall[3 * p + d];
+  return out;
+}
+
+}  // namespace tessera

@@ -255,6 +255,12 @@ void ComputeVertexAtom::compute_vector()
 {
   invoked_vector = update->ntimestep;
   check_tessellation();
+  // Asked again for the same tessellation (LAMMPS may invoke a compute twice
+  // on one step, e.g. at a run's setup): every value is a function of that
+  // tessellation, and the neighbour exchanges are those since the previous
+  // tessellation, not 0.
+  if (pair->compute_count() == vector_of) return;
+  vector_of = pair->compute_count();
   if (domain->dimension == 3) {
     compute_vector_3d();    // compute_vertex_atom_3d.cpp
     return;

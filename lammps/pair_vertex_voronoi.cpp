@@ -846,6 +846,7 @@ void PairVertexVoronoi::check_against_scratch(const tessera::Points &pts,
 
 void PairVertexVoronoi::compute(int eflag, int vflag)
 {
+  ncompute++;
   if (domain->dimension == 3) {
     compute_3d(eflag, vflag);    // pair_vertex_voronoi_3d.cpp
     return;

@@ -51,6 +51,9 @@ class PairVertexVoronoi : public Pair {
   const std::vector<double> &cell_energy() const { return cell_e; }
   // Whether the tessellation was computed at the current timestep.
   bool tessellation_current() const;
+  // Force computations since the style was created (never reset): tells
+  // computes whether the tessellation changed since they last looked.
+  bigint compute_count() const { return ncompute; }
   // dimension 3: the same for the 3D cells (pair_vertex_voronoi_3d.cpp).
   const tessera::Tessellation3 &tessellation3() const { return tess3; }
   bigint tessellation3_step() const { return tess3_step; }
@@ -67,6 +70,7 @@ class PairVertexVoronoi : public Pair {
 
  protected:
   double cut_global;
+  bigint ncompute = 0;
   tessera::Tension tension;
   double *kappa, *area0, *gamma;  // per type, 1-based
   double **lambda;                // per type pair

@@ -189,7 +189,7 @@ PairVertexVoronoi::PairVertexVoronoi(LAMMPS *lmp) : Pair(lmp)
   tess_step = -1;
   incremental = 1;
   mesh_ncalls = -1;
-  nextra = 7;
+  nextra = 8;
   reference_every = 0;
   grow = 1;
   cutghost_saved = -1.0;
@@ -922,6 +922,9 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
     scratch.build(pts);
     stats[5] += MPI_Wtime() - r0;
     stats[6] += 1.0;
+    // And the plain yardstick: CGAL's own Delaunay triangulation of the
+    // owned points alone (no ghosts, no flat arrays), timed inside the core.
+    stats[7] += tessera::time_plain_delaunay(pts, nlocal);
   }
   if (eflag_global) eng_vdwl += out.energy;
   if (eflag_atom)

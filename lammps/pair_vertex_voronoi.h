@@ -92,7 +92,7 @@ class PairVertexVoronoi : public Pair {
   int incremental;      // 1: keep the triangulation between steps, 0: rebuild every step, 2: check
   bigint mesh_ncalls;   // neighbor->ncalls when the mesh was built: atoms re-ordered since?
   int reference_every;  // time a from-scratch triangulation every this many steps (0: never)
-  double stats[7];      // pvector: see the doc (times, rebuilds, flips, steps, reference)
+  double stats[8];      // pvector: see the doc (times, rebuilds, flips, steps, reference)
   std::vector<int> type0;
   std::vector<double> cell_e;
   std::vector<double> cell_w;  // per-cell virial (2d: xx, yy, xy, yx; 3d: 9) when asked for

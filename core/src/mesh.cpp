@@ -14,6 +14,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 #include <utility>
@@ -602,6 +603,21 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
       t.group_centre.push_back(centre);
     }
   }
+}
+
+double time_plain_delaunay(const Points &pts, int n, long *faces)
+{
+  using PlainDelaunay = CGAL::Delaunay_triangulation_2<Kernel>;
+  std::vector<PlainDelaunay::Point> cp;
+  cp.reserve(static_cast<size_t>(n > 0 ? n : 0));
+  for (int i = 0; i < n; i++) cp.emplace_back(pts.x(i), pts.y(i));
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  PlainDelaunay dt;
+  dt.insert(cp.begin(), cp.end());
+  const double seconds = std::chrono::duration<double>(clock::now() - t0).count();
+  if (faces) *faces = static_cast<long>(dt.number_of_faces());
+  return seconds;
 }
 
 } // namespace tessera

@@ -309,3 +309,27 @@ TEST(Clusters, NearlyFourFoldVerticesOfAJitteredSquareLattice) {
 }
 
 }  // namespace
+
+// The benchmarks' plain CGAL yardstick triangulates exactly the points it is
+// given: n points with h on the convex hull have 2 n - 2 - h triangles
+// (Euler), here random points strictly inside a triangle plus its 3 corners.
+TEST(Mesh, PlainDelaunayYardstickTriangulatesTheOwnedPoints) {
+  std::mt19937 rng(2026);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> xyz = {0.0, 0.0, 7.0, 10.0, 0.0, 7.0, 0.0, 10.0, 7.0};
+  const int n = 503;
+  while (static_cast<int>(xyz.size()) < 3 * n) {
+    const double a = u(rng), b = u(rng);
+    if (a + b > 0.98 || a < 0.01 || b < 0.01) continue;
+    xyz.insert(xyz.end(), {10.0 * a, 10.0 * b, 7.0});
+  }
+  // 20 more points far away (ghosts in the pair style): not triangulated
+  for (int k = 0; k < 20; k++) xyz.insert(xyz.end(), {-50.0 - k, 3.0 * k, 7.0});
+  const Points pts{xyz.data(), n + 20, 3};
+  long faces = -1;
+  const double seconds = tessera::time_plain_delaunay(pts, n, &faces);
+  EXPECT_EQ(faces, 2L * n - 2 - 3);
+  EXPECT_GE(seconds, 0.0);
+  tessera::time_plain_delaunay(pts, 0, &faces);
+  EXPECT_EQ(faces, 0);
+}

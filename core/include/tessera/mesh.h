@@ -76,4 +76,12 @@ private:
   bool flip_needed(const Points &pts, int p, int q, int r, int s) const;
 };
 
+// The benchmarks' yardstick: a plain CGAL Delaunay_triangulation_2 (default
+// kernel and data structure, no info, no periodic images) of points 0..n-1,
+// inserted by CGAL's range insert, which sorts them spatially first.  Returns
+// the wall time of the insert alone in seconds (the copy into CGAL's point
+// type comes before the clock starts) and, in *faces when given, the number of
+// finite triangles (2 n - 2 - hull vertices for n points in general position).
+double time_plain_delaunay(const Points &pts, int n, long *faces = nullptr);
+
 }  // namespace tessera

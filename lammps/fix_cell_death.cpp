@@ -40,9 +40,6 @@ FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
   seed = -1;
   rate = area_min = 0.0;
   min_cells = 0;
-  ndied_total = 0;
-  ndied_last = 0;
-  last_event_step = -1;
 
   auto need = [&](int iarg, const char *kw) {
     if (iarg + 1 >= narg)
@@ -191,9 +188,7 @@ void FixCellDeath::pre_exchange()
   int nall = 0;
   MPI_Allreduce(&ndel, &nall, 1, MPI_INT, MPI_SUM, world);
   atom->natoms -= nall;
-  ndied_total += nall;
-  ndied_last = nall;
-  last_event_step = update->ntimestep;
+  events.record(nall, update->ntimestep);
   if (atom->map_style) {
     atom->nghost = 0;
     atom->map_init();
@@ -204,27 +199,20 @@ void FixCellDeath::pre_exchange()
 
 double FixCellDeath::compute_scalar()
 {
-  return (double) ndied_total;
+  return (double) events.total;
 }
 
 double FixCellDeath::compute_vector(int n)
 {
-  if (n == 0) return last_event_step == update->ntimestep ? ndied_last : 0.0;
-  return (double) ndied_total;
+  return events.vector(n, update->ntimestep);
 }
 
 void FixCellDeath::write_restart(FILE *fp)
 {
-  if (comm->me != 0) return;
-  double list[2] = {(double) ndied_total, (double) last_event_step};
-  const int size = sizeof(list);
-  fwrite(&size, sizeof(int), 1, fp);
-  fwrite(list, sizeof(double), 2, fp);
+  if (comm->me == 0) events.write_restart(fp);
 }
 
 void FixCellDeath::restart(char *buf)
 {
-  const double *list = reinterpret_cast<double *>(buf);
-  ndied_total = static_cast<bigint>(list[0]);
-  last_event_step = static_cast<bigint>(list[1]);
+  events.restart(buf);
 }

@@ -12,6 +12,7 @@ FixStyle(cell/death,FixCellDeath);
 #ifndef LMP_FIX_CELL_DEATH_H
 #define LMP_FIX_CELL_DEATH_H
 
+#include "cell_event_count.h"
 #include "fix.h"
 
 #include <string>
@@ -41,9 +42,7 @@ class FixCellDeath : public Fix {
   class Region *region;
   class PairVertexVoronoi *pair;
   std::unordered_set<tagint> pending;    // cells that die at the next step
-  bigint ndied_total;
-  int ndied_last;
-  bigint last_event_step;
+  cell_events::EventCount events;
 
   void decide();
 };

@@ -52,9 +52,6 @@ FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
   noise = 0.0;
   max_cells = -1;
   seed = -1;
-  ndivided_total = 0;
-  ndivided_last = 0;
-  last_event_step = -1;
 
   auto need = [&](int iarg, int n, const char *kw) {
     if (iarg + n >= narg)
@@ -446,9 +443,7 @@ void FixCellDivide::pre_exchange()
   int nall = 0;
   MPI_Allreduce(&ncreated, &nall, 1, MPI_INT, MPI_SUM, world);
   atom->natoms += nall;
-  ndivided_total += nall;
-  ndivided_last = nall;
-  last_event_step = update->ntimestep;
+  events.record(nall, update->ntimestep);
   if (atom->map_style) {
     atom->map_init();
     atom->map_set();
@@ -458,31 +453,24 @@ void FixCellDivide::pre_exchange()
 
 double FixCellDivide::compute_scalar()
 {
-  return (double) ndivided_total;
+  return (double) events.total;
 }
 
 double FixCellDivide::compute_vector(int n)
 {
-  if (n == 0) return last_event_step == update->ntimestep ? ndivided_last : 0.0;
-  return (double) ndivided_total;
+  return events.vector(n, update->ntimestep);
 }
 
 /* ---------------------------------------------------------------------- */
 
 void FixCellDivide::write_restart(FILE *fp)
 {
-  if (comm->me != 0) return;
-  double list[2] = {(double) ndivided_total, (double) last_event_step};
-  const int size = sizeof(list);
-  fwrite(&size, sizeof(int), 1, fp);
-  fwrite(list, sizeof(double), 2, fp);
+  if (comm->me == 0) events.write_restart(fp);
 }
 
 void FixCellDivide::restart(char *buf)
 {
-  const double *list = reinterpret_cast<double *>(buf);
-  ndivided_total = static_cast<bigint>(list[0]);
-  last_event_step = static_cast<bigint>(list[1]);
+  events.restart(buf);
 }
 
 double FixCellDivide::memory_usage()

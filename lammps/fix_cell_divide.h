@@ -12,6 +12,7 @@ FixStyle(cell/divide,FixCellDivide);
 #ifndef LMP_FIX_CELL_DIVIDE_H
 #define LMP_FIX_CELL_DIVIDE_H
 
+#include "cell_event_count.h"
 #include "fix.h"
 
 #include <string>
@@ -63,9 +64,7 @@ class FixCellDivide : public Fix {
   // the daughters' atom IDs assigned from the global sorted list.
   std::unordered_map<tagint, std::pair<double, double>> pending;
   std::unordered_map<tagint, tagint> daughter_tag;
-  bigint ndivided_total;
-  int ndivided_last;
-  bigint last_event_step;
+  cell_events::EventCount events;
 
   double draw_cycle(tagint, uint64_t) const;
   void cell_axis(int, double &, double &) const;

@@ -1,0 +1,55 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+------------------------------------------------------------------------- */
+
+// The event counter that fix cell/divide and fix cell/death share.
+
+#ifndef TESSERA_CELL_EVENT_COUNT_H
+#define TESSERA_CELL_EVENT_COUNT_H
+
+#include "lmptype.h"
+
+#include <cstdio>
+
+namespace LAMMPS_NS {
+namespace cell_events {
+
+// The events of a fix: the cumulative count, the count of the last event step
+// (thermo: compute_scalar and compute_vector), and their restart record.
+struct EventCount {
+  bigint total = 0;
+  int last = 0;
+  bigint last_step = -1;
+
+  void record(int n, bigint step)
+  {
+    total += n;
+    last = n;
+    last_step = step;
+  }
+  // element 0: events on this step; element 1: all events so far
+  double vector(int n, bigint step) const
+  {
+    if (n == 0) return last_step == step ? last : 0.0;
+    return (double) total;
+  }
+  void write_restart(FILE *fp) const
+  {
+    double list[2] = {(double) total, (double) last_step};
+    const int size = sizeof(list);
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(list, sizeof(double), 2, fp);
+  }
+  void restart(const char *buf)
+  {
+    const double *list = reinterpret_cast<const double *>(buf);
+    total = static_cast<bigint>(list[0]);
+    last_step = static_cast<bigint>(list[1]);
+  }
+};
+
+}    // namespace cell_events
+}    // namespace LAMMPS_NS
+
+#endif

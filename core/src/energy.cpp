@@ -120,6 +120,10 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
   grad_buffer.assign(nt, Vec2{});
   Vec2 *const grad = grad_buffer.data();  // one TLS lookup, not one per access
   const double w = model.tension_weight();
+  // Sums kept in locals, not in `out` (the caller's return slot, which the
+  // stores into f might alias, so every += would go through memory).
+  double vir[4] = {0.0, 0.0, 0.0, 0.0};
+  double energy = 0.0;
 
   // F_p = -(dh/dr_p)^T g for the three corners of a triangle whose
   // circumcentre h has energy gradient g, and the virial of those forces.
@@ -169,10 +173,10 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
     f[static_cast<long>(ic) * f_stride + 1] += fcy;
     // Virial sum r (x) F over the corners, written relative to a plus a's
     // share: sum_p r_p F_p = sum_p (r_p - a) F_p + a (sum_p F_p), sum_p F_p = -g.
-    out.virial[0] += bx * fbx + cx * fcx - ax * gx;
-    out.virial[1] += by * fby + cy * fcy - ay * gy;
-    out.virial[2] += bx * fby + cx * fcy - ax * gy;
-    out.virial[3] += by * fbx + cy * fcx - ay * gx;
+    vir[0] += bx * fbx + cx * fcx - ax * gx;
+    vir[1] += by * fby + cy * fcy - ay * gy;
+    vir[2] += bx * fby + cx * fcy - ax * gy;
+    vir[3] += by * fbx + cy * fcx - ay * gx;
   };
 
   // Per-cell virial (optional): cell c's own energy term moves the corners
@@ -196,7 +200,68 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
 
   thread_local std::vector<int> spokes;
   const int ntypes = model.ntypes();
-  for (int c = 0; c < t.n_owned; ++c) {
+  // Without multifold vertices and per-cell virials (every step of a run, in
+  // practice) a lean loop does the same arithmetic in the same order (so the
+  // same bits): each vertex loaded once and carried along the polygon, no
+  // vertex-group look-ups.  The general loop below is its oracle.
+  const bool lean = t.group_centre.empty() && !cell_virial;
+  if (lean) {
+    const Vec2 *const H = t.vertices.data();
+    for (int c = 0; c < t.n_owned; ++c) {
+      const int o = t.cell_offset[c], m = t.cell_offset[c + 1] - o;
+      const int tc = type[c];
+      const CellType &ct = model.types[tc];
+      const double dA = t.area[c] - model.area0_of(c, tc);
+      const double dEdA = ct.K * dA;
+      const double dEdP = ct.Gamma * t.perimeter[c];
+      const double *lam_row = &model.lambda[static_cast<size_t>(tc) * ntypes];
+      double tension = 0.0;
+      if (m > 0) {
+        const int *cv = &t.cell_vertex[o];
+        const int *cn = &t.cell_neighbor[o];
+        const double *el = &t.edge_length[o];
+        Vec2 hp = H[cv[m - 1]], hc = H[cv[0]];
+        double in_x = 0.0, in_y = 0.0;
+        if (el[m - 1] > 0.0) {
+          const double inv = 1.0 / el[m - 1];
+          in_x = (hc.x - hp.x) * inv;
+          in_y = (hc.y - hp.y) * inv;
+        }
+        double in_lam = w * lam_row[type[cn[m - 1]]];
+        for (int k = 0; k < m; ++k) {
+          const Vec2 hn = H[cv[k + 1 == m ? 0 : k + 1]];
+          const double l = el[k];
+          double out_x = 0.0, out_y = 0.0;
+          if (l > 0.0) {
+            const double inv = 1.0 / l;
+            out_x = (hn.x - hc.x) * inv;
+            out_y = (hn.y - hc.y) * inv;
+          }
+          const double lam = lam_row[type[cn[k]]];
+          const double out_lam = w * lam;
+          tension += lam * l;
+          const double gx =
+              0.5 * dEdA * (hn.y - hp.y) + (dEdP + in_lam) * in_x - (dEdP + out_lam) * out_x;
+          const double gy =
+              0.5 * dEdA * (hp.x - hn.x) + (dEdP + in_lam) * in_y - (dEdP + out_lam) * out_y;
+          Vec2 &gr = grad[cv[k]];
+          gr.x += gx;
+          gr.y += gy;
+          hp = hc;
+          hc = hn;
+          in_x = out_x;
+          in_y = out_y;
+          in_lam = out_lam;
+        }
+      }
+      const double ec = 0.5 * ct.K * dA * dA +
+                        0.5 * ct.Gamma * t.perimeter[c] * t.perimeter[c] +
+                        (m > 0 ? w * tension : 0.0);
+      if (cell_energy) cell_energy[c] = ec;
+      energy += ec;
+    }
+  }
+  for (int c = 0; !lean && c < t.n_owned; ++c) {
     if (cell_virial) {
       wc = cell_virial + 4 * static_cast<long>(c);
       wc[0] = wc[1] = wc[2] = wc[3] = 0.0;
@@ -211,7 +276,7 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
     if (m == 0) {
       const double ec = 0.5 * ct.K * dA * dA + 0.5 * ct.Gamma * t.perimeter[c] * t.perimeter[c];
       if (cell_energy) cell_energy[c] = ec;
-      out.energy += ec;
+      energy += ec;
       continue;
     }
     const int *cv = &t.cell_vertex[o];
@@ -325,7 +390,7 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
     const double ec = 0.5 * ct.K * dA * dA + 0.5 * ct.Gamma * t.perimeter[c] * t.perimeter[c] +
                       w * tension;
     if (cell_energy) cell_energy[c] = ec;
-    out.energy += ec;
+    energy += ec;
   }
 
   for (int tri = 0; tri < nt; ++tri) {
@@ -333,6 +398,8 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
     if (g.x == 0.0 && g.y == 0.0) continue;
     push(t.triangles[tri][0], t.triangles[tri][1], t.triangles[tri][2], g.x, g.y);
   }
+  out.energy = energy;
+  for (int k = 0; k < 4; ++k) out.virial[k] = vir[k];
   // Never return NaN or infinity silently.  The virial sums r (x) F over
   // every force contribution (a non-finite force makes it non-finite, also
   // at r = 0 where 0 * inf is NaN), so checking it and the energy costs

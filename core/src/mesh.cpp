@@ -13,9 +13,14 @@
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <utility>
 
@@ -89,8 +94,19 @@ inline int in_circle(double ax, double ay, double bx, double by, double cx, doub
                                                         CPoint(cx, cy), CPoint(dx, dy)));
 }
 
-inline void circumcentre(double ax, double ay, double bx, double by, double cx, double cy, Vec2 &h,
-                         double &r) {
+// The correctly rounded square root (as std::sqrt) without the errno path:
+// with CGAL's -frounding-math GCC turned std::sqrt in advance() into a call
+// into libm, 5 % of a step.
+#if defined(__SSE2__)
+#define TESSERA_ALWAYS_INLINE inline __attribute__((always_inline))
+TESSERA_ALWAYS_INLINE double root(double x) { return _mm_cvtsd_f64(_mm_sqrt_sd(_mm_set_sd(x), _mm_set_sd(x))); }
+#else
+#define TESSERA_ALWAYS_INLINE inline
+inline double root(double x) { return std::sqrt(x); }
+#endif
+
+TESSERA_ALWAYS_INLINE void circumcentre(double ax, double ay, double bx, double by, double cx,
+                                        double cy, Vec2 &h, double &r) {
   const double bpx = bx - ax, bpy = by - ay, cpx = cx - ax, cpy = cy - ay;
   const double id = 0.5 / (bpx * cpy - bpy * cpx);
   const double b2 = bpx * bpx + bpy * bpy, c2 = cpx * cpx + cpy * cpy;
@@ -98,7 +114,7 @@ inline void circumcentre(double ax, double ay, double bx, double by, double cx, 
   const double uy = (bpx * c2 - cpx * b2) * id;
   h.x = ax + ux;
   h.y = ay + uy;
-  r = std::sqrt(ux * ux + uy * uy);
+  r = root(ux * ux + uy * uy);
 }
 
 } // namespace
@@ -165,6 +181,9 @@ void Mesh::build(const Points &pts, const long *ids, const int *report) {
   std::vector<int>().swap(nb_);
   std::vector<int>().swap(vt_);
   std::vector<char>().swap(frozen_);
+  std::vector<int>().swap(spare_cv_);
+  std::vector<int>().swap(spare_cn_);
+  stamp_ = 0;
   int nf = 0;
   {
     Delaunay dt;
@@ -231,20 +250,28 @@ void Mesh::build(const Points &pts, const long *ids, const int *report) {
 
   // Renumber the triangles in the order the points' stars visit them, so
   // that reading cells point by point walks memory nearly sequentially (the
-  // points themselves are spatially sorted by LAMMPS).
+  // points themselves are spatially sorted by LAMMPS); the finite triangles
+  // first, then those with the point at infinity (see nft_).
   std::vector<int> order(nf, -1);
+  auto finite = [&](int m) {
+    return v_[3 * m] != kInfinite && v_[3 * m + 1] != kInfinite && v_[3 * m + 2] != kInfinite;
+  };
   int next = 0;
   for (int p = 0; p < n; ++p) {
     const int start = vt_[p];
     int m = start;
     do {
-      if (order[m] < 0)
+      if (order[m] < 0 && finite(m))
         order[m] = next++;
       const int *v = &v_[3 * m];
       const int i = (v[1] == p) + 2 * (v[2] == p);
       m = nb_[3 * m + (i == 2 ? 0 : i + 1)];
     } while (m != start);
   }
+  for (int m = 0; m < nf; ++m)
+    if (order[m] < 0 && finite(m))
+      order[m] = next++;
+  nft_ = next;
   for (int m = 0; m < nf; ++m)
     if (order[m] < 0)
       order[m] = next++;
@@ -264,6 +291,9 @@ void Mesh::build(const Points &pts, const long *ids, const int *report) {
 
   n_points_ = n;
   flips_ = 0;
+  dirty_.assign(n, 0);
+  dirty_list_.clear();
+  flipped_.clear();
   valid_ = true;
 }
 
@@ -313,10 +343,77 @@ void Mesh::flip(int t, int k, int u, int j) {
     vt_[s] = u;
   if (q != kInfinite)
     vt_[q] = u;
+  flipped_.push_back(t);
+  flipped_.push_back(u);
+  mark_dirty(r);
+  mark_dirty(p);
+  mark_dirty(s);
+  mark_dirty(q);
+}
+
+// Exchanges the numbers of triangles a and b (the references to them in
+// their neighbours and in vt_ follow); the corners of both are marked dirty.
+void Mesh::swap_slots(int a, int b) {
+  if (a == b)
+    return;
+  int rows[8];
+  int nr = 0;
+  auto add = [&](int x) {
+    for (int i = 0; i < nr; ++i)
+      if (rows[i] == x)
+        return;
+    rows[nr++] = x;
+  };
+  add(a);
+  add(b);
+  for (int k = 0; k < 3; ++k) {
+    add(nb_[3 * a + k]);
+    add(nb_[3 * b + k]);
+  }
+  auto remap = [a, b](int x) { return x == a ? b : (x == b ? a : x); };
+  for (int i = 0; i < nr; ++i)
+    for (int k = 0; k < 3; ++k)
+      nb_[3 * rows[i] + k] = remap(nb_[3 * rows[i] + k]);
+  for (int k = 0; k < 3; ++k) {
+    std::swap(v_[3 * a + k], v_[3 * b + k]);
+    std::swap(nb_[3 * a + k], nb_[3 * b + k]);
+  }
+  for (int k = 0; k < 3; ++k) {
+    for (const int p : {v_[3 * a + k], v_[3 * b + k]}) {
+      if (p == kInfinite)
+        continue;
+      vt_[p] = remap(vt_[p]);
+      mark_dirty(p);
+    }
+  }
+}
+
+// Flips only turn triangles with the point at infinity into finite ones
+// (both triangles of a flipped edge (p, q) with p or q infinite had that
+// corner; afterwards one of them has none): those are moved to slot nft_.
+void Mesh::restore_partition() {
+  const int *v = v_.data();
+  for (size_t i = 0; i < flipped_.size(); ++i) {
+    const int x = flipped_[i];
+    if (x < nft_ || v[3 * x] == kInfinite || v[3 * x + 1] == kInfinite || v[3 * x + 2] == kInfinite)
+      continue;
+    swap_slots(x, nft_);
+    v = v_.data();
+    flipped_.push_back(nft_);
+    // What was at nft_ is now at x: it may have turned finite too.
+    if (x != nft_)
+      flipped_.push_back(x);
+    ++nft_;
+  }
 }
 
 bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi) {
   flips_ = 0;
+  stamp_ = 0;
+  flipped_.clear();
+  for (const int p : dirty_list_)
+    dirty_[p] = 0;
+  dirty_list_.clear();
   if (!valid_ || pts.n != n_points_) {
     valid_ = false;
     return false;
@@ -383,6 +480,18 @@ bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi)
       }
     }
   }
+  return flip_pass(pts, sep2);
+}
+
+// The Lawson flips of the edges on stack_, then the finite-first numbering.
+bool Mesh::flip_pass(const Points &pts, double sep2) {
+  auto too_close = [&](int a, int b) {
+    if (a == kInfinite || b == kInfinite)
+      return false;
+    const double dx = pts.x(a) - pts.x(b), dy = pts.y(a) - pts.y(b);
+    return dx * dx + dy * dy < sep2;
+  };
+  const int nt = static_cast<int>(v_.size() / 3);
   const long max_flips = 20L * nt + 1000;
   while (!stack_.empty()) {
     const int k = stack_.back();
@@ -416,7 +525,84 @@ bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi)
       stack_.push_back(e[1]);
     }
   }
+  restore_partition();
   return true;
+}
+
+namespace {
+// A fresh stamp for each filled Tessellation (see Mesh::stamp_).
+unsigned long next_stamp() {
+  static unsigned long counter = 0;
+  return ++counter;
+}
+}  // namespace
+
+// Multifold vertices from the seeds (triangles found at a zero-length edge):
+// each seed starts a search over all triangles at that vertex, so that its
+// whole ring of cells is known even where some are not owned here.
+// compact(m) is the finite number of mesh triangle m (or -1), mesh_of(k) the
+// inverse.
+template <class Compact, class MeshOf>
+void Mesh::find_groups(const Points &pts, Tessellation &t, Compact compact, MeshOf mesh_of) const {
+  const int nft = static_cast<int>(t.triangles.size());
+  auto same_vertex = [&](int a, int b) {
+    const double dx = t.vertices[a].x - t.vertices[b].x, dy = t.vertices[a].y - t.vertices[b].y;
+    const double tol = kZeroEdge * std::min(t.radius[a], t.radius[b]);
+    return dx * dx + dy * dy <= tol * tol;
+  };
+  t.triangle_group.assign(nft, -1);
+  t.group_offset.assign(1, 0);
+  t.group_point.clear();
+  t.group_centre.clear();
+  if (seeds_.empty())
+    return;
+  std::vector<int> members, ring;
+  for (const int seed : seeds_) {
+    if (t.triangle_group[seed] >= 0)
+      continue;
+    const int ms = mesh_of(seed);
+    const int group = static_cast<int>(t.group_centre.size());
+    members.assign(1, seed);
+    stack_.assign(1, ms);
+    t.triangle_group[seed] = group;
+    while (!stack_.empty()) {
+      const int cur = stack_.back();
+      stack_.pop_back();
+      for (int e = 0; e < 3; ++e) {
+        const int nm = nb_[3 * cur + e];
+        const int g = compact(nm);
+        if (g < 0 || t.triangle_group[g] >= 0 || !same_vertex(seed, g))
+          continue;
+        t.triangle_group[g] = group;
+        members.push_back(g);
+        stack_.push_back(nm);
+      }
+    }
+    if (members.size() < 2) { // a tolerance edge case: no partner after all
+      t.triangle_group[seed] = -1;
+      continue;
+    }
+    Vec2 centre;
+    for (int mm : members) {
+      centre.x += t.vertices[mm].x / members.size();
+      centre.y += t.vertices[mm].y / members.size();
+    }
+    ring.clear();
+    for (int mm : members)
+      for (int p : t.triangles[mm])
+        ring.push_back(p);
+    std::sort(ring.begin(), ring.end());
+    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+    std::vector<std::pair<double, int>> by_angle;
+    by_angle.reserve(ring.size());
+    for (int p : ring)
+      by_angle.emplace_back(std::atan2(pts.y(p) - centre.y, pts.x(p) - centre.x), p);
+    std::sort(by_angle.begin(), by_angle.end());
+    for (const auto &ap : by_angle)
+      t.group_point.push_back(ap.second);
+    t.group_offset.push_back(static_cast<int>(t.group_point.size()));
+    t.group_centre.push_back(centre);
+  }
 }
 
 void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
@@ -529,7 +715,7 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
       const Vec2 &h0 = t.vertices[t0], &h1 = t.vertices[t1];
       area2 += (h0.x - cx) * (h1.y - cy) - (h1.x - cx) * (h0.y - cy);
       const double dx = h1.x - h0.x, dy = h1.y - h0.y;
-      const double d = std::sqrt(dx * dx + dy * dy);
+      const double d = root(dx * dx + dy * dy);
       const double l = d > kZeroEdge * std::min(t.radius[t0], t.radius[t1]) ? d : 0.0;
       el[k] = l;
       perim += l;
@@ -543,66 +729,293 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
   t.cell_neighbor.resize(used);
   t.edge_length.resize(used);
 
-  // Each seed starts a search over all triangles at that vertex, so that its
-  // whole ring of cells is known even where some are not owned here.
   t.triangle_neighbor.resize(nft);
   for (int k = 0; k < nft; ++k) {
     const int m = mesh_of_[k];
     for (int e = 0; e < 3; ++e) t.triangle_neighbor[k][e] = compact_[nb_[3 * m + e]];
   }
-  t.triangle_group.assign(nft, -1);
-  t.group_offset.assign(1, 0);
-  t.group_point.clear();
-  t.group_centre.clear();
-  std::vector<int> members, ring;
-  for (const int seed : seeds_) {
-    {
-      if (t.triangle_group[seed] >= 0)
+  find_groups(pts, t, [this](int m) { return compact_[m]; }, [this](int k) { return mesh_of_[k]; });
+  t.mesh_stamp = stamp_ = next_stamp();
+  stamp_owned_ = n_owned;
+}
+
+bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const double *roi_hi,
+                   Tessellation &t) {
+  if (!valid_ || pts.n != n_points_ || stamp_ == 0 || t.mesh_stamp != stamp_ ||
+      stamp_owned_ != n_owned || t.n_owned != n_owned || t.unbounded_cell >= 0 ||
+      static_cast<int>(t.cell_offset.size()) != n_owned + 1 || n_owned > n_points_) {
+    if (!update(pts, roi_lo, roi_hi))
+      return false;
+    cells(pts, n_owned, t);
+    return true;
+  }
+  flips_ = 0;
+  stamp_ = 0;
+  flipped_.clear();
+  for (const int p : dirty_list_)
+    dirty_[p] = 0;
+  dirty_list_.clear();
+  double scale = 0.0;
+  for (int i = 0; i < pts.n; ++i) {
+    if (!std::isfinite(pts.x(i)) || !std::isfinite(pts.y(i))) { // build() names it
+      valid_ = false;
+      return false;
+    }
+    scale = std::max({scale, std::fabs(pts.x(i)), std::fabs(pts.y(i))});
+  }
+  if (scale > kMaxCoordinate) {
+    valid_ = false;
+    return false;
+  }
+  const double sep2 = min_separation2(scale);
+  const int nt = static_cast<int>(v_.size() / 3);
+  const int nft0 = nft_;
+  frozen_.assign(nt, 0);
+  stack_.clear();
+  t.triangles.resize(nft0);
+  t.vertices.resize(nft0);
+  t.radius.resize(nft0);
+  const int *V = v_.data();
+  const int *NB = nb_.data();
+  std::array<int, 3> *tri_out = t.triangles.data();
+  Vec2 *h_out = t.vertices.data();
+  double *r_out = t.radius.data();
+  constexpr double eps = 2.220446049250313e-16;
+  // Finite triangles: the fold check, the circumcentre (written into t; the
+  // same arithmetic as cells()), and the in-circle test of each edge to a
+  // finite triangle of higher number (each edge once, as in update()).
+  for (int m = 0; m < nft0; ++m) {
+    const int a = V[3 * m], b = V[3 * m + 1], c = V[3 * m + 2];
+    tri_out[m] = {a, b, c};
+    const double ax = pts.x(a), ay = pts.y(a), bx = pts.x(b), by = pts.y(b), cx = pts.x(c),
+                 cy = pts.y(c);
+    circumcentre(ax, ay, bx, by, cx, cy, h_out[m], r_out[m]);
+    const double bpx = bx - ax, bpy = by - ay, cpx = cx - ax, cpy = cy - ay;
+    const double l = bpx * cpy, r = bpy * cpx;
+    const double D = l - r;
+    const double sum_lr = std::fabs(l) + std::fabs(r);
+    const bool certain = D > 3.3306690738754716e-16 * sum_lr;  // the sign of D is exact
+    if (!certain && orientation(ax, ay, bx, by, cx, cy) <= 0) {
+      const bool outside =
+          roi_lo && (std::max({ax, bx, cx}) < roi_lo[0] || std::min({ax, bx, cx}) > roi_hi[0] ||
+                     std::max({ay, by, cy}) < roi_lo[1] || std::min({ay, by, cy}) > roi_hi[1]);
+      if (!outside) {
+        valid_ = false;
+        return false;
+      }
+      frozen_[m] = 1;
+      continue;
+    }
+    // u = h - a as circumcentre() computes it, and a bound on its error.
+    const double ux = h_out[m].x - ax, uy = h_out[m].y - ay;
+    const double b2 = bpx * bpx + bpy * bpy, c2 = cpx * cpx + cpy * cpy;
+    const double R1 = std::fabs(ux) + std::fabs(uy);
+    // (A triangle whose orientation needed the exact predicate gets no
+    // bound: all its tests go to the exact predicate.)
+    const double err_u =
+        !certain ? std::numeric_limits<double>::infinity() :
+        32.0 * eps *
+            ((std::fabs(cpx) + std::fabs(cpy)) * b2 + (std::fabs(bpx) + std::fabs(bpy)) * c2 +
+             R1 * sum_lr) /
+            D +
+        8.0 * eps * R1;
+    for (int k = 0; k < 3; ++k) {
+      const int u = NB[3 * m + k];
+      if (u < m)
         continue;
-      const int ms = mesh_of_[seed];
-      const int group = static_cast<int>(t.group_centre.size());
-      members.assign(1, seed);
-      stack_.assign(1, ms);
-      t.triangle_group[seed] = group;
-      while (!stack_.empty()) {
-        const int cur = stack_.back();
-        stack_.pop_back();
-        for (int e = 0; e < 3; ++e) {
-          const int nm = nb_[3 * cur + e];
-          const int g = compact_[nm];
-          if (g < 0 || t.triangle_group[g] >= 0 || !same_vertex(seed, g))
-            continue;
-          t.triangle_group[g] = group;
-          members.push_back(g);
-          stack_.push_back(nm);
+      const int p = V[3 * m + (k == 2 ? 0 : k + 1)], q = V[3 * m + (k == 0 ? 2 : k - 1)];
+      {
+        const double dx = pts.x(p) - pts.x(q), dy = pts.y(p) - pts.y(q);
+        if (dx * dx + dy * dy < sep2) {
+          valid_ = false;
+          return false;
         }
       }
-      if (members.size() < 2) { // a tolerance edge case: no partner after all
-        t.triangle_group[seed] = -1;
-        continue;
+      if (u >= nft0)
+        continue;  // a hull edge (the far triangle has the point at infinity)
+      const int j = (NB[3 * u + 1] == m) + 2 * (NB[3 * u + 2] == m);
+      const int s = V[3 * u + j];
+      // s inside the circumcircle iff |s - h|^2 < |a - h|^2, i.e.
+      // F = |d|^2 - 2 d.u < 0 with d = s - a.
+      const double dx = pts.x(s) - ax, dy = pts.y(s) - ay;
+      const double dd = dx * dx + dy * dy, du = dx * ux + dy * uy;
+      const double F = dd - 2.0 * du;
+      const double bound = 2.0 * (std::fabs(dx) + std::fabs(dy)) * err_u +
+                           8.0 * eps * (dd + 2.0 * (std::fabs(dx * ux) + std::fabs(dy * uy)));
+      bool inside;
+      if (F < -bound)
+        inside = true;
+      else if (F > bound)
+        inside = false;
+      else
+        inside = flip_needed(pts, p, q, V[3 * m + k], s);
+      if (inside) {
+        stack_.push_back(m);
+        stack_.push_back(k);
       }
-      Vec2 centre;
-      for (int mm : members) {
-        centre.x += t.vertices[mm].x / members.size();
-        centre.y += t.vertices[mm].y / members.size();
-      }
-      ring.clear();
-      for (int mm : members)
-        for (int p : t.triangles[mm])
-          ring.push_back(p);
-      std::sort(ring.begin(), ring.end());
-      ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-      std::vector<std::pair<double, int>> by_angle;
-      by_angle.reserve(ring.size());
-      for (int p : ring)
-        by_angle.emplace_back(std::atan2(pts.y(p) - centre.y, pts.x(p) - centre.x), p);
-      std::sort(by_angle.begin(), by_angle.end());
-      for (const auto &ap : by_angle)
-        t.group_point.push_back(ap.second);
-      t.group_offset.push_back(static_cast<int>(t.group_point.size()));
-      t.group_centre.push_back(centre);
     }
   }
+  // Triangles with the point at infinity: the hull chain tests, as update().
+  for (int m = nft0; m < nt; ++m) {
+    for (int k = 0; k < 3; ++k) {
+      const int u = NB[3 * m + k];
+      if (u < m)
+        continue;
+      const int r = V[3 * m + k], p = V[3 * m + (k + 1) % 3], q = V[3 * m + (k + 2) % 3];
+      if (p != kInfinite && q != kInfinite) {
+        const double dx = pts.x(p) - pts.x(q), dy = pts.y(p) - pts.y(q);
+        if (dx * dx + dy * dy < sep2) {
+          valid_ = false;
+          return false;
+        }
+      }
+      const int j = (NB[3 * u + 1] == m) + 2 * (NB[3 * u + 2] == m);
+      if (flip_needed(pts, p, q, r, V[3 * u + j])) {
+        stack_.push_back(m);
+        stack_.push_back(k);
+      }
+    }
+  }
+  if (!flip_pass(pts, sep2))
+    return false;
+
+  // The triangles the flips changed (and those moved into the finite range).
+  const int nft = nft_;
+  t.triangles.resize(nft);
+  t.vertices.resize(nft);
+  t.radius.resize(nft);
+  for (const int m : flipped_) {
+    if (m >= nft)
+      continue;
+    const int a = v_[3 * m], b = v_[3 * m + 1], c = v_[3 * m + 2];
+    t.triangles[m] = {a, b, c};
+    circumcentre(pts.x(a), pts.y(a), pts.x(b), pts.y(b), pts.x(c), pts.y(c), t.vertices[m],
+                 t.radius[m]);
+  }
+  t.n_points = n_points_;
+
+  // The cell lists: copied where no flip touched the cell's star (runs of
+  // such cells at once), walked again (as cells() does) where one did.
+  const size_t old_used = t.cell_vertex.size();
+  size_t cap = std::max(spare_cv_.size(), old_used + old_used / 32 + 64);
+  if (spare_cv_.size() < cap) {
+    spare_cv_.resize(cap);
+    spare_cn_.resize(cap);
+  }
+  int *off = t.cell_offset.data();
+  const int *old_cv = t.cell_vertex.data(), *old_cn = t.cell_neighbor.data();
+  size_t used = 0;
+  int c = 0;
+  while (c < n_owned) {
+    if (!dirty_[c]) {
+      int c1 = c + 1;
+      while (c1 < n_owned && !dirty_[c1])
+        ++c1;
+      const int b0 = off[c], b1 = off[c1];
+      const size_t len = static_cast<size_t>(b1 - b0);
+      if (used + len > cap) {
+        cap = 2 * (used + len);
+        spare_cv_.resize(cap);
+        spare_cn_.resize(cap);
+      }
+      std::copy(old_cv + b0, old_cv + b1, spare_cv_.data() + used);
+      std::copy(old_cn + b0, old_cn + b1, spare_cn_.data() + used);
+      const int shift = static_cast<int>(used) - b0;
+      for (int cc = c; cc < c1; ++cc)
+        off[cc] += shift;
+      used += len;
+      c = c1;
+      continue;
+    }
+    off[c] = static_cast<int>(used);
+    const int start = vt_[c];
+    int m = start;
+    do {
+      const int *v = &v_[3 * m];
+      const int i = (v[1] == c) + 2 * (v[2] == c);
+      if (m >= nft) {  // unbounded: cells() reports it; let it
+        stamp_ = 0;
+        t.mesh_stamp = 0;
+        cells(pts, n_owned, t);
+        return true;
+      }
+      if (used == cap) {
+        cap *= 2;
+        spare_cv_.resize(cap);
+        spare_cn_.resize(cap);
+      }
+      spare_cv_[used] = m;
+      const int i1 = i == 2 ? 0 : i + 1, i2 = i1 == 2 ? 0 : i1 + 1;
+      spare_cn_[used] = v[i2];
+      ++used;
+      m = nb_[3 * m + i1];
+    } while (m != start);
+    ++c;
+  }
+  off[n_owned] = static_cast<int>(used);
+  // Swap the buffers: t gets the new lists; the old ones are the next spare
+  // (kept at full size, so that resizing them costs nothing).
+  spare_cv_.resize(used);
+  spare_cn_.resize(used);
+  t.cell_vertex.swap(spare_cv_);
+  t.cell_neighbor.swap(spare_cn_);
+  spare_cv_.resize(spare_cv_.capacity());
+  spare_cn_.resize(spare_cn_.capacity());
+  std::vector<std::array<int, 3>>().swap(t.triangle_neighbor);
+
+  // Lengths, areas, perimeters and the seeds of multifold vertices, in the
+  // order cells() finds them.
+  auto same_vertex = [&](int a, int b) {
+    const double dx = t.vertices[a].x - t.vertices[b].x, dy = t.vertices[a].y - t.vertices[b].y;
+    const double tol = kZeroEdge * std::min(t.radius[a], t.radius[b]);
+    return dx * dx + dy * dy <= tol * tol;
+  };
+  seeds_.clear();
+  t.edge_length.resize(used);
+  t.area.resize(n_owned);
+  t.perimeter.resize(n_owned);
+  const Vec2 *H = t.vertices.data();
+  const double *RAD = t.radius.data();
+  const int *CV = t.cell_vertex.data(), *CN = t.cell_neighbor.data();
+  double *EL = t.edge_length.data();
+  for (int cc = 0; cc < n_owned; ++cc) {
+    const int o = off[cc], len = off[cc + 1] - o;
+    const int *cv = CV + o, *cn = CN + o;
+    for (int k = 0; k < len; ++k) {
+      // The triangle at vertex k is (cc, cn[k-1], cn[k]): if both are ghosts
+      // no owned cell shows the Voronoi edge opposite cc.
+      if (cn[k] >= n_owned && cn[k == 0 ? len - 1 : k - 1] >= n_owned) {
+        const int m = cv[k];
+        const int *v = &v_[3 * m];
+        const int i = (v[1] == cc) + 2 * (v[2] == cc);
+        const int g = nb_[3 * m + i];
+        if (g < nft && same_vertex(m, g))
+          seeds_.push_back(m);
+      }
+    }
+    double area2 = 0.0, perim = 0.0;
+    const double cx = pts.x(cc), cy = pts.y(cc);
+    double *el = EL + o;
+    for (int k = 0; k < len; ++k) {
+      const int t0 = cv[k], t1 = cv[k + 1 == len ? 0 : k + 1];
+      const Vec2 &h0 = H[t0], &h1 = H[t1];
+      area2 += (h0.x - cx) * (h1.y - cy) - (h1.x - cx) * (h0.y - cy);
+      const double dx = h1.x - h0.x, dy = h1.y - h0.y;
+      const double d = root(dx * dx + dy * dy);
+      const double l = d > kZeroEdge * std::min(RAD[t0], RAD[t1]) ? d : 0.0;
+      el[k] = l;
+      perim += l;
+      if (l == 0.0)
+        seeds_.push_back(t0);
+    }
+    t.area[cc] = 0.5 * area2;
+    t.perimeter[cc] = perim;
+  }
+  find_groups(pts, t, [nft](int m) { return m < nft ? m : -1; }, [](int k) { return k; });
+  t.unbounded_cell = -1;
+  t.mesh_stamp = stamp_ = next_stamp();
+  stamp_owned_ = n_owned;
+  return true;
 }
 
 double time_plain_delaunay(const Points &pts, int n, long *faces)

@@ -66,6 +66,28 @@ void Tessellation::short_edge_clusters(double min_length, std::vector<int> &offs
   std::vector<char> seen(nt, 0);
   std::vector<int> stack, tris, pts;
   const double l2 = min_length * min_length;
+  // Mesh::advance() leaves triangle_neighbor empty: find the neighbours from
+  // the triangles' edges (each interior edge is shared by two triangles).
+  std::vector<std::array<int, 3>> own_neighbor;
+  const std::vector<std::array<int, 3>> *nbr = &triangle_neighbor;
+  if (static_cast<int>(triangle_neighbor.size()) != nt) {
+    std::vector<std::array<long, 3>> edges;  // (min point, max point, triangle * 3 + side)
+    edges.reserve(3 * static_cast<size_t>(nt));
+    for (int k = 0; k < nt; ++k)
+      for (int e = 0; e < 3; ++e) {
+        const int a = triangles[k][(e + 1) % 3], b = triangles[k][(e + 2) % 3];
+        edges.push_back({std::min(a, b), std::max(a, b), 3L * k + e});
+      }
+    std::sort(edges.begin(), edges.end());
+    own_neighbor.assign(nt, {-1, -1, -1});
+    for (size_t i = 0; i + 1 < edges.size(); ++i)
+      if (edges[i][0] == edges[i + 1][0] && edges[i][1] == edges[i + 1][1]) {
+        own_neighbor[edges[i][2] / 3][edges[i][2] % 3] = static_cast<int>(edges[i + 1][2] / 3);
+        own_neighbor[edges[i + 1][2] / 3][edges[i + 1][2] % 3] = static_cast<int>(edges[i][2] / 3);
+        ++i;
+      }
+    nbr = &own_neighbor;
+  }
   auto close = [&](int a, int b) {
     const double dx = vertices[a].x - vertices[b].x, dy = vertices[a].y - vertices[b].y;
     return dx * dx + dy * dy < l2;
@@ -81,7 +103,7 @@ void Tessellation::short_edge_clusters(double min_length, std::vector<int> &offs
         const int cur = stack.back();
         stack.pop_back();
         for (int e = 0; e < 3; ++e) {
-          const int nb = triangle_neighbor[cur][e];
+          const int nb = (*nbr)[cur][e];
           if (nb < 0 || seen[nb] || !close(cur, nb)) continue;
           seen[nb] = 1;
           tris.push_back(nb);

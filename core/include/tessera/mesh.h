@@ -49,6 +49,20 @@ public:
   // circumcentres of all finite triangles).  Reuses t's storage.
   void cells(const Points &pts, int n_owned, Tessellation &t) const;
 
+  // update() and then cells() in one go, the per-step path of a run.  When t
+  // was filled by this mesh's last cells() or advance() (since no other call
+  // changed the mesh), for the same n_owned, the circumcentres are computed in
+  // the pass that checks for folds, the in-circle tests of that pass use them
+  // (with a floating-point filter that falls back to the exact predicate), and
+  // only the cells whose triangles a flip touched are walked again: the others
+  // keep their lists.  The result is the same as update() followed by cells(),
+  // bit for bit, except that t.triangle_neighbor is left empty
+  // (Tessellation::short_edge_clusters rebuilds what it needs).  Otherwise it
+  // runs update() and cells().  Returns false when update() would (t is then
+  // not filled; call build() and cells()).
+  bool advance(const Points &pts, int n_owned, const double *roi_lo, const double *roi_hi,
+               Tessellation &t);
+
   bool valid() const { return valid_; }
   // Whether the last build() failed because all points lie on one line.
   bool collinear() const { return collinear_; }
@@ -61,6 +75,19 @@ private:
   bool collinear_ = false;
   int n_points_ = 0;
   long flips_ = 0;
+  // Triangles [0, nft_) are finite, [nft_, n) have the point at infinity as
+  // a corner; build() numbers them so and update()/advance() keep it (flips
+  // only turn infinite triangles finite; they are then moved to nft_), so
+  // that finite triangle k of a Tessellation is mesh triangle k.
+  int nft_ = 0;
+  // Stamp of the Tessellation the last cells()/advance() filled (0: none, or
+  // the mesh changed since).
+  mutable unsigned long stamp_ = 0;
+  mutable int stamp_owned_ = -1;
+  std::vector<int> flipped_;      // triangles whose corners changed in this update
+  std::vector<char> dirty_;       // per point: its star changed in this update
+  std::vector<int> dirty_list_;   // the points with dirty_ set
+  std::vector<int> spare_cv_, spare_cn_;  // the other buffer of advance()'s cell lists
   std::vector<int> v_;   // 3 per triangle: point indices, counter-clockwise; -1 = infinity
   std::vector<int> nb_;  // 3 per triangle: neighbour across the edge opposite vertex k
   std::vector<int> vt_;  // per point: one triangle containing it
@@ -73,6 +100,17 @@ private:
   [[noreturn]] static void throw_too_close(const Points &pts, int i, int j, double scale,
                                            const long *ids, const int *report);
   void flip(int t, int k, int u, int j);
+  void mark_dirty(int p) {
+    if (p >= 0 && !dirty_[p]) {
+      dirty_[p] = 1;
+      dirty_list_.push_back(p);
+    }
+  }
+  void swap_slots(int a, int b);
+  void restore_partition();
+  bool flip_pass(const Points &pts, double sep2);
+  template <class Compact, class MeshOf>
+  void find_groups(const Points &pts, Tessellation &t, Compact compact, MeshOf mesh_of) const;
   bool flip_needed(const Points &pts, int p, int q, int r, int s) const;
 };
 

@@ -121,7 +121,8 @@ struct Tessellation {
   std::vector<Vec2> group_centre;
 
   // Neighbour of each triangle across the edge opposite its vertex k (index
-  // into triangles), or -1 on the convex hull.
+  // into triangles), or -1 on the convex hull.  Filled by Mesh::cells() and
+  // tessellate_*; empty after Mesh::advance() (a run's per-step path).
   std::vector<std::array<int, 3>> triangle_neighbor;
 
   // Clusters of Voronoi vertices joined by edges shorter than min_length (the
@@ -142,6 +143,10 @@ struct Tessellation {
   // images).  Empty for tessellate_local.
   std::vector<int> origin;
   std::vector<Vec2> position;
+
+  // Set by Mesh::cells()/advance(): which call filled this tessellation (lets
+  // Mesh::advance() reuse the cell lists of the previous step).
+  unsigned long mesh_stamp = 0;
 
   int cell_size(int c) const { return cell_offset[c + 1] - cell_offset[c]; }
   // Number of Voronoi neighbours counted over edges longer than tol times the

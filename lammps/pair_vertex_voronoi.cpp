@@ -62,6 +62,7 @@ class FixVertexGuard : public Fix {
  private:
   std::vector<double> x0;
   std::vector<tagint> tag0;
+  std::vector<double> size2;    // per type: the squared warning limit
   bigint step0 = -1;
   int warned = 0;
   void record()
@@ -109,7 +110,7 @@ std::string FixVertexGuard::describe(int i, double moved, double size) const
 {
   tagint j = 0;
   double d = -1.0;
-  pair->closest_neighbour(i, j, d);
+  if (static_cast<int>(x0.size()) == 2 * atom->nlocal) pair->closest_neighbour(i, x0.data(), j, d);
   return fmt::format(
       "atom {} moved by {:.3g} in the step from {} to {}, more than a cell diameter sqrt(A0) = "
       "{:.3g}: the timestep does not resolve the forces of step {} (its closest Voronoi "
@@ -127,23 +128,33 @@ void FixVertexGuard::post_integrate()
   bool valid = static_cast<int>(tag0.size()) == n;
   for (int i = 0; valid && i < n; i++) valid = atom->tag[i] == tag0[i];
   double **x = atom->x;
+  const int *type = atom->type;
   const double lost = loss_limit();
+  // Squared distances against squared limits (one sqrt per type, not per atom).
+  const int ntypes = atom->ntypes;
+  size2.resize(ntypes + 1);
+  for (int t = 1; t <= ntypes; t++) size2[t] = pair->cell_size(t) * pair->cell_size(t);
+  const double lost2 = lost < std::sqrt(std::numeric_limits<double>::max()) ? lost * lost
+                                                                            : std::numeric_limits<double>::max();
   int worst = -1;
-  double worst_moved = 0.0;
+  double worst_moved2 = 0.0;
   for (int i = 0; valid && i < n; i++) {
     const double dx = x[i][0] - x0[2 * i], dy = x[i][1] - x0[2 * i + 1];
-    const double moved = std::sqrt(dx * dx + dy * dy);
-    if (!std::isfinite(moved) || moved > lost)
+    const double moved2 = dx * dx + dy * dy;
+    if (!(moved2 <= lost2)) {    // also NaN
+      const double moved = std::sqrt(moved2);
       error->one(FLERR,
                  "pair_style vertex/voronoi: {}; it would be lost (limit {:.3g} for this domain "
                  "decomposition). Use a smaller timestep, 'fix dt/reset' to limit the "
                  "displacement per step, or the second-order integrator fix brownian/heun",
-                 describe(i, moved, pair->cell_size(atom->type[i])), lost);
-    if (moved > pair->cell_size(atom->type[i]) && moved > worst_moved) {
+                 describe(i, moved, pair->cell_size(type[i])), lost);
+    }
+    if (moved2 > size2[type[i]] && moved2 > worst_moved2) {
       worst = i;
-      worst_moved = moved;
+      worst_moved2 = moved2;
     }
   }
+  const double worst_moved = std::sqrt(worst_moved2);
   if (warned) return;
   // The largest such step over all ranks, reported by rank 0 (other ranks
   // have no screen).
@@ -731,15 +742,19 @@ bool PairVertexVoronoi::tessellate()
     fresh = true;
     stats[2] += 1.0;
   };
+  // Between rebuilds Mesh::advance() updates the mesh by flips and reads the
+  // cells in one go (the same cells as update() + cells(), faster).
+  bool have_cells = false;
   if (nlocal == 0)
     ;
   else if (!incremental || mesh_ncalls != neighbor->ncalls || !mesh.valid() || mesh.n_points() != nall)
     build();
-  else if (mesh.update(pts, lo_inc, hi_inc))
+  else if (mesh.advance(pts, nlocal, lo_inc, hi_inc, tess)) {
     stats[3] += mesh.flips_last_update();
-  else
+    have_cells = true;
+  } else
     build();
-  if (nlocal > 0) mesh.cells(pts, nlocal, tess);
+  if (nlocal > 0 && !have_cells) mesh.cells(pts, nlocal, tess);
 
   tessera::Coverage cov;  // ok unless checked below
   if (nlocal > 0 && !fresh && !tessera::check_coverage(tess, sub, wi).ok) {
@@ -942,62 +957,67 @@ double PairVertexVoronoi::cell_size(int type) const
   return std::sqrt(area0[type]);
 }
 
-/* The closest Voronoi neighbour of owned atom i in the last tessellation. */
+/* The closest Voronoi neighbour of owned atom i in the last tessellation,
+   at the positions of that force computation: owned atoms' from owned_xy
+   (2 per atom, recorded then: the guard's copy), ghosts' from atom->x (not
+   yet updated when the guard asks, between the move and the next forward
+   communication). */
 
-bool PairVertexVoronoi::closest_neighbour(int i, tagint &j, double &d) const
+bool PairVertexVoronoi::closest_neighbour(int i, const double *owned_xy, tagint &j,
+                                          double &d) const
 {
   d = -1.0;
-  if (i < 0 || i >= tess.n_owned || static_cast<int>(close_pos.size()) != 2 * tess.n_points)
+  const int nlocal = atom->nlocal;
+  if (i < 0 || i >= tess.n_owned || tess.n_owned != nlocal ||
+      tess.n_points != nlocal + atom->nghost || static_cast<int>(tess.cell_offset.size()) != nlocal + 1)
     return false;
+  double **x = atom->x;
   for (int k = tess.cell_offset[i]; k < tess.cell_offset[i + 1]; k++) {
     const int q = tess.cell_neighbor[k];
-    const double dx = close_pos[2 * q] - close_pos[2 * i], dy = close_pos[2 * q + 1] - close_pos[2 * i + 1];
+    const double qx = q < nlocal ? owned_xy[2 * q] : x[q][0];
+    const double qy = q < nlocal ? owned_xy[2 * q + 1] : x[q][1];
+    const double dx = qx - owned_xy[2 * i], dy = qy - owned_xy[2 * i + 1];
     const double r = std::sqrt(dx * dx + dy * dy);
     if (d < 0.0 || r < d) {
       d = r;
-      j = close_tag[q];
+      j = atom->tag[q];
     }
   }
   return d >= 0.0;
 }
 
 /* The closest pair of Voronoi neighbours among this rank's cells at this
-   force computation, for the error messages of the guard and of lost atoms
-   (the positions and IDs are kept: the guard reads them after the atoms
-   moved). */
+   force computation, for the error message of lost atoms (IDs and distance
+   are kept: they are read at the next step, after the atoms moved). */
 
 void PairVertexVoronoi::note_closest_pair()
 {
-  const int nall = tess.n_points;
-  close_pos.resize(2 * static_cast<size_t>(nall));
-  close_tag.resize(nall);
-  for (int i = 0; i < nall; i++) {
-    close_pos[2 * i] = atom->x[i][0];
-    close_pos[2 * i + 1] = atom->x[i][1];
-    close_tag[i] = atom->tag[i];
-  }
-  // The same pair as closest_neighbour() over all owned cells, on squared
-  // distances with one sqrt at the end: this runs every step, and 6 sqrt per
-  // cell were 12 % of a step of the benchmark (bench/README.md).
+  // Squared distances and one sqrt at the end, straight from atom->x: this
+  // runs every step (bench/README.md).
   close_d = -1.0;
   double best = -1.0;
+  int bi = -1, bq = -1;
   const int *off = tess.cell_offset.data();
   const int *nbr = tess.cell_neighbor.data();
-  const double *xy = close_pos.data();
+  double **x = atom->x;
   for (int i = 0; i < tess.n_owned; i++) {
-    const double xi = xy[2 * i], yi = xy[2 * i + 1];
+    const double xi = x[i][0], yi = x[i][1];
     for (int k = off[i]; k < off[i + 1]; k++) {
       const int q = nbr[k];
-      const double dx = xy[2 * q] - xi, dy = xy[2 * q + 1] - yi;
+      const double dx = x[q][0] - xi, dy = x[q][1] - yi;
       const double r2 = dx * dx + dy * dy;
       if (best < 0.0 || r2 < best) {
         best = r2;
-        close_i = atom->tag[i];
-        close_j = close_tag[q];
+        bi = i;
+        bq = q;
       }
     }
   }
-  if (best >= 0.0) close_d = std::sqrt(best);
+  if (best >= 0.0) {
+    close_d = std::sqrt(best);
+    close_i = atom->tag[bi];
+    close_j = atom->tag[bq];
+  }
   close_step = update->ntimestep;
 }
 

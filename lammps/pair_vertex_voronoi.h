@@ -61,7 +61,7 @@ class PairVertexVoronoi : public Pair {
   // For the step guard: sqrt(A0) of a type, and owned atom i's closest
   // Voronoi neighbour (ID, distance) at the last force computation.
   double cell_size(int type) const;
-  bool closest_neighbour(int i, tagint &j, double &d) const;
+  bool closest_neighbour(int i, const double *owned_xy, tagint &j, double &d) const;
   // Finite Voronoi cells ('radius r'): r, or 0 for the confluent model; the
   // cells of the last force computation (tessellation() then holds their
   // contact edges only).
@@ -114,8 +114,6 @@ class PairVertexVoronoi : public Pair {
   tagint close_i, close_j;
   double close_d;
   bigint close_step;
-  std::vector<double> close_pos;  // positions and IDs of the last tessellated points
-  std::vector<tagint> close_tag;
   void note_closest_pair();
   void check_lost_atoms();
   std::string guard_id;

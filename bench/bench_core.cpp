@@ -5,8 +5,16 @@
 // points (no periodicity, no Voronoi cells), for N random points at density 1
 // in a periodic square box.  Median of a few repeats.
 //
-//   bench_core [max_N]     (default 1000000)
+// Then the per-step path of a run: a jittered hexagonal tissue (points in
+// lattice order, i.e. spatially sorted as LAMMPS keeps atoms, plus their
+// periodic images within 3 as ghosts) whose centres take random steps of
+// 0.003 (the benchmark fluid's flip rate); each step Mesh::advance() (flips
+// and cells) and compute_forces(), and the slow path update() + cells() on a
+// second mesh for comparison.
+//
+//   bench_core [max_N] [--steps-only]     (default 1000000)
 #include "tessera/energy.h"
+#include "tessera/mesh.h"
 #include "tessera/tessellation.h"
 
 #include <CGAL/Delaunay_triangulation_2.h>
@@ -44,15 +52,110 @@ uint64_t splitmix(uint64_t &s) {
   return z ^ (z >> 31);
 }
 
+// The per-step table (see the top of the file).
+double incremental_steps(long max_n, const tessera::Model &model) {
+  std::printf("\nPer step of a moving tissue (hexagonal lattice, jitter 0.2, steps of 0.012, "
+              "images within 3): microseconds per cell, median over the steps\n\n");
+  std::printf("%9s %6s %12s %12s %12s %16s %10s %9s\n", "N", "steps", "advance", "forces",
+              "sum", "update+cells", "flips", "rebuilds");
+  double checksum = 0.0;
+  for (long target : {1000L, 10000L, 100000L, 1000000L}) {
+    if (target > max_n) break;
+    const int ny = std::max(1, static_cast<int>(std::lround(std::sqrt(target / (2 * std::sqrt(3.0))))));
+    const int nx = std::max(1, static_cast<int>(std::lround(target / (2.0 * ny))));
+    const double a = std::sqrt(2.0 / std::sqrt(3.0));  // density 1
+    const double lx = nx * a, ly = ny * a * std::sqrt(3.0);
+    uint64_t seed = 777 + static_cast<uint64_t>(target);
+    auto uni = [&]() { return static_cast<double>(splitmix(seed) >> 11) * 0x1.0p-53; };
+    std::vector<double> own;
+    for (int j = 0; j < 2 * ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        own.push_back((i + 0.5 * (j % 2)) * a + 0.2 * (2 * uni() - 1));
+        own.push_back(j * a * std::sqrt(3.0) / 2 + 0.2 * (2 * uni() - 1));
+      }
+    const int n = static_cast<int>(own.size() / 2);
+    const double margin = 3.0;
+    std::vector<int> origin;
+    std::vector<double> shift;
+    for (int sj = -1; sj <= 1; ++sj)
+      for (int si = -1; si <= 1; ++si)
+        for (int p = 0; p < n; ++p) {
+          if (si == 0 && sj == 0) continue;
+          const double x = own[2 * p] + si * lx, y = own[2 * p + 1] + sj * ly;
+          if (x < -margin || x > lx + margin || y < -margin || y > ly + margin) continue;
+          origin.push_back(p);
+          shift.push_back(si * lx);
+          shift.push_back(sj * ly);
+        }
+    std::vector<double> xy;
+    auto fill = [&]() {
+      xy.assign(own.begin(), own.end());
+      for (size_t k = 0; k < origin.size(); ++k) {
+        xy.push_back(own[2 * origin[k]] + shift[2 * k]);
+        xy.push_back(own[2 * origin[k] + 1] + shift[2 * k + 1]);
+      }
+    };
+    fill();
+    const int nall = static_cast<int>(xy.size() / 2);
+    const tessera::Points pts{xy.data(), nall, 2};
+    const double lo[2] = {-0.6 * margin, -0.6 * margin}, hi[2] = {lx + 0.6 * margin, ly + 0.6 * margin};
+    tessera::Mesh fast, slow;
+    tessera::Tessellation tf, ts;
+    fast.build(pts);
+    fast.cells(pts, n, tf);
+    slow.build(pts);
+    slow.cells(pts, n, ts);
+    const std::vector<int> type(nall, 0);
+    std::vector<double> f(2 * static_cast<size_t>(nall));
+    const int warm = 10, steps = target >= 1000000 ? 20 : 50;
+    std::vector<double> t_adv, t_force, t_slow;
+    long flips = 0, rebuilds = 0;
+    for (int step = 0; step < warm + steps; ++step) {
+      for (double &c : own) c += 0.012 * (2 * uni() - 1) * std::sqrt(3.0);
+      fill();
+      double t0 = now_seconds();
+      if (!fast.advance(pts, n, lo, hi, tf)) {
+        ++rebuilds;
+        fast.build(pts);
+        fast.cells(pts, n, tf);
+      }
+      double t1 = now_seconds();
+      std::fill(f.begin(), f.end(), 0.0);
+      const tessera::ForceOutput out = tessera::compute_forces(tf, pts, type.data(), model, f.data(), 2);
+      double t2 = now_seconds();
+      if (!slow.update(pts, lo, hi)) slow.build(pts);
+      slow.cells(pts, n, ts);
+      double t3 = now_seconds();
+      checksum += out.energy + ts.area[0];
+      if (step < warm) continue;
+      flips += fast.flips_last_update();
+      t_adv.push_back(t1 - t0);
+      t_force.push_back(t2 - t1);
+      t_slow.push_back(t3 - t2);
+    }
+    const double us = 1e6 / n;
+    std::printf("%9d %6d %12.3f %12.3f %12.3f %16.3f %10.1f %9ld\n", n, steps, median(t_adv) * us,
+                median(t_force) * us, (median(t_adv) + median(t_force)) * us, median(t_slow) * us,
+                static_cast<double>(flips) / steps, rebuilds);
+    std::fflush(stdout);
+  }
+  return checksum;
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
   long max_n = 1000000;
+  bool steps_only = false;
+  if (argc > 1 && std::string(argv[argc - 1]) == "--steps-only") {
+    steps_only = true;
+    --argc;
+  }
   if (argc > 1) {
     char *end = nullptr;
     max_n = std::strtol(argv[1], &end, 10);
     if (argc > 2 || end == argv[1] || *end != '\0' || max_n < 3) {
-      std::fprintf(stderr, "usage: %s [max_N >= 3]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [max_N >= 3] [--steps-only]\n", argv[0]);
       return 2;
     }
   }
@@ -63,11 +166,12 @@ int main(int argc, char **argv) {
   model.types[0].Gamma = 0.18;
   model.set_lambda(0, 0, -0.1);
 
+  double checksum = 0;
+  if (!steps_only) {
   std::printf("Tessera core benchmark: random points, density 1, periodic square box\n");
   std::printf("times in microseconds per cell, median of the repeats\n\n");
   std::printf("%9s %5s %16s %16s %16s %12s\n", "N", "reps", "tessellate", "compute_forces",
               "CGAL DT2", "tess/CGAL");
-  double checksum = 0;
   for (long n : {1000L, 10000L, 100000L, 1000000L}) {
     if (n > max_n) break;
     const int reps = n >= 1000000 ? 3 : n >= 100000 ? 5 : 9;
@@ -111,6 +215,8 @@ int main(int argc, char **argv) {
                 mt / mc);
     std::fflush(stdout);
   }
+  }
+  checksum += incremental_steps(max_n, model);
   std::printf("\n(checksum %.6g)\n", checksum);
   return 0;
 }

@@ -370,7 +370,7 @@ namespace {
 double cell_energy_of(const FiniteTessellation &t, int c, const int *type, const Model &m,
                       const double *free_tension) {
   const CellType &ct = m.types[type[c]];
-  const double dA = t.area[c] - ct.A0;
+  const double dA = t.area[c] - m.area0_of(c, type[c]);
   double e = 0.5 * ct.K * dA * dA + 0.5 * ct.Gamma * t.perimeter[c] * t.perimeter[c];
   double tension = 0.0;
   for (int k = t.cell_offset[c]; k < t.cell_offset[c + 1]; ++k) {
@@ -415,7 +415,7 @@ ForceOutput finite_forces(const FiniteTessellation &t, const Points &pts, const 
 
     const Vec2 xc{pts.x(c), pts.y(c)};
     const CellType &ct = model.types[type[c]];
-    const double wA = ct.K * (t.area[c] - ct.A0);
+    const double wA = ct.K * (t.area[c] - model.area0_of(c, type[c]));
     const double wP = ct.Gamma * t.perimeter[c];
     const double wF = wP + (free_tension ? free_tension[type[c]] : 0.0);
     u.resize(m);

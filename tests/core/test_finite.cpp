@@ -303,6 +303,39 @@ TEST(Finite, ForcesAreCentralDifferencesInOpenClusters) {
   }
 }
 
+TEST(Finite, PerCellPreferredAreas) {
+  // Model::cell_area0 (LAMMPS's d_area0) replaces the types' A0 in finite
+  // cells too: the energy is the sum with each cell's own A0 (against the
+  // polygon-clipping areas) and the forces are its central differences.
+  Rng rng(17);
+  for (int trial = 0; trial < 3; ++trial) {
+    const int n = 12;
+    const auto xy = random_cluster(rng, n, 3.0, 2.5, 0.25);
+    std::vector<int> type(n, 0);
+    auto model = random_model(rng, 1, tessera::Tension::Edge);
+    std::vector<double> a0(n);
+    for (double &v : a0) v = rng.uniform(0.3, 2.0);
+    model.cell_area0 = a0.data();
+    const std::vector<double> free_t = {rng.uniform(-0.3, 0.6)};
+    const double r = rng.uniform(0.5, 1.0);
+    const auto t = tessera::finite_tessellate(tessera::Points{xy.data(), n, 2}, n, r);
+    std::vector<double> ec(n);
+    tessera::finite_energy(t, type.data(), model, free_t.data(), ec.data());
+    const tessera::CellType &ct = model.types[0];
+    for (int c = 0; c < n; ++c) {
+      const RefCell ref = reference_cell(xy, c, r);
+      double lam = 0.0;
+      for (const auto &kv : ref.contact) lam += kv.second;
+      const double e = 0.5 * ct.K * (ref.area - a0[c]) * (ref.area - a0[c]) +
+                       0.5 * ct.Gamma * ref.perimeter * ref.perimeter +
+                       model.tension_weight() * model.lambda_of(0, 0) * lam +
+                       free_t[0] * ref.free_length;
+      EXPECT_NEAR(ec[c], e, 1e-5 * (1.0 + std::fabs(e))) << "trial " << trial << " cell " << c;
+    }
+    check_forces_open(xy, r, type, model, free_t, "per-cell A0");
+  }
+}
+
 // Corners that are about to appear or vanish: a contact edge barely cut,
 // an arc that has nearly vanished, a Voronoi vertex just inside the disc.
 TEST(Finite, ForcesNearTopologyChanges) {

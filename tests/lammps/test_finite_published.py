@@ -6,7 +6,8 @@ Levine & Bi, Soft Matter 19, 9389, 2023) gives on 100 cells, as published
 with PyAFV's test suite (quoted in studies/finite/pyafv_reference.txt, where
 the source is named).  PyAFV itself requires 1e-8 against the same values;
 so does this test (uniform A0 in an open and a periodic box, on 1 and 2
-ranks, and one preferred area per cell as one atom type per cell)."""
+ranks, and one preferred area per cell, as one atom type per cell and as the
+per-atom d_area0)."""
 
 import math
 import os
@@ -50,7 +51,12 @@ class PublishedForces(LammpsTestCase):
         self.a0_cell, self.f_ref, self.f_ref_a0 = ref[:, 0], ref[:, 1:3], ref[:, 3:5]
         self.xy, self.box = centres()
 
-    def forces(self, boundary, per_cell=False, n=1):
+    def forces(self, boundary, per_cell=False, n=1, d_area0=False):
+        pre = post = ""
+        if d_area0:
+            # atom_style atomic has no d_area0: fix property/atom adds it
+            pre = "fix a0 all property/atom d_area0\n"
+            post = "".join("set atom %d d_area0 %r\n" % (i + 1, a) for i, a in enumerate(self.a0_cell))
         if per_cell:
             coeffs = "".join("pair_coeff %d %d quadratic %r %r %r %r free %r\n"
                              % (i + 1, i + 1, KA, a, KP, P0, LAM) for i, a in enumerate(self.a0_cell))
@@ -60,8 +66,8 @@ class PublishedForces(LammpsTestCase):
 units lj
 atom_style atomic
 boundary {boundary}
-read_data cells.data
-pair_style vertex/voronoi 2.2 radius 1.0
+{pre}read_data cells.data
+{post}pair_style vertex/voronoi 2.2 radius 1.0
 {coeffs}dump d all custom 1 f.dump id fx fy
 dump_modify d sort id format float %.17g
 run 0
@@ -69,9 +75,9 @@ run 0
         fr = run.dump("f.dump")[0]
         return np.column_stack([fr["fx"], fr["fy"]])
 
-    def check(self, boundary, per_cell=False, n=1):
-        ours = self.forces(boundary, per_cell, n)
-        theirs = self.f_ref_a0 if per_cell else self.f_ref
+    def check(self, boundary, per_cell=False, n=1, d_area0=False):
+        ours = self.forces(boundary, per_cell, n, d_area0)
+        theirs = self.f_ref_a0 if per_cell or d_area0 else self.f_ref
         diff = np.max(np.abs(ours - theirs))
         self.assertLess(diff, TOL, "largest force difference to the MATLAB code: %g" % diff)
 
@@ -88,6 +94,14 @@ run 0
 
     def test_per_cell_area_as_types(self):
         self.check("s s p", per_cell=True)
+
+    def test_per_cell_area_as_d_area0(self):
+        # one type, each cell's A0 from fix property/atom d_area0
+        self.check("s s p", d_area0=True)
+
+    @nprocs(2)
+    def test_per_cell_area_as_d_area0_2_ranks(self):
+        self.check("p p p", n=2, d_area0=True)
 
     @nprocs(2)
     def test_open_2_ranks(self):

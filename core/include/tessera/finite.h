@@ -1,7 +1,7 @@
 // Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
 //
 // The finite Voronoi model (Teomy, Kessler & Levine, PRE 98, 042418, 2018;
-// Huang, Camley et al., Soft Matter 19, 9389, 2023): each cell is its Voronoi
+// Huang, Levine & Bi, Soft Matter 19, 9389, 2023): each cell is its Voronoi
 // cell intersected with the disc of radius r around its centre.  Its boundary
 // is a convex loop of straight contact edges (shared with a neighbour, on
 // their bisector) and circular free arcs (radius r, centred on the cell).

@@ -890,29 +890,15 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
   cell_e.resize(nlocal);
 
   tessera::Points pts{&atom->x[0][0], nall, 3};
-  // Per-cell preferred areas from 'fix property/atom d_area0', when defined
-  // (otherwise the types' A0).  Only owned cells' values are read.
-  model.cell_area0 = nullptr;
-  int a0_flag = -1, a0_cols = -1;
-  const int a0_index = atom->find_custom("area0", a0_flag, a0_cols);
-  if (a0_index >= 0 && a0_flag == 1 && a0_cols == 0) {
-    const double *a0 = atom->dvector[a0_index];
-    for (int i = 0; i < nlocal; i++)
-      if (!(a0[i] > 0.0) || !std::isfinite(a0[i]))
-        error->one(FLERR,
-                   "pair_style vertex/voronoi: per-atom preferred area d_area0 of atom {} is {}; "
-                   "it must be > 0 (e.g. 'set group all d_area0 1.0' after 'fix property/atom "
-                   "d_area0')",
-                   atom->tag[i], a0[i]);
-    model.cell_area0 = a0;
-  }
+  bind_cell_area0();
   // Per-atom virial (compute stress/atom): each cell's own energy term's
   // virial, assigned to its atom; the cells' virials add up to the total.
   if (vflag_atom) cell_w.resize(4 * static_cast<size_t>(nlocal));
   tessera::ForceOutput out;
   try {
+    // The global virial comes from LAMMPS's f dot r (virial_fdotr_compute).
     out = tessera::compute_forces(tess, pts, type0.data(), model, &atom->f[0][0], 3, cell_e.data(),
-                                  vflag_atom ? cell_w.data() : nullptr);
+                                  vflag_atom ? cell_w.data() : nullptr, false);
   } catch (tessera::Error &e) {
     // Energy or virial overflow (parameters or lengths far outside the
     // model's reduced units); the core names the local point.
@@ -925,7 +911,15 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
       vatom[i][3] += 0.5 * (cell_w[4 * i + 2] + cell_w[4 * i + 3]);
     }
 
-  note_closest_pair();
+  // The closest pair of Voronoi neighbours, for the message of lost atoms
+  // (compute_forces finds it on the way; note_closest_pair() is the same loop).
+  close_d = -1.0;
+  if (out.closest_cell >= 0) {
+    close_d = std::sqrt(out.closest_distance2);
+    close_i = atom->tag[out.closest_cell];
+    close_j = atom->tag[out.closest_neighbor];
+  }
+  close_step = update->ntimestep;
   stats[0] += t1 - t0;
   stats[1] += MPI_Wtime() - t1;
   stats[4] += 1.0;
@@ -948,6 +942,27 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
   if (eflag_atom)
     for (int i = 0; i < nlocal; i++) eatom[i] += cell_e[i];
   if (vflag_fdotr) virial_fdotr_compute();
+}
+
+/* Per-cell preferred areas from 'fix property/atom d_area0', when defined
+   (otherwise the types' A0), for the confluent and the finite cells.  Only
+   owned cells' values are read. */
+
+void PairVertexVoronoi::bind_cell_area0()
+{
+  model.cell_area0 = nullptr;
+  int a0_flag = -1, a0_cols = -1;
+  const int a0_index = atom->find_custom("area0", a0_flag, a0_cols);
+  if (a0_index < 0 || a0_flag != 1 || a0_cols != 0) return;
+  const double *a0 = atom->dvector[a0_index];
+  for (int i = 0; i < atom->nlocal; i++)
+    if (!(a0[i] > 0.0) || !std::isfinite(a0[i]))
+      error->one(FLERR,
+                 "pair_style vertex/voronoi: per-atom preferred area d_area0 of atom {} is {}; "
+                 "it must be > 0 (e.g. 'set group all d_area0 1.0' after 'fix property/atom "
+                 "d_area0')",
+                 atom->tag[i], a0[i]);
+  model.cell_area0 = a0;
 }
 
 /* Cell diameter sqrt(A0) of a type (1-based), the step guard's limit. */
@@ -1090,6 +1105,7 @@ void PairVertexVoronoi::compute_finite()
   const int *type = atom->type;
   for (int i = 0; i < nall; i++) type0[i] = type[i] - 1;
   cell_e.resize(nlocal);
+  bind_cell_area0();
   if (vflag_atom) cell_w.resize(4 * static_cast<size_t>(nlocal));
   const tessera::ForceOutput out = tessera::finite_forces(
       ftess, pts, type0.data(), model, free_t0.data(), &atom->f[0][0], 3, cell_e.data(),

@@ -103,6 +103,7 @@ class PairVertexVoronoi : public Pair {
   tessera::FiniteTessellation ftess;
   std::vector<double> free_t0;   // free_tension, 0-based
   void compute_finite();
+  void bind_cell_area0();
 
   void allocate();
   bool tessellate();  // true if the ghost shell had to grow (atoms re-acquired)

@@ -111,7 +111,7 @@ namespace {
 
 ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *type,
                            const Model &model, double *f, int f_stride, double *cell_energy,
-                           double *cell_virial) {
+                           double *cell_virial, bool want_virial) {
   ForceOutput out;
   const int nt = static_cast<int>(t.triangles.size());
   // dE/dh per Voronoi vertex; kept between calls so that a time step
@@ -123,7 +123,19 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
   // Sums kept in locals, not in `out` (the caller's return slot, which the
   // stores into f might alias, so every += would go through memory).
   double vir[4] = {0.0, 0.0, 0.0, 0.0};
-  double energy = 0.0;
+  double energy = 0.0, fsum = 0.0;
+  // The closest pair of Voronoi neighbours, found on the way.
+  double best2 = -1.0;
+  int best_c = -1, best_q = -1;
+  auto near_pair = [&](int c, double cx, double cy, int q) {
+    const double dx = pts.x(q) - cx, dy = pts.y(q) - cy;
+    const double d2 = dx * dx + dy * dy;
+    if (best2 < 0.0 || d2 < best2) {
+      best2 = d2;
+      best_c = c;
+      best_q = q;
+    }
+  };
 
   // F_p = -(dh/dr_p)^T g for the three corners of a triangle whose
   // circumcentre h has energy gradient g, and the virial of those forces.
@@ -173,10 +185,15 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
     f[static_cast<long>(ic) * f_stride + 1] += fcy;
     // Virial sum r (x) F over the corners, written relative to a plus a's
     // share: sum_p r_p F_p = sum_p (r_p - a) F_p + a (sum_p F_p), sum_p F_p = -g.
-    vir[0] += bx * fbx + cx * fcx - ax * gx;
-    vir[1] += by * fby + cy * fcy - ay * gy;
-    vir[2] += bx * fby + cx * fcy - ax * gy;
-    vir[3] += by * fbx + cy * fcx - ay * gx;
+    if (want_virial) {
+      vir[0] += bx * fbx + cx * fcx - ax * gx;
+      vir[1] += by * fby + cy * fcy - ay * gy;
+      vir[2] += bx * fby + cx * fcy - ax * gy;
+      vir[3] += by * fbx + cy * fcx - ay * gx;
+    } else {
+      // Non-finite forces propagate into this sum (checked at the end).
+      fsum += ((fax + fay) + (fbx + fby)) + (fcx + fcy);
+    }
   };
 
   // Per-cell virial (optional): cell c's own energy term moves the corners
@@ -228,7 +245,9 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
           in_y = (hc.y - hp.y) * inv;
         }
         double in_lam = w * lam_row[type[cn[m - 1]]];
+        const double pcx = pts.x(c), pcy = pts.y(c);
         for (int k = 0; k < m; ++k) {
+          near_pair(c, pcx, pcy, cn[k]);
           const Vec2 hn = H[cv[k + 1 == m ? 0 : k + 1]];
           const double l = el[k];
           double out_x = 0.0, out_y = 0.0;
@@ -282,6 +301,7 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
     const int *cv = &t.cell_vertex[o];
     const int *cn = &t.cell_neighbor[o];
     const double *el = &t.edge_length[o];
+    for (int k = 0; k < m; ++k) near_pair(c, pts.x(c), pts.y(c), cn[k]);
     auto wrap = [m](int k) { return k < 0 ? k + m : (k >= m ? k - m : k); };
     auto group_at = [&](int k) { return t.triangle_group[cv[wrap(k)]]; };
 
@@ -400,13 +420,17 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
   }
   out.energy = energy;
   for (int k = 0; k < 4; ++k) out.virial[k] = vir[k];
+  out.closest_cell = best_c;
+  out.closest_neighbor = best_q;
+  out.closest_distance2 = best2;
   // Never return NaN or infinity silently.  The virial sums r (x) F over
   // every force contribution (a non-finite force makes it non-finite, also
   // at r = 0 where 0 * inf is NaN), so checking it and the energy costs
-  // O(1); the search for the point to name runs only on failure.  With the
+  // O(1) (without the virial the plain sum of the force components, fsum,
+  // does the same); the search for the point to name runs only on failure.  With the
   // tessellation's input limits this is reached when the energy itself
   // overflows (moduli times lengths beyond double's range).
-  if (!std::isfinite(out.energy) || !std::isfinite(out.virial[0]) ||
+  if (!std::isfinite(out.energy) || !std::isfinite(fsum) || !std::isfinite(out.virial[0]) ||
       !std::isfinite(out.virial[1]) || !std::isfinite(out.virial[2]) ||
       !std::isfinite(out.virial[3]))
     throw_not_finite(t, pts, out.energy, f, f_stride);

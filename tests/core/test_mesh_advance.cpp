@@ -281,6 +281,28 @@ TEST(ForcesLean, SameBitsAsTheGeneralLoop) {
     for (int k = 0; k < 4; ++k) EXPECT_EQ(a.virial[k], b.virial[k]) << "seed " << seed;
     EXPECT_TRUE(same_bits(fa, fb)) << "seed " << seed;
     EXPECT_TRUE(same_bits(ea, eb)) << "seed " << seed;
+    // Without the virial: the same forces; and the closest pair of Voronoi
+    // neighbours against a plain search.
+    std::vector<double> fc(2 * t.n_points, 0.0);
+    const auto c = tessera::compute_forces(t, pts, type.data(), model, fc.data(), 2, nullptr,
+                                           nullptr, false);
+    EXPECT_TRUE(same_bits(fa, fc)) << "seed " << seed;
+    EXPECT_EQ(a.energy, c.energy);
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(c.virial[k], 0.0);
+    double best = -1.0;
+    for (int cell = 0; cell < n; ++cell)
+      for (int k = t.cell_offset[cell]; k < t.cell_offset[cell + 1]; ++k) {
+        const int q = t.cell_neighbor[k];
+        const double d2 = std::pow(xy[2 * q] - xy[2 * cell], 2) + std::pow(xy[2 * q + 1] - xy[2 * cell + 1], 2);
+        if (best < 0.0 || d2 < best) best = d2;
+      }
+    for (const auto *o : {&a, &b, &c}) {
+      EXPECT_NEAR(o->closest_distance2, best, 1e-15 * best);
+      const int p = o->closest_cell, q = o->closest_neighbor;
+      ASSERT_GE(p, 0);
+      EXPECT_NEAR(std::pow(xy[2 * q] - xy[2 * p], 2) + std::pow(xy[2 * q + 1] - xy[2 * p + 1], 2), best,
+                  1e-15 * best);
+    }
   }
 }
 

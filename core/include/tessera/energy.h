@@ -64,6 +64,11 @@ struct ForceOutput {
   // the triangulation used (ghosts at their image positions) and with forces on
   // ghosts not yet folded; then dE/d(strain_ab) = -W_ab.  Order: xx, yy, xy, yx.
   double virial[4] = {0.0, 0.0, 0.0, 0.0};
+  // The closest pair of Voronoi neighbours: owned cell closest_cell and the
+  // point closest_neighbor (an index into pts) at squared distance
+  // closest_distance2 (the first such pair in cell order; -1 without cells).
+  int closest_cell = -1, closest_neighbor = -1;
+  double closest_distance2 = -1.0;
 };
 
 // Energy of the owned cells and forces on all n_points points (owned and
@@ -76,9 +81,13 @@ struct ForceOutput {
 // force evaluation).  type holds 0-based types for all n_points.  pts must
 // be the points that were tessellated (for tessellate_periodic pass
 // positions_of(t)).
+// With want_virial false ForceOutput::virial stays zero (a run that takes
+// the virial from LAMMPS's f dot r saves the work); the check that the
+// forces are finite is made either way.
 ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *type,
                            const Model &model, double *f, int f_stride,
-                           double *cell_energy = nullptr, double *cell_virial = nullptr);
+                           double *cell_energy = nullptr, double *cell_virial = nullptr,
+                           bool want_virial = true);
 
 // Energy only (no gradient); used by tests and finite differences.
 double compute_energy(const Tessellation &t, const int *type, const Model &model,

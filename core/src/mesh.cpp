@@ -100,9 +100,16 @@ inline int in_circle(double ax, double ay, double bx, double by, double cx, doub
 #if defined(__SSE2__)
 #define TESSERA_ALWAYS_INLINE inline __attribute__((always_inline))
 TESSERA_ALWAYS_INLINE double root(double x) { return _mm_cvtsd_f64(_mm_sqrt_sd(_mm_set_sd(x), _mm_set_sd(x))); }
+// q[0..n) := sqrt(q[0..n)); q has room for n rounded up to even.
+TESSERA_ALWAYS_INLINE void roots(double *q, int n) {
+  for (int k = 0; k < n; k += 2) _mm_storeu_pd(q + k, _mm_sqrt_pd(_mm_loadu_pd(q + k)));
+}
 #else
 #define TESSERA_ALWAYS_INLINE inline
 inline double root(double x) { return std::sqrt(x); }
+inline void roots(double *q, int n) {
+  for (int k = 0; k < n; ++k) q[k] = std::sqrt(q[k]);
+}
 #endif
 
 TESSERA_ALWAYS_INLINE void circumcentre(double ax, double ay, double bx, double by, double cx,
@@ -789,8 +796,18 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
     tri_out[m] = {a, b, c};
     const double ax = pts.x(a), ay = pts.y(a), bx = pts.x(b), by = pts.y(b), cx = pts.x(c),
                  cy = pts.y(c);
-    circumcentre(ax, ay, bx, by, cx, cy, h_out[m], r_out[m]);
+    // circumcentre(), written out to keep 1/D for the error bound below
+    // (the same operations in the same order, so the same bits).
     const double bpx = bx - ax, bpy = by - ay, cpx = cx - ax, cpy = cy - ay;
+    const double id = 0.5 / (bpx * cpy - bpy * cpx);
+    const double b2 = bpx * bpx + bpy * bpy, c2 = cpx * cpx + cpy * cpy;
+    // u = h - a, before a is added (h - a recomputed would carry the
+    // rounding of a's magnitude, which the bound below does not cover).
+    const double ux = (cpy * b2 - bpy * c2) * id;
+    const double uy = (bpx * c2 - cpx * b2) * id;
+    h_out[m].x = ax + ux;
+    h_out[m].y = ay + uy;
+    r_out[m] = root(ux * ux + uy * uy);
     const double l = bpx * cpy, r = bpy * cpx;
     const double D = l - r;
     const double sum_lr = std::fabs(l) + std::fabs(r);
@@ -806,9 +823,7 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
       frozen_[m] = 1;
       continue;
     }
-    // u = h - a as circumcentre() computes it, and a bound on its error.
-    const double ux = h_out[m].x - ax, uy = h_out[m].y - ay;
-    const double b2 = bpx * bpx + bpy * bpy, c2 = cpx * cpx + cpy * cpy;
+    // A bound on the error of u.
     const double R1 = std::fabs(ux) + std::fabs(uy);
     // (A triangle whose orientation needed the exact predicate gets no
     // bound: all its tests go to the exact predicate.)
@@ -816,8 +831,8 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
         !certain ? std::numeric_limits<double>::infinity() :
         32.0 * eps *
             ((std::fabs(cpx) + std::fabs(cpy)) * b2 + (std::fabs(bpx) + std::fabs(bpy)) * c2 +
-             R1 * sum_lr) /
-            D +
+             R1 * sum_lr) *
+            (2.0 * id) +
         8.0 * eps * R1;
     for (int k = 0; k < 3; ++k) {
       const int u = NB[3 * m + k];
@@ -996,17 +1011,46 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
     double area2 = 0.0, perim = 0.0;
     const double cx = pts.x(cc), cy = pts.y(cc);
     double *el = EL + o;
-    for (int k = 0; k < len; ++k) {
-      const int t0 = cv[k], t1 = cv[k + 1 == len ? 0 : k + 1];
-      const Vec2 &h0 = H[t0], &h1 = H[t1];
-      area2 += (h0.x - cx) * (h1.y - cy) - (h1.x - cx) * (h0.y - cy);
-      const double dx = h1.x - h0.x, dy = h1.y - h0.y;
-      const double d = root(dx * dx + dy * dy);
-      const double l = d > kZeroEdge * std::min(RAD[t0], RAD[t1]) ? d : 0.0;
-      el[k] = l;
-      perim += l;
-      if (l == 0.0)
-        seeds_.push_back(t0);
+    // The same arithmetic as cells(), in two passes: the squared lengths
+    // (and the area), then their square roots two at a time.
+    constexpr int kBatch = 32;
+    if (len <= kBatch) {
+      double q[kBatch + 1];
+      Vec2 h0 = H[cv[0]];
+      for (int k = 0; k < len; ++k) {
+        const Vec2 h1 = H[cv[k + 1 == len ? 0 : k + 1]];
+        area2 += (h0.x - cx) * (h1.y - cy) - (h1.x - cx) * (h0.y - cy);
+        const double dx = h1.x - h0.x, dy = h1.y - h0.y;
+        q[k] = dx * dx + dy * dy;
+        h0 = h1;
+      }
+      q[len] = 0.0;
+      roots(q, len);
+      double r0 = RAD[cv[0]];
+      for (int k = 0; k < len; ++k) {
+        const int t0 = cv[k];
+        const double r1 = RAD[cv[k + 1 == len ? 0 : k + 1]];
+        const double d = q[k];
+        const double l = d > kZeroEdge * std::min(r0, r1) ? d : 0.0;
+        el[k] = l;
+        perim += l;
+        if (l == 0.0)
+          seeds_.push_back(t0);
+        r0 = r1;
+      }
+    } else {
+      for (int k = 0; k < len; ++k) {
+        const int t0 = cv[k], t1 = cv[k + 1 == len ? 0 : k + 1];
+        const Vec2 &h0 = H[t0], &h1 = H[t1];
+        area2 += (h0.x - cx) * (h1.y - cy) - (h1.x - cx) * (h0.y - cy);
+        const double dx = h1.x - h0.x, dy = h1.y - h0.y;
+        const double d = root(dx * dx + dy * dy);
+        const double l = d > kZeroEdge * std::min(RAD[t0], RAD[t1]) ? d : 0.0;
+        el[k] = l;
+        perim += l;
+        if (l == 0.0)
+          seeds_.push_back(t0);
+      }
     }
     t.area[cc] = 0.5 * area2;
     t.perimeter[cc] = perim;

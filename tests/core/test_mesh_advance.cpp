@@ -105,12 +105,13 @@ struct Images {
   int n;
   std::vector<int> origin;
   std::vector<double> shift;
-  Images(const std::vector<double> &own, double L_, double margin) : L(L_), n(own.size() / 2) {
+  Images(const std::vector<double> &own, double L_, double margin, double o = 0.0)
+      : L(L_), n(own.size() / 2) {
     for (int i = -1; i <= 1; ++i)
       for (int j = -1; j <= 1; ++j)
         for (int p = 0; p < n; ++p) {
           if (i == 0 && j == 0) continue;
-          const double x = own[2 * p] + i * L, y = own[2 * p + 1] + j * L;
+          const double x = own[2 * p] + i * L - o, y = own[2 * p + 1] + j * L - o;
           if (x < -margin || x > L + margin || y < -margin || y > L + margin) continue;
           origin.push_back(p);
           shift.push_back(i * L);
@@ -193,15 +194,18 @@ TEST(MeshAdvance, RoundOffJitterAroundASquareLatticeIsIdentical) {
   // 1e-15..1e-9 puts them at round-off level, where the filter must hand
   // them to the exact predicate; some steps sit exactly on the lattice
   // (four-fold vertices: groups).
+  // Also far from the origin (offset 1e6, where a coordinate's rounding is
+  // 1e-10, far above the cells' own round-off).
+  for (double offset : {0.0, 1e6})
   for (double amp : {1e-15, 1e-12, 1e-9}) {
     const int side = 10, n = side * side;
     std::vector<double> base;
     for (int j = 0; j < side; ++j)
       for (int i = 0; i < side; ++i) {
-        base.push_back(i + 0.5);
-        base.push_back(j + 0.5);
+        base.push_back(offset + i + 0.5);
+        base.push_back(offset + j + 0.5);
       }
-    const Images im(base, side, 2.5);
+    const Images im(base, side, 2.5, offset);
     std::mt19937 rng(static_cast<unsigned>(std::lround(-std::log10(amp))));
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     int groups = 0;
@@ -211,7 +215,7 @@ TEST(MeshAdvance, RoundOffJitterAroundASquareLatticeIsIdentical) {
         for (double &c : own) c += amp * u(rng);
       xy = im.all(own);
     };
-    const double lo[2] = {-1.5, -1.5}, hi[2] = {side + 1.5, side + 1.5};
+    const double lo[2] = {offset - 1.5, offset - 1.5}, hi[2] = {offset + side + 1.5, offset + side + 1.5};
     compare_paths(im.all(base), n, 40, lo, hi, next, nullptr, &groups);
     if (::testing::Test::HasFailure()) return;
     EXPECT_GT(groups, 0) << "amp " << amp;  // the exact lattice steps had multifold vertices

@@ -245,7 +245,7 @@ void FixPolarity::unit_polarities()
   };
   // Rows of one block (LAMMPS's memory->create): index it directly rather
   // than through the row pointers (one memory stream less).
-  if (one_block(mu, nall, 4))
+  if (nall > 0 && one_block(mu, nall, 4))
     pass([m0 = mu[0]](int i) { return m0 + 4 * static_cast<long>(i); });
   else
     pass([mu](int i) { return mu[i]; });
@@ -297,7 +297,7 @@ void FixPolarity::post_force(int /*vflag*/)
       f_i[1] += inv * m_i[1];
     }
   };
-  if (one_block(mu, nlocal, 4) && one_block(f, nlocal, 3))
+  if (nlocal > 0 && one_block(mu, nlocal, 4) && one_block(f, nlocal, 3))
     pass([m0 = mu[0]](int i) { return m0 + 4 * static_cast<long>(i); },
          [f0 = f[0]](int i) { return f0 + 3 * static_cast<long>(i); });
   else

@@ -16,6 +16,8 @@
 #include "update.h"
 #include "utils.h"
 
+#include "tessera/overdamped.h"
+
 #include <cmath>
 #include <cstring>
 
@@ -181,6 +183,16 @@ template <int NOISE, int THREE_D> void FixBrownianTessera::move()
 
   const int ndim = THREE_D ? 3 : 2;
   const double drift = dt * mobility;
+
+  // Without noise in 2D: the core's kernel on the flat arrays (LAMMPS keeps
+  // 3 doubles per atom in one block), both components at once.
+  const long last = 3 * static_cast<long>(nlocal - 1);
+  if (NOISE == NOISE_NONE && !THREE_D && nlocal > 0 && x[nlocal - 1] == x[0] + last &&
+      v[nlocal - 1] == v[0] + last && f[nlocal - 1] == f[0] + last) {
+    tessera::overdamped_step_2d(nlocal, x[0], v[0], f[0], drift, dt, igroup == 0 ? nullptr : mask,
+                                groupbit);
+    return;
+  }
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;

@@ -20,102 +20,33 @@
 #include "pair_vertex_voronoi.h"
 #include "update.h"
 
+#include "tessera/counter_rng.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
 namespace {
 
-// Counter-based random numbers: a value depends only on (seed, atom ID,
-// timestep, stream), not on the rank or the order of atoms (runs on other
-// rank counts and restarts then agree to round-off; see the doc).
-inline uint64_t mix(uint64_t z)
+// Counter-based random numbers (tessera/counter_rng.h): a value depends
+// only on (seed, atom ID, timestep, stream), not on the rank or the order of
+// atoms (runs on other rank counts and restarts then agree to round-off; see
+// the doc).
+using tessera::rng::gaussian;
+using tessera::rng::gaussian_mixed;
+using tessera::rng::mix;
+using tessera::rng::uniform01;
+using tessera::sincos_small;
+
+// Whether the n rows of a LAMMPS per-atom array (stride values each) are one
+// block, as memory->create allocates them.
+inline bool one_block(double **a, int n, int stride)
 {
-  z += 0x9e3779b97f4a7c15ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-inline double uniform01(uint64_t seed, uint64_t tag, uint64_t step, uint64_t stream)
-{
-  const uint64_t h = mix(mix(mix(mix(seed) ^ tag) ^ step) ^ stream);
-  return ((h >> 11) + 0.5) * (1.0 / 9007199254740992.0);    // in (0, 1)
-}
-
-// Gaussian numbers by Marsaglia and Tsang's ziggurat (128 layers): almost
-// always one hash, one table lookup and one multiply, no log or cos.  The
-// uniform bits come from a counter-based stream per (seed, atom, step).
-struct Ziggurat {
-  double kn[128], wn[128], fn[128];
-  Ziggurat()
-  {
-    const double m1 = 2147483648.0;
-    double dn = 3.442619855899, tn = dn;
-    const double vn = 9.91256303526217e-3;
-    const double q = vn / std::exp(-0.5 * dn * dn);
-    kn[0] = (dn / q) * m1;
-    kn[1] = 0.0;
-    wn[0] = q / m1;
-    wn[127] = dn / m1;
-    fn[0] = 1.0;
-    fn[127] = std::exp(-0.5 * dn * dn);
-    for (int i = 126; i >= 1; i--) {
-      dn = std::sqrt(-2.0 * std::log(vn / dn + std::exp(-0.5 * dn * dn)));
-      kn[i + 1] = (dn / tn) * m1;
-      tn = dn;
-      fn[i] = std::exp(-0.5 * dn * dn);
-      wn[i] = dn / m1;
-    }
-  }
-};
-
-struct Stream {
-  uint64_t base, k;
-  uint64_t next() { return mix(base ^ (++k * 0x632be59bd9b4e019ULL)); }
-  double uniform() { return ((next() >> 11) + 0.5) * (1.0 / 9007199254740992.0); }
-};
-
-inline double gaussian(uint64_t seed, uint64_t tag, uint64_t step)
-{
-  static const Ziggurat z;
-  Stream s{mix(mix(mix(seed) ^ tag) ^ step), 0};
-  for (;;) {
-    const int32_t hz = static_cast<int32_t>(static_cast<uint32_t>(s.next()));
-    const int iz = hz & 127;
-    const double ahz = std::fabs(static_cast<double>(hz));
-    if (ahz < z.kn[iz]) return hz * z.wn[iz];
-    const double x = hz * z.wn[iz];
-    if (iz == 0) {    // the tail beyond r
-      const double r = 3.442619855899;
-      double xt, y;
-      do {
-        xt = -std::log(s.uniform()) / r;
-        y = -std::log(s.uniform());
-      } while (y + y < xt * xt);
-      return hz > 0 ? r + xt : -r - xt;
-    }
-    if (z.fn[iz] + s.uniform() * (z.fn[iz - 1] - z.fn[iz]) < std::exp(-0.5 * x * x)) return x;
-  }
-}
-
-// sin and cos of a small rotation angle by their Taylor series (exact to
-// double precision for |x| < 0.25, the usual size of one step's turn).
-inline void sincos_small(double x, double &s, double &c)
-{
-  if (std::fabs(x) < 0.25) {
-    const double x2 = x * x;
-    s = x * (1.0 + x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880 +
-                                                                             x2 * (-1.0 / 39916800))))));
-    c = 1.0 + x2 * (-0.5 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 +
-                                                                  x2 * (-1.0 / 3628800 + x2 / 479001600)))));
-  } else {
-    s = std::sin(x);
-    c = std::cos(x);
-  }
+  return n <= 0 || a[n - 1] == a[0] + stride * static_cast<long>(n - 1);
 }
 
 }    // namespace
@@ -266,20 +197,58 @@ void FixPolarity::init_angles()
    every copy agrees without communication.  A non-zero mu (set by whatever
    created the cell) is kept. */
 
-void FixPolarity::fresh_angles(int n)
+void FixPolarity::fresh_angles(int from, int to)
 {
-  double **mu = atom->mu;
   const int *mask = atom->mask;
-  const tagint *tag = atom->tag;
-  for (int i = 0; i < n; i++) {
-    if (!(mask[i] & groupbit) || mu[i][0] != 0.0 || mu[i][1] != 0.0) continue;
-    const double th = MathConst::MY_2PI * uniform01(seed, tag[i], 0, 5);
-    const double m = mu[i][3] > 0.0 ? mu[i][3] : 1.0;
-    mu[i][0] = m * std::cos(th);
-    mu[i][1] = m * std::sin(th);
-    mu[i][2] = 0.0;
-    mu[i][3] = m;
-  }
+  double **mu = atom->mu;
+  for (int i = from; i < to; i++)
+    if ((mask[i] & groupbit) && mu[i][0] == 0.0 && mu[i][1] == 0.0) fresh_angle(i);
+}
+
+void FixPolarity::fresh_angle(int i)
+{
+  double *m_i = atom->mu[i];
+  const double th = MathConst::MY_2PI * uniform01(seed, atom->tag[i], 0, 5);
+  const double m = m_i[3] > 0.0 ? m_i[3] : 1.0;
+  m_i[0] = m * std::cos(th);
+  m_i[1] = m * std::sin(th);
+  m_i[2] = 0.0;
+  m_i[3] = m;
+}
+
+/* unit[2 i .. 2 i + 1] = mu_i / |mu_i| (0 where |mu_i| = 0) of the owned and
+   ghost atoms, after fresh_angles() of each (one pass).  |mu| is nearly
+   always exactly 1, where mu itself is the unit vector: the division is
+   skipped (x / 1 = x exactly, so the values are the same). */
+
+void FixPolarity::unit_polarities()
+{
+  const int nall = atom->nlocal + atom->nghost;
+  const int *mask = atom->mask;
+  double **mu = atom->mu;
+  unit.resize(2 * static_cast<size_t>(nall));
+  double *u = unit.data();
+  auto pass = [&](auto row) {
+    for (int i = 0; i < nall; i++) {
+      const double *m_i = row(i);
+      if (m_i[0] == 0.0 && m_i[1] == 0.0 && (mask[i] & groupbit)) fresh_angle(i);
+      const double len = m_i[3];
+      if (len == 1.0) {
+        u[2 * i] = m_i[0];
+        u[2 * i + 1] = m_i[1];
+      } else {
+        const double inv = len > 0.0 ? 1.0 / len : 0.0;
+        u[2 * i] = m_i[0] * inv;
+        u[2 * i + 1] = m_i[1] * inv;
+      }
+    }
+  };
+  // Rows of one block (LAMMPS's memory->create): index it directly rather
+  // than through the row pointers (one memory stream less).
+  if (nall > 0 && one_block(mu, nall, 4))
+    pass([m0 = mu[0]](int i) { return m0 + 4 * static_cast<long>(i); });
+  else
+    pass([mu](int i) { return mu[i]; });
 }
 
 void FixPolarity::setup(int vflag)
@@ -302,24 +271,37 @@ void FixPolarity::post_force(int /*vflag*/)
   double **v = atom->v;
   const int *mask = atom->mask;
   const int nlocal = atom->nlocal;
-  fresh_angles(nlocal + atom->nghost);
-  vhat.resize(2 * nlocal);
+  fresh_angles(nlocal, nlocal + atom->nghost);    // the owned ones in the loop below
   has_v.resize(nlocal);
-  const bool need_v = params.J_V != 0.0;  // only velocity alignment needs it
-  for (int i = 0; i < nlocal; i++) {
-    if (need_v) {
+  if (params.J_V != 0.0) {    // only velocity alignment needs the directions
+    vhat.resize(2 * static_cast<size_t>(nlocal));
+    for (int i = 0; i < nlocal; i++) {
       const double s = std::sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1]);
       has_v[i] = s > 0.0;
       vhat[2 * i] = has_v[i] ? v[i][0] / s : 0.0;
       vhat[2 * i + 1] = has_v[i] ? v[i][1] / s : 0.0;
-    } else {
-      has_v[i] = 0;
     }
-    if (!(mask[i] & groupbit) || !(mu[i][3] > 0.0)) continue;
-    const double inv = f_active / mu[i][3];
-    f[i][0] += inv * mu[i][0];
-    f[i][1] += inv * mu[i][1];
   }
+  // Without J_V, has_v stays all 0 (resize() value-initialises what it adds,
+  // and nothing else writes it then) and vhat is not read.
+  auto pass = [&](auto row_mu, auto row_f) {
+    for (int i = 0; i < nlocal; i++) {
+      if (!(mask[i] & groupbit)) continue;
+      double *m_i = row_mu(i);
+      if (m_i[0] == 0.0 && m_i[1] == 0.0) fresh_angle(i);
+      const double len = m_i[3];
+      if (!(len > 0.0)) continue;
+      const double inv = len == 1.0 ? f_active : f_active / len;    // the same value
+      double *f_i = row_f(i);
+      f_i[0] += inv * m_i[0];
+      f_i[1] += inv * m_i[1];
+    }
+  };
+  if (nlocal > 0 && one_block(mu, nlocal, 4) && one_block(f, nlocal, 3))
+    pass([m0 = mu[0]](int i) { return m0 + 4 * static_cast<long>(i); },
+         [f0 = f[0]](int i) { return f0 + 3 * static_cast<long>(i); });
+  else
+    pass([mu](int i) { return mu[i]; }, [f](int i) { return f[i]; });
 }
 
 /* Forward Euler (Euler-Maruyama with noise) step of the angle, at the start
@@ -356,18 +338,11 @@ void FixPolarity::initial_integrate(int /*vflag*/)
     has_v.resize(nlocal, 0);
     vhat.resize(2 * nlocal, 0.0);
   }
-  fresh_angles(nlocal + atom->nghost);
 
-  // Unit polarities: mu[i][0..1] / |mu|.  mu is stored with |mu| in mu[i][3];
-  // every cell's moment has length mu[i][3] > 0 after init().
-  const int nall = nlocal + atom->nghost;
-  unit.resize(2 * nall);
-  for (int i = 0; i < nall; i++) {
-    const double inv = mu[i][3] > 0.0 ? 1.0 / mu[i][3] : 0.0;
-    unit[2 * i] = mu[i][0] * inv;
-    unit[2 * i + 1] = mu[i][1] * inv;
-  }
+  // Unit polarities of owned and ghost cells (fresh angles first).
+  unit_polarities();
   tau.resize(nlocal);
+
   if (params.J_S != 0.0) {
     const tessera::Tessellation &t = pair->tessellation();
     if (pair->tessellation_step() != update->ntimestep - 1 || t.n_owned != nlocal)
@@ -380,30 +355,47 @@ void FixPolarity::initial_integrate(int /*vflag*/)
     // Without neighbour alignment no tessellation is needed: the torque of
     // each cell depends on its own polarity and velocity only.
     none.n_owned = nlocal;
-    none.cell_offset.assign(nlocal + 1, 0);
+    if (none.cell_offset.size() != static_cast<size_t>(nlocal) + 1)
+      none.cell_offset.assign(nlocal + 1, 0);
     tessera::polarity_torque_vec(none, unit.data(), 2, params, vhat.data(), has_v.data(),
                                  tau.data());
   }
 
+  // Two passes: first the angle increments (the random numbers: a chain of
+  // hashes per atom, independent between atoms), then the rotations.  Each
+  // loop body is short enough for the processor to overlap several atoms.
+  // (Drawing the random numbers in the torque's loop over cells, to overlap
+  // the hashes with the neighbour loads, was measured and gained nothing.)
   const double dt = update->dt;
   const double noise = std::sqrt(2.0 * d_rot * dt);
   const bigint step = update->ntimestep;
-  for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    double dth = dt * tau[i] / gamma_r;
-    if (d_rot > 0.0) dth += noise * gaussian(seed, tag[i], step);
-    double s, c;
-    sincos_small(dth, s, c);
-    const double m = mu[i][3] > 0.0 ? mu[i][3] : 1.0;
-    const double nx = unit[2 * i], ny = unit[2 * i + 1];
-    // Renormalise so that round-off in the rotations does not drift |mu|.
-    double rx = c * nx - s * ny, ry = s * nx + c * ny;
-    const double r = 1.0 / std::sqrt(rx * rx + ry * ry);
-    mu[i][0] = m * rx * r;
-    mu[i][1] = m * ry * r;
-    mu[i][2] = 0.0;
-    mu[i][3] = m;
+  const uint64_t mixed_seed = mix(static_cast<uint64_t>(seed));
+  double *dth = tau.data();    // tau[i] becomes the angle increment of cell i
+  // x / gamma_R is x itself when gamma_R = 1: no division then.
+  auto increments = [&](auto unit_gamma) {
+    for (int i = 0; i < nlocal; i++) {
+      if (!(mask[i] & groupbit)) continue;
+      const double drift = unit_gamma ? dt * tau[i] : dt * tau[i] / gamma_r;
+      dth[i] = d_rot > 0.0 ? drift + noise * gaussian_mixed(mixed_seed, tag[i], step) : drift;
+    }
+  };
+  if (gamma_r == 1.0)
+    increments(std::true_type());
+  else
+    increments(std::false_type());
+  // mu is one block of 4 doubles per atom (LAMMPS's memory->create), which
+  // the rotation reads and writes as such.
+  const unsigned char *active = nullptr;
+  if (igroup != 0) {    // not group all
+    in_group.resize(nlocal);
+    for (int i = 0; i < nlocal; i++) in_group[i] = (mask[i] & groupbit) ? 1 : 0;
+    active = in_group.data();
   }
+  if (nlocal > 0 && one_block(mu, nlocal, 4))
+    tessera::rotate_polarities(nlocal, unit.data(), dth, mu[0], active);
+  else
+    for (int i = 0; i < nlocal; i++)
+      if (!active || active[i]) tessera::rotate_polarities_reference(1, &unit[2 * i], &dth[i], mu[i], nullptr);
 }
 
 /* Polar order |<n>| and nematic order <cos 2(theta - phi_G)> over the group. */

@@ -42,9 +42,12 @@ class FixPolarity : public Fix, public CoupledDof {
   std::vector<double> tau, vhat, unit;
   tessera::Tessellation none;  // an empty tessellation when no neighbours are needed
   std::vector<unsigned char> has_v;
+  std::vector<unsigned char> in_group;    // 1 for atoms of the fix group (when it is not all)
 
   void init_angles();
-  void fresh_angles(int);
+  void fresh_angles(int from, int to);    // fresh_angle() of the atoms from..to-1 that need one
+  void fresh_angle(int i);                // a random angle for atom i (mu = 0 in the plane)
+  void unit_polarities();                 // fills unit (owned and ghost atoms)
   void polar_orders(double &polar, double &nematic);
 
   // dimension 3: a unit vector per cell (end of fix_polarity.cpp)

@@ -5,6 +5,8 @@
 
 #include "tessera/tessellation.h"
 
+#include <cmath>
+
 namespace tessera {
 
 struct PolarityParams {
@@ -33,6 +35,49 @@ void polarity_torque(const Tessellation &t, const double *theta, const PolarityP
 void polarity_torque_vec(const Tessellation &t, const double *n, int n_stride,
                          const PolarityParams &p, const double *vhat, const unsigned char *has_v,
                          double *tau);
+
+// The same torque by the plain loop (any stride): the oracle of the fast path
+// above, which takes stride 2 and sums the neighbours two components at a time
+// (the same additions in the same order, so the same values bit for bit).
+void polarity_torque_vec_reference(const Tessellation &t, const double *n, int n_stride,
+                                   const PolarityParams &p, const double *vhat,
+                                   const unsigned char *has_v, double *tau);
+
+// sin and cos of a small rotation angle by their Taylor series (exact to
+// double precision for |x| < 0.25, the usual size of one step's turn),
+// std::sin and std::cos otherwise.
+inline void sincos_small(double x, double &s, double &c) {
+  if (std::fabs(x) < 0.25) {
+    const double x2 = x * x;
+    s = x * (1.0 + x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880 +
+                                                                             x2 * (-1.0 / 39916800))))));
+    c = 1.0 + x2 * (-0.5 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 +
+                                                                  x2 * (-1.0 / 3628800 + x2 / 479001600)))));
+  } else {
+    s = std::sin(x);
+    c = std::cos(x);
+  }
+}
+
+// 1 / std::sqrt(q), bit for bit, from a table of those values for the q
+// within 64 units in the last place of 1 (the squared length of a rotated
+// unit vector, nearly always), computed otherwise.
+double inverse_sqrt(double q);
+
+// One rotation step of 2D polarities stored as dipole moments mu (stride 4:
+// mu_x, mu_y, mu_z, |mu|, as LAMMPS's atom_style dipole keeps them): for each
+// i < n with active[i] != 0 (all i when active is null), the unit vector
+// u_i = (u[2i], u[2i+1]) turned by the angle dth[i] (sincos_small) and
+// renormalised, times m = |mu_i| (1 where |mu_i| <= 0):
+//   mu_i <- (m r_x / |r|, m r_y / |r|, 0, m),  r = R(dth_i) u_i.
+// Inactive entries are not written (their dth may be anything).  Two cells at
+// a time where the processor has SSE2, 1/|r| by inverse_sqrt (the same IEEE
+// operations per cell or their tabulated results, so the same values bit for
+// bit as rotate_polarities_reference).
+void rotate_polarities(int n, const double *u, const double *dth, double *mu,
+                       const unsigned char *active);
+void rotate_polarities_reference(int n, const double *u, const double *dth, double *mu,
+                                 const unsigned char *active);
 
 // Coordination C_i = mean over Voronoi neighbours j (non-zero edges) of
 // v_i/|v_i| . v_j/|v_j| (in [-1, 1]), and orientation O_i = arccos(v_i/|v_i| . x)

@@ -721,6 +721,10 @@ bool PairVertexVoronoi::tessellate()
 
   bool fresh = false;
   auto build = [&]() {
+    // The cells are read afresh after a rebuild: their arrays go first, so
+    // that they and CGAL's triangulation never hold memory at the same time
+    // (the peak memory per cell is a rebuild's).
+    tess = tessera::Tessellation();
     try {
       mesh.build(pts);
     } catch (tessera::Error &) {

@@ -619,8 +619,9 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
   t.unbounded_cell = -1;
 
   // Finite triangles, numbered compactly, with their circumcentres.
-  compact_.resize(nt);
-  mesh_of_.resize(nt);
+  // Local, not members: only rebuilds (and callers outside a run) come here,
+  // and a run's memory per cell is what it keeps between steps.
+  std::vector<int> compact(nt), mesh_of(nt);
   t.triangles.resize(nt);
   t.vertices.resize(nt);
   t.radius.resize(nt);
@@ -628,11 +629,11 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
   for (int m = 0; m < nt; ++m) {
     const int a = v_[3 * m], b = v_[3 * m + 1], c = v_[3 * m + 2];
     if (a == kInfinite || b == kInfinite || c == kInfinite) {
-      compact_[m] = -1;
+      compact[m] = -1;
       continue;
     }
-    compact_[m] = nft;
-    mesh_of_[nft] = m;
+    compact[m] = nft;
+    mesh_of[nft] = m;
     t.triangles[nft] = {a, b, c};
     circumcentre(pts.x(a), pts.y(a), pts.x(b), pts.y(b), pts.x(c), pts.y(c), t.vertices[nft],
                  t.radius[nft]);
@@ -641,7 +642,7 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
   t.triangles.resize(nft);
   t.vertices.resize(nft);
   t.radius.resize(nft);
-  mesh_of_.resize(nft);
+  mesh_of.resize(nft);
 
   // The tolerance is a fraction of the smaller circumradius: a nearly flat
   // triangle (on the hull of a ghost shell, or a row of collinear images)
@@ -680,7 +681,7 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
     do {
       const int *v = &v_[3 * m];
       const int i = (v[1] == c) + 2 * (v[2] == c); // index of c, without branches
-      const int cm = compact_[m];
+      const int cm = compact[m];
       if (cm < 0) {
         unbounded = true;
         break;
@@ -698,7 +699,7 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
       t.cell_neighbor[used] = v[i2];
       ++used;
       if (v[i1] >= n_owned && v[i2] >= n_owned) {
-        const int g = compact_[nb_[3 * m + i]];
+        const int g = compact[nb_[3 * m + i]];
         if (g >= 0 && same_vertex(cm, g))
           seeds_.push_back(cm);
       }
@@ -736,12 +737,8 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
   t.cell_neighbor.resize(used);
   t.edge_length.resize(used);
 
-  t.triangle_neighbor.resize(nft);
-  for (int k = 0; k < nft; ++k) {
-    const int m = mesh_of_[k];
-    for (int e = 0; e < 3; ++e) t.triangle_neighbor[k][e] = compact_[nb_[3 * m + e]];
-  }
-  find_groups(pts, t, [this](int m) { return compact_[m]; }, [this](int k) { return mesh_of_[k]; });
+  find_groups(pts, t, [&](int m) { return compact[m]; }, [&](int k) { return mesh_of[k]; });
+  last_incremental_ = false;
   t.mesh_stamp = stamp_ = next_stamp();
   stamp_owned_ = n_owned;
 }
@@ -976,7 +973,6 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
   t.cell_neighbor.swap(spare_cn_);
   spare_cv_.resize(spare_cv_.capacity());
   spare_cn_.resize(spare_cn_.capacity());
-  std::vector<std::array<int, 3>>().swap(t.triangle_neighbor);
 
   // Lengths, areas, perimeters and the seeds of multifold vertices, in the
   // order cells() finds them.
@@ -1059,6 +1055,7 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
   t.unbounded_cell = -1;
   t.mesh_stamp = stamp_ = next_stamp();
   stamp_owned_ = n_owned;
+  last_incremental_ = true;
   return true;
 }
 

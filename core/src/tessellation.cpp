@@ -66,11 +66,12 @@ void Tessellation::short_edge_clusters(double min_length, std::vector<int> &offs
   std::vector<char> seen(nt, 0);
   std::vector<int> stack, tris, pts;
   const double l2 = min_length * min_length;
-  // Mesh::advance() leaves triangle_neighbor empty: find the neighbours from
-  // the triangles' edges (each interior edge is shared by two triangles).
+  // The triangles' neighbours, from their edges (each interior edge is
+  // shared by two triangles); not kept in the Tessellation, whose memory per
+  // cell a run keeps between steps.
   std::vector<std::array<int, 3>> own_neighbor;
-  const std::vector<std::array<int, 3>> *nbr = &triangle_neighbor;
-  if (static_cast<int>(triangle_neighbor.size()) != nt) {
+  const std::vector<std::array<int, 3>> *nbr = &own_neighbor;
+  {
     std::vector<std::array<long, 3>> edges;  // (min point, max point, triangle * 3 + side)
     edges.reserve(3 * static_cast<size_t>(nt));
     for (int k = 0; k < nt; ++k)
@@ -86,7 +87,6 @@ void Tessellation::short_edge_clusters(double min_length, std::vector<int> &offs
         own_neighbor[edges[i + 1][2] / 3][edges[i + 1][2] % 3] = static_cast<int>(edges[i][2] / 3);
         ++i;
       }
-    nbr = &own_neighbor;
   }
   auto close = [&](int a, int b) {
     const double dx = vertices[a].x - vertices[b].x, dy = vertices[a].y - vertices[b].y;

@@ -33,7 +33,7 @@ bool same_bits(const std::vector<T> &a, const std::vector<T> &b) {
          (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
-// Everything but triangle_neighbor (advance leaves it empty) and the stamp.
+// Everything but the stamp.
 void expect_identical(const Tessellation &a, const Tessellation &b, int step) {
   ASSERT_EQ(a.n_points, b.n_points) << "step " << step;
   ASSERT_EQ(a.n_owned, b.n_owned) << "step " << step;
@@ -55,7 +55,7 @@ void expect_identical(const Tessellation &a, const Tessellation &b, int step) {
 
 // Runs both paths side by side over the positions produced by next(step, xy)
 // and compares after every step.  Returns the number of steps that took the
-// fast path (t.triangle_neighbor left empty).
+// fast path (Mesh::incremental()).
 template <class Next>
 int compare_paths(std::vector<double> xy, int n_owned, int steps, const double *lo,
                   const double *hi, Next next, long *flips = nullptr, int *groups = nullptr,
@@ -86,7 +86,7 @@ int compare_paths(std::vector<double> xy, int n_owned, int steps, const double *
     EXPECT_EQ(fast.flips_last_update(), slow.flips_last_update()) << "step " << step;
     if (flips) *flips += slow.flips_last_update();
     slow.cells(pts, n_owned, ts);
-    if (tf.triangle_neighbor.empty()) {
+    if (fast.incremental()) {
       ++fast_steps;
       if (grew && tf.triangles.size() > last_nft) ++*grew;  // flips made triangles finite
     }
@@ -238,14 +238,14 @@ TEST(MeshAdvance, ATessellationItDidNotFillTakesTheFullPath) {
   a.cells(pts, 0, first);
   for (double &c : xy) c += 1e-4 * u(rng);
   ASSERT_TRUE(a.advance(pts, 0, nullptr, nullptr, other));  // other: never filled
-  EXPECT_FALSE(other.triangle_neighbor.empty());            // so the full path ran
+  EXPECT_FALSE(a.incremental());                            // so the full path ran
   ASSERT_TRUE(b.update(pts));
   b.cells(pts, 0, ref);
   expect_identical(other, ref, 0);
   // first is stale now (the mesh filled other since): the full path again.
   for (double &c : xy) c += 1e-4 * u(rng);
   ASSERT_TRUE(a.advance(pts, 0, nullptr, nullptr, first));
-  EXPECT_FALSE(first.triangle_neighbor.empty());
+  EXPECT_FALSE(a.incremental());
 }
 
 }  // namespace

@@ -56,10 +56,9 @@ public:
   // (with a floating-point filter that falls back to the exact predicate), and
   // only the cells whose triangles a flip touched are walked again: the others
   // keep their lists.  The result is the same as update() followed by cells(),
-  // bit for bit, except that t.triangle_neighbor is left empty
-  // (Tessellation::short_edge_clusters rebuilds what it needs).  Otherwise it
-  // runs update() and cells().  Returns false when update() would (t is then
-  // not filled; call build() and cells()).
+  // bit for bit.  Otherwise it runs update() and cells()
+  // (incremental() then says false).  Returns false when update() would (t is
+  // then not filled; call build() and cells()).
   bool advance(const Points &pts, int n_owned, const double *roi_lo, const double *roi_hi,
                Tessellation &t);
 
@@ -68,6 +67,8 @@ public:
   bool collinear() const { return collinear_; }
   int n_points() const { return n_points_; }
   long flips_last_update() const { return flips_; }
+  // Whether the last cells() or advance() call took advance()'s per-step path.
+  bool incremental() const { return last_incremental_; }
 
 private:
   static constexpr int kInfinite = -1;
@@ -84,6 +85,7 @@ private:
   // the mesh changed since).
   mutable unsigned long stamp_ = 0;
   mutable int stamp_owned_ = -1;
+  mutable bool last_incremental_ = false;
   std::vector<int> flipped_;      // triangles whose corners changed in this update
   std::vector<char> dirty_;       // per point: its star changed in this update
   std::vector<int> dirty_list_;   // the points with dirty_ set
@@ -93,8 +95,6 @@ private:
   std::vector<int> vt_;  // per point: one triangle containing it
   mutable std::vector<int> stack_;
   std::vector<char> frozen_;
-  mutable std::vector<int> compact_;  // mesh triangle -> finite triangle index, or -1
-  mutable std::vector<int> mesh_of_;
   mutable std::vector<int> seeds_;  // finite triangle index -> mesh triangle
 
   [[noreturn]] static void throw_too_close(const Points &pts, int i, int j, double scale,

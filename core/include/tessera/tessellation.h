@@ -120,10 +120,6 @@ struct Tessellation {
   std::vector<int> group_point;
   std::vector<Vec2> group_centre;
 
-  // Neighbour of each triangle across the edge opposite its vertex k (index
-  // into triangles), or -1 on the convex hull.  Filled by Mesh::cells() and
-  // tessellate_*; empty after Mesh::advance() (a run's per-step path).
-  std::vector<std::array<int, 3>> triangle_neighbor;
 
   // Clusters of Voronoi vertices joined by edges shorter than min_length (the
   // "rosettes" of a fluid tissue, nearly multifold vertices): for each

@@ -753,7 +753,7 @@ bool PairVertexVoronoi::tessellate()
     ;
   else if (!incremental || mesh_ncalls != neighbor->ncalls || !mesh.valid() || mesh.n_points() != nall)
     build();
-  else if (mesh.advance(pts, nlocal, lo_inc, hi_inc, tess)) {
+  else if (mesh.advance(pts, nlocal, lo_inc, hi_inc, tess, fuse_cells ? &cell_pass : nullptr)) {
     stats[3] += mesh.flips_last_update();
     have_cells = true;
   } else
@@ -878,23 +878,34 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
   }
 
   const double t0 = MPI_Wtime();
+  // Types and preferred areas of this step's atoms, for the forces' per-cell
+  // half, which Mesh::advance runs while it reads the cells (tessera::CellPass;
+  // without per-atom virials, which need the general loop).  Its time counts
+  // as tessellation in the statistics (values 1 and 2).
+  auto prepare = [&]() {
+    const int nall = atom->nlocal + atom->nghost;
+    type0.resize(nall);
+    const int *type = atom->type;
+    for (int i = 0; i < nall; i++) type0[i] = type[i] - 1;
+    cell_e.resize(atom->nlocal);
+    bind_cell_area0();
+    cell_pass.set(tessera::Points{&atom->x[0][0], nall, 3}, type0.data(), model, cell_e.data());
+  };
+  prepare();
+  fuse_cells = !vflag_atom;
   // Each pass that widens the ghost shell re-acquires the atoms; then the
   // energy/virial accumulators are set up again for the new atom count.
   for (int pass = 0; tessellate(); pass++) {
     if (pass == 8) error->all(FLERR, "pair_style vertex/voronoi: the ghost shell did not converge");
     ev_init(eflag, vflag);
+    prepare();
   }
+  fuse_cells = false;
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
   const double t1 = MPI_Wtime();
 
-  type0.resize(nall);
-  const int *type = atom->type;
-  for (int i = 0; i < nall; i++) type0[i] = type[i] - 1;
-  cell_e.resize(nlocal);
-
   tessera::Points pts{&atom->x[0][0], nall, 3};
-  bind_cell_area0();
   // Per-atom virial (compute stress/atom): each cell's own energy term's
   // virial, assigned to its atom; the cells' virials add up to the total.
   if (vflag_atom) cell_w.resize(4 * static_cast<size_t>(nlocal));
@@ -902,7 +913,7 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
   try {
     // The global virial comes from LAMMPS's f dot r (virial_fdotr_compute).
     out = tessera::compute_forces(tess, pts, type0.data(), model, &atom->f[0][0], 3, cell_e.data(),
-                                  vflag_atom ? cell_w.data() : nullptr, false);
+                                  vflag_atom ? cell_w.data() : nullptr, false, &cell_pass);
   } catch (tessera::Error &e) {
     // Energy or virial overflow (parameters or lengths far outside the
     // model's reduced units); the core names the local point.

@@ -89,6 +89,8 @@ class PairVertexVoronoi : public Pair {
   tessera::Tessellation tess;
   bigint tess_step;
   tessera::Mesh mesh;
+  tessera::CellPass cell_pass;   // the forces' per-cell half, run by Mesh::advance
+  bool fuse_cells = false;       // hand cell_pass to the next Mesh::advance
   int incremental;      // 1: keep the triangulation between steps, 0: rebuild every step, 2: check
   bigint mesh_ncalls;   // neighbor->ncalls when the mesh was built: atoms re-ordered since?
   int reference_every;  // time a from-scratch triangulation every this many steps (0: never)

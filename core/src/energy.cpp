@@ -109,16 +109,97 @@ namespace {
 
 }  // namespace
 
+namespace {
+
+// The lean per-cell loop (no multifold vertex, no per-cell virial) over
+// cells [c0, c1): each cell's energy and dE/dh added into grad, the energy
+// sum and the closest pair of Voronoi neighbours carried in the references.
+void lean_cells(const Tessellation &t, const Points &pts, const int *type, const Model &model,
+                double *cell_energy, Vec2 *grad, int c0, int c1, double &energy, double &best2,
+                int &best_c, int &best_q) {
+  const double w = model.tension_weight();
+  const int ntypes = model.ntypes();
+  auto near_pair = [&](int c, double cx, double cy, int q) {
+    const double dx = pts.x(q) - cx, dy = pts.y(q) - cy;
+    const double d2 = dx * dx + dy * dy;
+    if (best2 < 0.0 || d2 < best2) {
+      best2 = d2;
+      best_c = c;
+      best_q = q;
+    }
+  };
+    const Vec2 *const H = t.vertices.data();
+    for (int c = c0; c < c1; ++c) {
+      const int o = t.cell_offset[c], m = t.cell_offset[c + 1] - o;
+      const int tc = type[c];
+      const CellType &ct = model.types[tc];
+      const double dA = t.area[c] - model.area0_of(c, tc);
+      const double dEdA = ct.K * dA;
+      const double dEdP = ct.Gamma * t.perimeter[c];
+      const double *lam_row = &model.lambda[static_cast<size_t>(tc) * ntypes];
+      double tension = 0.0;
+      if (m > 0) {
+        const int *cv = &t.cell_vertex[o];
+        const int *cn = &t.cell_neighbor[o];
+        const double *el = &t.edge_length[o];
+        Vec2 hp = H[cv[m - 1]], hc = H[cv[0]];
+        double in_x = 0.0, in_y = 0.0;
+        if (el[m - 1] > 0.0) {
+          const double inv = 1.0 / el[m - 1];
+          in_x = (hc.x - hp.x) * inv;
+          in_y = (hc.y - hp.y) * inv;
+        }
+        double in_lam = w * lam_row[type[cn[m - 1]]];
+        const double pcx = pts.x(c), pcy = pts.y(c);
+        for (int k = 0; k < m; ++k) {
+          near_pair(c, pcx, pcy, cn[k]);
+          const Vec2 hn = H[cv[k + 1 == m ? 0 : k + 1]];
+          const double l = el[k];
+          double out_x = 0.0, out_y = 0.0;
+          if (l > 0.0) {
+            const double inv = 1.0 / l;
+            out_x = (hn.x - hc.x) * inv;
+            out_y = (hn.y - hc.y) * inv;
+          }
+          const double lam = lam_row[type[cn[k]]];
+          const double out_lam = w * lam;
+          tension += lam * l;
+          const double gx =
+              0.5 * dEdA * (hn.y - hp.y) + (dEdP + in_lam) * in_x - (dEdP + out_lam) * out_x;
+          const double gy =
+              0.5 * dEdA * (hp.x - hn.x) + (dEdP + in_lam) * in_y - (dEdP + out_lam) * out_y;
+          Vec2 &gr = grad[cv[k]];
+          gr.x += gx;
+          gr.y += gy;
+          hp = hc;
+          hc = hn;
+          in_x = out_x;
+          in_y = out_y;
+          in_lam = out_lam;
+        }
+      }
+      const double ec = 0.5 * ct.K * dA * dA +
+                        0.5 * ct.Gamma * t.perimeter[c] * t.perimeter[c] +
+                        (m > 0 ? w * tension : 0.0);
+      if (cell_energy) cell_energy[c] = ec;
+      energy += ec;
+    }
+  }
+
+}  // namespace
+
 ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *type,
                            const Model &model, double *f, int f_stride, double *cell_energy,
-                           double *cell_virial, bool want_virial) {
+                           double *cell_virial, bool want_virial, const CellPass *pass) {
   ForceOutput out;
   const int nt = static_cast<int>(t.triangles.size());
   // dE/dh per Voronoi vertex; kept between calls so that a time step
   // allocates nothing once sizes have settled.
   thread_local std::vector<Vec2> grad_buffer;
-  grad_buffer.assign(nt, Vec2{});
-  Vec2 *const grad = grad_buffer.data();  // one TLS lookup, not one per access
+  const bool use_pass = pass && t.group_centre.empty() && !cell_virial && pass->covers(t);
+  if (!use_pass) grad_buffer.assign(nt, Vec2{});
+  // one TLS lookup, not one per access
+  Vec2 *const grad = use_pass ? const_cast<Vec2 *>(pass->grad.data()) : grad_buffer.data();
   const double w = model.tension_weight();
   // Sums kept in locals, not in `out` (the caller's return slot, which the
   // stores into f might alias, so every += would go through memory).
@@ -222,63 +303,16 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
   // same bits): each vertex loaded once and carried along the polygon, no
   // vertex-group look-ups.  The general loop below is its oracle.
   const bool lean = t.group_centre.empty() && !cell_virial;
-  if (lean) {
-    const Vec2 *const H = t.vertices.data();
-    for (int c = 0; c < t.n_owned; ++c) {
-      const int o = t.cell_offset[c], m = t.cell_offset[c + 1] - o;
-      const int tc = type[c];
-      const CellType &ct = model.types[tc];
-      const double dA = t.area[c] - model.area0_of(c, tc);
-      const double dEdA = ct.K * dA;
-      const double dEdP = ct.Gamma * t.perimeter[c];
-      const double *lam_row = &model.lambda[static_cast<size_t>(tc) * ntypes];
-      double tension = 0.0;
-      if (m > 0) {
-        const int *cv = &t.cell_vertex[o];
-        const int *cn = &t.cell_neighbor[o];
-        const double *el = &t.edge_length[o];
-        Vec2 hp = H[cv[m - 1]], hc = H[cv[0]];
-        double in_x = 0.0, in_y = 0.0;
-        if (el[m - 1] > 0.0) {
-          const double inv = 1.0 / el[m - 1];
-          in_x = (hc.x - hp.x) * inv;
-          in_y = (hc.y - hp.y) * inv;
-        }
-        double in_lam = w * lam_row[type[cn[m - 1]]];
-        const double pcx = pts.x(c), pcy = pts.y(c);
-        for (int k = 0; k < m; ++k) {
-          near_pair(c, pcx, pcy, cn[k]);
-          const Vec2 hn = H[cv[k + 1 == m ? 0 : k + 1]];
-          const double l = el[k];
-          double out_x = 0.0, out_y = 0.0;
-          if (l > 0.0) {
-            const double inv = 1.0 / l;
-            out_x = (hn.x - hc.x) * inv;
-            out_y = (hn.y - hc.y) * inv;
-          }
-          const double lam = lam_row[type[cn[k]]];
-          const double out_lam = w * lam;
-          tension += lam * l;
-          const double gx =
-              0.5 * dEdA * (hn.y - hp.y) + (dEdP + in_lam) * in_x - (dEdP + out_lam) * out_x;
-          const double gy =
-              0.5 * dEdA * (hp.x - hn.x) + (dEdP + in_lam) * in_y - (dEdP + out_lam) * out_y;
-          Vec2 &gr = grad[cv[k]];
-          gr.x += gx;
-          gr.y += gy;
-          hp = hc;
-          hc = hn;
-          in_x = out_x;
-          in_y = out_y;
-          in_lam = out_lam;
-        }
-      }
-      const double ec = 0.5 * ct.K * dA * dA +
-                        0.5 * ct.Gamma * t.perimeter[c] * t.perimeter[c] +
-                        (m > 0 ? w * tension : 0.0);
-      if (cell_energy) cell_energy[c] = ec;
-      energy += ec;
-    }
+  const bool fused = use_pass;  // implies lean
+  if (fused) {
+    // The per-cell half was done while the cells were read (CellPass).
+    energy = pass->energy;
+    best2 = pass->best2;
+    best_c = pass->best_c;
+    best_q = pass->best_q;
+  } else if (lean) {
+    lean_cells(t, pts, type, model, cell_energy, grad, 0, t.n_owned, energy, best2, best_c,
+               best_q);
   }
   for (int c = 0; !lean && c < t.n_owned; ++c) {
     if (cell_virial) {
@@ -474,6 +508,32 @@ ForceOutput periodic_forces(const Box &box, const Points &pts, const int *type,
     f[2 * t.origin[p] + 1] += fall[2 * p + 1];
   }
   return out;
+}
+
+void CellPass::begin(const Tessellation &t) {
+  grad.assign(t.triangles.size(), Vec2{});
+  energy = 0.0;
+  best2 = -1.0;
+  best_c = best_q = -1;
+  done_ = 0;
+  stamp_ = 0;
+}
+
+void CellPass::cells(const Tessellation &t, int c0, int c1) {
+  if (!model_ || c0 != done_ || grad.size() != t.triangles.size()) {
+    done_ = -1;  // out of order: never covers anything
+    return;
+  }
+  lean_cells(t, pts_, type_, *model_, cell_energy_, grad.data(), c0, c1, energy, best2, best_c,
+             best_q);
+  done_ = c1;
+}
+
+void CellPass::end(const Tessellation &t) { stamp_ = done_ == t.n_owned ? t.mesh_stamp : 0; }
+
+bool CellPass::covers(const Tessellation &t) const {
+  return stamp_ != 0 && stamp_ == t.mesh_stamp && done_ == t.n_owned &&
+         grad.size() == t.triangles.size();
 }
 
 }  // namespace tessera

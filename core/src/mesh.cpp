@@ -744,7 +744,7 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
 }
 
 bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const double *roi_hi,
-                   Tessellation &t) {
+                   Tessellation &t, CellObserver *observer) {
   if (!valid_ || pts.n != n_points_ || stamp_ == 0 || t.mesh_stamp != stamp_ ||
       stamp_owned_ != n_owned || t.n_owned != n_owned || t.unbounded_cell >= 0 ||
       static_cast<int>(t.cell_offset.size()) != n_owned + 1 || n_owned > n_points_) {
@@ -989,6 +989,9 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
   const double *RAD = t.radius.data();
   const int *CV = t.cell_vertex.data(), *CN = t.cell_neighbor.data();
   double *EL = t.edge_length.data();
+  if (observer) observer->begin(t);
+  constexpr int kBlock = 64;  // cells per observer call (their data still in L1/L2)
+  int block_start = 0;
   for (int cc = 0; cc < n_owned; ++cc) {
     const int o = off[cc], len = off[cc + 1] - o;
     const int *cv = CV + o, *cn = CN + o;
@@ -1050,12 +1053,17 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
     }
     t.area[cc] = 0.5 * area2;
     t.perimeter[cc] = perim;
+    if (observer && (cc + 1 - block_start == kBlock || cc + 1 == n_owned)) {
+      observer->cells(t, block_start, cc + 1);
+      block_start = cc + 1;
+    }
   }
   find_groups(pts, t, [nft](int m) { return m < nft ? m : -1; }, [](int k) { return k; });
   t.unbounded_cell = -1;
   t.mesh_stamp = stamp_ = next_stamp();
   stamp_owned_ = n_owned;
   last_incremental_ = true;
+  if (observer) observer->end(t);
   return true;
 }
 

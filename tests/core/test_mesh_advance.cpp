@@ -311,3 +311,69 @@ TEST(ForcesLean, SameBitsAsTheGeneralLoop) {
 }
 
 }  // namespace
+
+namespace {
+
+// The forces' per-cell half run by Mesh::advance (CellPass) against
+// compute_forces doing everything itself: the same bits, on a fluid run with
+// images; and a pass from another step or another tessellation is ignored.
+TEST(CellPass, FusedIntoAdvanceGivesTheSameForces) {
+  tessera::Model model(2);
+  model.types[0] = {2.0, 1.0, 2.0};
+  model.types[1] = {2.0, 1.2, 1.6};
+  model.set_lambda(0, 0, -7.8);
+  model.set_lambda(0, 1, -6.0);
+  model.set_lambda(1, 1, -7.0);
+  std::mt19937 rng(31);
+  const int n = 300;
+  const double L = std::sqrt(double(n));
+  std::uniform_real_distribution<double> u(0.0, L);
+  std::normal_distribution<double> g(0.0, 0.01);
+  std::vector<double> own(2 * n);
+  for (double &c : own) c = u(rng);
+  const Images im(own, L, 3.0);
+  std::vector<double> xy = im.all(own);
+  const int nall = static_cast<int>(xy.size() / 2);
+  std::vector<int> type(nall);
+  for (int p = 0; p < nall; ++p) type[p] = (p < n ? p : im.origin[p - n]) % 3 == 0;
+  const double lo[2] = {-2.0, -2.0}, hi[2] = {L + 2.0, L + 2.0};
+  Mesh mesh;
+  Tessellation t;
+  mesh.build(Points{xy.data(), nall, 2});
+  mesh.cells(Points{xy.data(), nall, 2}, n, t);
+  std::vector<double> ea(n), eb(n);
+  tessera::CellPass pass;
+  int fused = 0;
+  for (int step = 0; step < 60; ++step) {
+    for (double &c : own) c += g(rng);
+    xy = im.all(own);
+    const Points pts{xy.data(), nall, 2};
+    pass.set(pts, type.data(), model, ea.data());
+    if (!mesh.advance(pts, n, lo, hi, t, &pass)) {
+      mesh.build(pts);
+      mesh.cells(pts, n, t);
+    }
+    if (pass.covers(t)) ++fused;
+    std::vector<double> fa(2 * nall, 0.0), fb(2 * nall, 0.0);
+    const auto a = tessera::compute_forces(t, pts, type.data(), model, fa.data(), 2, ea.data(),
+                                           nullptr, true, &pass);
+    const auto b = tessera::compute_forces(t, pts, type.data(), model, fb.data(), 2, eb.data());
+    ASSERT_TRUE(same_bits(fa, fb)) << "step " << step;
+    ASSERT_TRUE(same_bits(ea, eb)) << "step " << step;
+    ASSERT_EQ(a.energy, b.energy) << "step " << step;
+    ASSERT_EQ(a.closest_cell, b.closest_cell);
+    ASSERT_EQ(a.closest_neighbor, b.closest_neighbor);
+    for (int k = 0; k < 4; ++k) ASSERT_EQ(a.virial[k], b.virial[k]);
+  }
+  EXPECT_GT(fused, 50);
+  // A tessellation the pass did not see: not covered.
+  Tessellation other = tessera::tessellate_local(Points{xy.data(), nall, 2}, n);
+  EXPECT_FALSE(pass.covers(other));
+  // The same tessellation after another advance without the pass: not covered.
+  for (double &c : own) c += g(rng);
+  xy = im.all(own);
+  ASSERT_TRUE(mesh.advance(Points{xy.data(), nall, 2}, n, lo, hi, t));
+  EXPECT_FALSE(pass.covers(t));
+}
+
+}  // namespace

@@ -81,13 +81,56 @@ struct ForceOutput {
 // force evaluation).  type holds 0-based types for all n_points.  pts must
 // be the points that were tessellated (for tessellate_periodic pass
 // positions_of(t)).
+// The per-cell half of compute_forces (each cell's energy and dE/dh on its
+// Voronoi vertices, the closest pair), done by Mesh::advance() block by block
+// as it reads the cells (pass it as advance's observer), so that
+// compute_forces(..., &pass) only moves the vertex gradients onto the points.
+// compute_forces uses it only when it covers the tessellation given (the
+// same advance() call filled it, every cell was read) and that tessellation
+// has no multifold vertex and no per-cell virial is asked for; otherwise it
+// does everything itself.  Same arithmetic, same order: the same bits.
+class CellPass;
+
 // With want_virial false ForceOutput::virial stays zero (a run that takes
 // the virial from LAMMPS's f dot r saves the work); the check that the
-// forces are finite is made either way.
+// forces are finite is made either way.  pass: see CellPass.
 ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *type,
                            const Model &model, double *f, int f_stride,
                            double *cell_energy = nullptr, double *cell_virial = nullptr,
-                           bool want_virial = true);
+                           bool want_virial = true, const CellPass *pass = nullptr);
+
+class CellPass : public CellObserver {
+public:
+  CellPass() = default;
+  // pts, type, model and cell_energy as for compute_forces (pointers kept).
+  CellPass(const Points &pts, const int *type, const Model &model, double *cell_energy) {
+    set(pts, type, model, cell_energy);
+  }
+  void set(const Points &pts, const int *type, const Model &model, double *cell_energy) {
+    pts_ = pts;
+    type_ = type;
+    model_ = &model;
+    cell_energy_ = cell_energy;
+    stamp_ = 0;
+  }
+  void begin(const Tessellation &t) override;
+  void cells(const Tessellation &t, int c0, int c1) override;
+  void end(const Tessellation &t) override;
+  bool covers(const Tessellation &t) const;
+
+  std::vector<Vec2> grad;  // dE/dh per triangle
+  double energy = 0.0;
+  double best2 = -1.0;
+  int best_c = -1, best_q = -1;
+
+private:
+  Points pts_;
+  const int *type_ = nullptr;
+  const Model *model_ = nullptr;
+  double *cell_energy_ = nullptr;
+  int done_ = 0;
+  unsigned long stamp_ = 0;
+};
 
 // Energy only (no gradient); used by tests and finite differences.
 double compute_energy(const Tessellation &t, const int *type, const Model &model,

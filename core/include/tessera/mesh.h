@@ -59,8 +59,10 @@ public:
   // bit for bit.  Otherwise it runs update() and cells()
   // (incremental() then says false).  Returns false when update() would (t is
   // then not filled; call build() and cells()).
+  // observer (optional) is told about the cells as they are read, on the
+  // per-step path only.
   bool advance(const Points &pts, int n_owned, const double *roi_lo, const double *roi_hi,
-               Tessellation &t);
+               Tessellation &t, CellObserver *observer = nullptr);
 
   bool valid() const { return valid_; }
   // Whether the last build() failed because all points lie on one line.

@@ -156,6 +156,19 @@ struct Tessellation {
   int count_multifold_vertices() const;
 };
 
+// Told by Mesh::advance() about the cells as it reads them, so that work per
+// cell can run while the cell's data are in cache (CellPass in energy.h).
+struct CellObserver {
+  virtual ~CellObserver() = default;
+  // t's triangles and Voronoi vertices are final; no cell is read yet.
+  virtual void begin(const Tessellation &t) = 0;
+  // Cells [c0, c1) are read (polygon, edge lengths, area, perimeter); calls
+  // come in order and cover 0..n_owned-1.
+  virtual void cells(const Tessellation &t, int c0, int c1) = 0;
+  // t is complete (multifold vertices found, t.mesh_stamp set).
+  virtual void end(const Tessellation &t) = 0;
+};
+
 // Triangulate points (owned first, then ghosts) without periodicity and build
 // the owned cells.  ids (optional, n entries) are used in error messages.
 // Throws Error on non-finite coordinates, coincident points, or fewer than 3

@@ -781,7 +781,6 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
   t.radius.resize(nft0);
   const int *V = v_.data();
   const int *NB = nb_.data();
-  std::array<int, 3> *tri_out = t.triangles.data();
   Vec2 *h_out = t.vertices.data();
   double *r_out = t.radius.data();
   constexpr double eps = 2.220446049250313e-16;
@@ -790,7 +789,8 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
   // finite triangle of higher number (each edge once, as in update()).
   for (int m = 0; m < nft0; ++m) {
     const int a = V[3 * m], b = V[3 * m + 1], c = V[3 * m + 2];
-    tri_out[m] = {a, b, c};
+    // t.triangles[m] is still {a, b, c}: t matched the mesh after the last
+    // call, and the triangles the flips change are rewritten below.
     const double ax = pts.x(a), ay = pts.y(a), bx = pts.x(b), by = pts.y(b), cx = pts.x(c),
                  cy = pts.y(c);
     // circumcentre(), written out to keep 1/D for the error bound below

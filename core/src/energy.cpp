@@ -111,6 +111,19 @@ namespace {
 
 namespace {
 
+// The closest pair of Voronoi neighbours so far (best2 < 0: none yet); the
+// first of equal pairs stays.
+inline void note_pair(const Points &pts, int c, double cx, double cy, int q, double &best2,
+                      int &best_c, int &best_q) {
+  const double dx = pts.x(q) - cx, dy = pts.y(q) - cy;
+  const double d2 = dx * dx + dy * dy;
+  if (best2 < 0.0 || d2 < best2) {
+    best2 = d2;
+    best_c = c;
+    best_q = q;
+  }
+}
+
 // The lean per-cell loop (no multifold vertex, no per-cell virial) over
 // cells [c0, c1): each cell's energy and dE/dh added into grad, the energy
 // sum and the closest pair of Voronoi neighbours carried in the references.
@@ -120,13 +133,7 @@ void lean_cells(const Tessellation &t, const Points &pts, const int *type, const
   const double w = model.tension_weight();
   const int ntypes = model.ntypes();
   auto near_pair = [&](int c, double cx, double cy, int q) {
-    const double dx = pts.x(q) - cx, dy = pts.y(q) - cy;
-    const double d2 = dx * dx + dy * dy;
-    if (best2 < 0.0 || d2 < best2) {
-      best2 = d2;
-      best_c = c;
-      best_q = q;
-    }
+    note_pair(pts, c, cx, cy, q, best2, best_c, best_q);
   };
     const Vec2 *const H = t.vertices.data();
     for (int c = c0; c < c1; ++c) {
@@ -209,13 +216,7 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
   double best2 = -1.0;
   int best_c = -1, best_q = -1;
   auto near_pair = [&](int c, double cx, double cy, int q) {
-    const double dx = pts.x(q) - cx, dy = pts.y(q) - cy;
-    const double d2 = dx * dx + dy * dy;
-    if (best2 < 0.0 || d2 < best2) {
-      best2 = d2;
-      best_c = c;
-      best_q = q;
-    }
+    note_pair(pts, c, cx, cy, q, best2, best_c, best_q);
   };
 
   // F_p = -(dh/dr_p)^T g for the three corners of a triangle whose

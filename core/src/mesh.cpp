@@ -124,6 +124,14 @@ TESSERA_ALWAYS_INLINE void circumcentre(double ax, double ay, double bx, double 
   r = root(ux * ux + uy * uy);
 }
 
+// Whether the triangle (a, b, c) lies entirely outside the region of
+// interest [roi_lo, roi_hi] (false without one): a fold there is frozen.
+inline bool outside_region(double ax, double ay, double bx, double by, double cx, double cy,
+                           const double *roi_lo, const double *roi_hi) {
+  return roi_lo && (std::max({ax, bx, cx}) < roi_lo[0] || std::min({ax, bx, cx}) > roi_hi[0] ||
+                    std::max({ay, by, cy}) < roi_lo[1] || std::min({ay, by, cy}) > roi_hi[1]);
+}
+
 } // namespace
 
 void Mesh::throw_too_close(const Points &pts, int i, int j, double scale, const long *ids,
@@ -460,10 +468,7 @@ bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi)
       const double ax = pts.x(a), ay = pts.y(a), bx = pts.x(b), by = pts.y(b), cx = pts.x(c),
                    cy = pts.y(c);
       if (orientation(ax, ay, bx, by, cx, cy) <= 0) {
-        const bool outside =
-            roi_lo && (std::max({ax, bx, cx}) < roi_lo[0] || std::min({ax, bx, cx}) > roi_hi[0] ||
-                       std::max({ay, by, cy}) < roi_lo[1] || std::min({ay, by, cy}) > roi_hi[1]);
-        if (!outside) {
+        if (!outside_region(ax, ay, bx, by, cx, cy, roi_lo, roi_hi)) {
           valid_ = false;
           return false;
         }
@@ -810,10 +815,7 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
     const double sum_lr = std::fabs(l) + std::fabs(r);
     const bool certain = D > 3.3306690738754716e-16 * sum_lr;  // the sign of D is exact
     if (!certain && orientation(ax, ay, bx, by, cx, cy) <= 0) {
-      const bool outside =
-          roi_lo && (std::max({ax, bx, cx}) < roi_lo[0] || std::min({ax, bx, cx}) > roi_hi[0] ||
-                     std::max({ay, by, cy}) < roi_lo[1] || std::min({ay, by, cy}) > roi_hi[1]);
-      if (!outside) {
+      if (!outside_region(ax, ay, bx, by, cx, cy, roi_lo, roi_hi)) {
         valid_ = false;
         return false;
       }

@@ -927,14 +927,8 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
     }
 
   // The closest pair of Voronoi neighbours, for the message of lost atoms
-  // (compute_forces finds it on the way; note_closest_pair() is the same loop).
-  close_d = -1.0;
-  if (out.closest_cell >= 0) {
-    close_d = std::sqrt(out.closest_distance2);
-    close_i = atom->tag[out.closest_cell];
-    close_j = atom->tag[out.closest_neighbor];
-  }
-  close_step = update->ntimestep;
+  // (compute_forces finds it on the way).
+  note_closest_pair(out.closest_cell, out.closest_neighbor, out.closest_distance2);
   stats[0] += t1 - t0;
   stats[1] += MPI_Wtime() - t1;
   stats[4] += 1.0;
@@ -1018,13 +1012,12 @@ bool PairVertexVoronoi::closest_neighbour(int i, const double *owned_xy, tagint 
 
 /* The closest pair of Voronoi neighbours among this rank's cells at this
    force computation, for the error message of lost atoms (IDs and distance
-   are kept: they are read at the next step, after the atoms moved). */
+   are kept: they are read at the next step, after the atoms moved); the
+   confluent path gets it from compute_forces, the finite one from here. */
 
 void PairVertexVoronoi::note_closest_pair()
 {
-  // Squared distances and one sqrt at the end, straight from atom->x: this
-  // runs every step (bench/README.md).
-  close_d = -1.0;
+  // Squared distances and one sqrt at the end, straight from atom->x.
   double best = -1.0;
   int bi = -1, bq = -1;
   const int *off = tess.cell_offset.data();
@@ -1043,10 +1036,19 @@ void PairVertexVoronoi::note_closest_pair()
       }
     }
   }
-  if (best >= 0.0) {
-    close_d = std::sqrt(best);
-    close_i = atom->tag[bi];
-    close_j = atom->tag[bq];
+  note_closest_pair(bi, bq, best);
+}
+
+/* Records owned atom i and atom q at squared distance d2 as this step's
+   closest pair (i < 0: none). */
+
+void PairVertexVoronoi::note_closest_pair(int i, int q, double d2)
+{
+  close_d = -1.0;
+  if (i >= 0) {
+    close_d = std::sqrt(d2);
+    close_i = atom->tag[i];
+    close_j = atom->tag[q];
   }
   close_step = update->ntimestep;
 }

@@ -118,6 +118,7 @@ class PairVertexVoronoi : public Pair {
   double close_d;
   bigint close_step;
   void note_closest_pair();
+  void note_closest_pair(int i, int q, double d2);
   void check_lost_atoms();
   std::string guard_id;
   void check_against_scratch(const tessera::Points &, const tessera::Region &, double);

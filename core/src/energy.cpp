@@ -304,8 +304,7 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
   // same bits): each vertex loaded once and carried along the polygon, no
   // vertex-group look-ups.  The general loop below is its oracle.
   const bool lean = t.group_centre.empty() && !cell_virial;
-  const bool fused = use_pass;  // implies lean
-  if (fused) {
+  if (use_pass) {  // (implies lean)
     // The per-cell half was done while the cells were read (CellPass).
     energy = pass->energy;
     best2 = pass->best2;

@@ -132,6 +132,19 @@ inline bool outside_region(double ax, double ay, double bx, double by, double cx
                     std::max({ay, by, cy}) < roi_lo[1] || std::min({ay, by, cy}) > roi_hi[1]);
 }
 
+// Whether triangles a and b of t have one circumcentre (a multifold
+// vertex): closer than kZeroEdge times the smaller circumradius.  The
+// tolerance is a fraction of the smaller one: a nearly flat triangle (on the
+// hull of a ghost shell, or a row of collinear images) has a huge or
+// infinite radius, and with the larger one its tolerance would swallow its
+// neighbours into one "vertex" with an infinite centre.  A vertex that is not
+// finite is never the same as another (the comparisons are false for NaN).
+inline bool same_centre(const Tessellation &t, int a, int b) {
+  const double dx = t.vertices[a].x - t.vertices[b].x, dy = t.vertices[a].y - t.vertices[b].y;
+  const double tol = kZeroEdge * std::min(t.radius[a], t.radius[b]);
+  return dx * dx + dy * dy <= tol * tol;
+}
+
 } // namespace
 
 void Mesh::throw_too_close(const Points &pts, int i, int j, double scale, const long *ids,
@@ -422,7 +435,10 @@ void Mesh::restore_partition() {
   }
 }
 
-bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi) {
+// The start of update() and advance(): the bookkeeping of the last update
+// cleared, the input checked (bad input invalidates the mesh: build() names
+// it), the separation limit for it in sep2, frozen_ and stack_ reset.
+bool Mesh::start_update(const Points &pts, double &sep2) {
   flips_ = 0;
   stamp_ = 0;
   flipped_.clear();
@@ -446,22 +462,49 @@ bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi)
     return false;
   }
   // Points that came too close are left to build(), which names them: every
-  // edge is checked in the pass below and every edge a flip creates.
-  const double sep2 = min_separation2(scale);
-  auto too_close = [&](int a, int b) {
-    if (a == kInfinite || b == kInfinite)
-      return false;
-    const double dx = pts.x(a) - pts.x(b), dy = pts.y(a) - pts.y(b);
-    return dx * dx + dy * dy < sep2;
-  };
+  // edge is checked in the pass over the triangles and every edge a flip
+  // creates.
+  sep2 = min_separation2(scale);
+  frozen_.assign(v_.size() / 3, 0);
+  stack_.clear();
+  return true;
+}
+
+// The edges of triangle t to triangles of higher number (so each edge once):
+// those that need a flip are stacked.  False (the mesh invalid) when an
+// edge joins two points closer than the separation limit.
+bool Mesh::stack_edges(const Points &pts, int t, double sep2) {
+  for (int k = 0; k < 3; ++k) {
+    const int u = nb_[3 * t + k];
+    if (u < t)
+      continue;
+    const int r = v_[3 * t + k], p = v_[3 * t + (k + 1) % 3], q = v_[3 * t + (k + 2) % 3];
+    if (p != kInfinite && q != kInfinite) {
+      const double dx = pts.x(p) - pts.x(q), dy = pts.y(p) - pts.y(q);
+      if (dx * dx + dy * dy < sep2) {
+        valid_ = false;
+        return false;
+      }
+    }
+    const int j = (nb_[3 * u + 1] == t) + 2 * (nb_[3 * u + 2] == t);
+    if (flip_needed(pts, p, q, r, v_[3 * u + j])) {
+      stack_.push_back(t);
+      stack_.push_back(k);
+    }
+  }
+  return true;
+}
+
+bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi) {
+  double sep2;
+  if (!start_update(pts, sep2))
+    return false;
   const int nt = static_cast<int>(v_.size() / 3);
   // One pass over the triangles: a finite triangle that is no longer
   // counter-clockwise has folded over, which flips cannot repair (outside the
   // region of interest it is frozen instead); every edge is tested once, and
   // the ones to flip are stacked (edges of frozen triangles are dropped when
   // popped, as frozenness of the far side is not known yet here).
-  frozen_.assign(nt, 0);
-  stack_.clear();
   for (int t = 0; t < nt; ++t) {
     const int a = v_[3 * t], b = v_[3 * t + 1], c = v_[3 * t + 2];
     if (a != kInfinite && b != kInfinite && c != kInfinite) {
@@ -476,21 +519,8 @@ bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi)
         continue;
       }
     }
-    for (int k = 0; k < 3; ++k) {
-      const int u = nb_[3 * t + k];
-      if (u < t)
-        continue;
-      const int r = v_[3 * t + k], p = v_[3 * t + (k + 1) % 3], q = v_[3 * t + (k + 2) % 3];
-      if (too_close(p, q)) {
-        valid_ = false;
-        return false;
-      }
-      const int j = (nb_[3 * u + 1] == t) + 2 * (nb_[3 * u + 2] == t);
-      if (flip_needed(pts, p, q, r, v_[3 * u + j])) {
-        stack_.push_back(t);
-        stack_.push_back(k);
-      }
-    }
+    if (!stack_edges(pts, t, sep2))
+      return false;
   }
   return flip_pass(pts, sep2);
 }
@@ -557,11 +587,7 @@ unsigned long next_stamp() {
 template <class Compact, class MeshOf>
 void Mesh::find_groups(const Points &pts, Tessellation &t, Compact compact, MeshOf mesh_of) const {
   const int nft = static_cast<int>(t.triangles.size());
-  auto same_vertex = [&](int a, int b) {
-    const double dx = t.vertices[a].x - t.vertices[b].x, dy = t.vertices[a].y - t.vertices[b].y;
-    const double tol = kZeroEdge * std::min(t.radius[a], t.radius[b]);
-    return dx * dx + dy * dy <= tol * tol;
-  };
+  auto same_vertex = [&](int a, int b) { return same_centre(t, a, b); };
   t.triangle_group.assign(nft, -1);
   t.group_offset.assign(1, 0);
   t.group_point.clear();
@@ -617,6 +643,42 @@ void Mesh::find_groups(const Points &pts, Tessellation &t, Compact compact, Mesh
   }
 }
 
+// One cell's edge lengths (into el), area and perimeter from its polygon
+// (cv: len triangles, H: circumcentres, RAD: circumradii; (cx, cy) its
+// centre), and the seeds of multifold vertices at its zero-length edges.
+// Shared by cells() and advance().  The shoelace is taken relative to the
+// cell centre: absolute coordinates far from the origin would cancel
+// catastrophically.
+void Mesh::cell_geometry(double cx, double cy, const int *cv, int len, const Vec2 *H,
+                         const double *RAD, double *el, double &area, double &perimeter) const {
+  double area2 = 0.0, perim = 0.0;
+  // In chunks: the squared lengths (and the area), then their square roots
+  // two at a time, then the lengths.
+  constexpr int kChunk = 32;
+  double q[kChunk];
+  for (int k0 = 0; k0 < len; k0 += kChunk) {
+    const int k1 = std::min(len, k0 + kChunk);
+    for (int k = k0; k < k1; ++k) {
+      const Vec2 &h0 = H[cv[k]], &h1 = H[cv[k + 1 == len ? 0 : k + 1]];
+      area2 += (h0.x - cx) * (h1.y - cy) - (h1.x - cx) * (h0.y - cy);
+      const double dx = h1.x - h0.x, dy = h1.y - h0.y;
+      q[k - k0] = dx * dx + dy * dy;
+    }
+    roots(q, k1 - k0);
+    for (int k = k0; k < k1; ++k) {
+      const int t0 = cv[k], t1 = cv[k + 1 == len ? 0 : k + 1];
+      const double d = q[k - k0];
+      const double l = d > kZeroEdge * std::min(RAD[t0], RAD[t1]) ? d : 0.0;
+      el[k] = l;
+      perim += l;
+      if (l == 0.0)
+        seeds_.push_back(t0);
+    }
+  }
+  area = 0.5 * area2;
+  perimeter = perim;
+}
+
 void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
   const int nt = static_cast<int>(v_.size() / 3);
   t.n_points = n_points_;
@@ -649,17 +711,7 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
   t.radius.resize(nft);
   mesh_of.resize(nft);
 
-  // The tolerance is a fraction of the smaller circumradius: a nearly flat
-  // triangle (on the hull of a ghost shell, or a row of collinear images)
-  // has a huge or infinite radius, and with the larger one its tolerance
-  // would swallow its neighbours into one "vertex" with an infinite centre.
-  // A vertex that is not finite is never the same as another (the
-  // comparisons below are false for NaN).
-  auto same_vertex = [&](int a, int b) {
-    const double dx = t.vertices[a].x - t.vertices[b].x, dy = t.vertices[a].y - t.vertices[b].y;
-    const double tol = kZeroEdge * std::min(t.radius[a], t.radius[b]);
-    return dx * dx + dy * dy <= tol * tol;
-  };
+  auto same_vertex = [&](int a, int b) { return same_centre(t, a, b); };
   // Multifold vertices (triangles sharing one circumcentre) are seeded while
   // the cells are read: a zero-length edge of an owned cell marks two such
   // triangles.  The one case an owned cell's polygon cannot show is the
@@ -717,26 +769,8 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
     }
     const int len = static_cast<int>(used - o);
     t.cell_offset[c + 1] = static_cast<int>(used);
-    double area2 = 0.0, perim = 0.0;
-    // Shoelace relative to the cell centre: absolute coordinates far from the
-    // origin would cancel catastrophically.
-    const double cx = pts.x(c), cy = pts.y(c);
-    const int *cv = &t.cell_vertex[o];
-    double *el = &t.edge_length[o];
-    for (int k = 0; k < len; ++k) {
-      const int t0 = cv[k], t1 = cv[k + 1 == len ? 0 : k + 1];
-      const Vec2 &h0 = t.vertices[t0], &h1 = t.vertices[t1];
-      area2 += (h0.x - cx) * (h1.y - cy) - (h1.x - cx) * (h0.y - cy);
-      const double dx = h1.x - h0.x, dy = h1.y - h0.y;
-      const double d = root(dx * dx + dy * dy);
-      const double l = d > kZeroEdge * std::min(t.radius[t0], t.radius[t1]) ? d : 0.0;
-      el[k] = l;
-      perim += l;
-      if (l == 0.0)
-        seeds_.push_back(t0);
-    }
-    t.area[c] = 0.5 * area2;
-    t.perimeter[c] = perim;
+    cell_geometry(pts.x(c), pts.y(c), &t.cell_vertex[o], len, t.vertices.data(),
+                  t.radius.data(), &t.edge_length[o], t.area[c], t.perimeter[c]);
   }
   t.cell_vertex.resize(used);
   t.cell_neighbor.resize(used);
@@ -758,29 +792,11 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
     cells(pts, n_owned, t);
     return true;
   }
-  flips_ = 0;
-  stamp_ = 0;
-  flipped_.clear();
-  for (const int p : dirty_list_)
-    dirty_[p] = 0;
-  dirty_list_.clear();
-  double scale = 0.0;
-  for (int i = 0; i < pts.n; ++i) {
-    if (!std::isfinite(pts.x(i)) || !std::isfinite(pts.y(i))) { // build() names it
-      valid_ = false;
-      return false;
-    }
-    scale = std::max({scale, std::fabs(pts.x(i)), std::fabs(pts.y(i))});
-  }
-  if (scale > kMaxCoordinate) {
-    valid_ = false;
+  double sep2;
+  if (!start_update(pts, sep2))
     return false;
-  }
-  const double sep2 = min_separation2(scale);
   const int nt = static_cast<int>(v_.size() / 3);
   const int nft0 = nft_;
-  frozen_.assign(nt, 0);
-  stack_.clear();
   t.triangles.resize(nft0);
   t.vertices.resize(nft0);
   t.radius.resize(nft0);
@@ -870,26 +886,9 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
     }
   }
   // Triangles with the point at infinity: the hull chain tests, as update().
-  for (int m = nft0; m < nt; ++m) {
-    for (int k = 0; k < 3; ++k) {
-      const int u = NB[3 * m + k];
-      if (u < m)
-        continue;
-      const int r = V[3 * m + k], p = V[3 * m + (k + 1) % 3], q = V[3 * m + (k + 2) % 3];
-      if (p != kInfinite && q != kInfinite) {
-        const double dx = pts.x(p) - pts.x(q), dy = pts.y(p) - pts.y(q);
-        if (dx * dx + dy * dy < sep2) {
-          valid_ = false;
-          return false;
-        }
-      }
-      const int j = (NB[3 * u + 1] == m) + 2 * (NB[3 * u + 2] == m);
-      if (flip_needed(pts, p, q, r, V[3 * u + j])) {
-        stack_.push_back(m);
-        stack_.push_back(k);
-      }
-    }
-  }
+  for (int m = nft0; m < nt; ++m)
+    if (!stack_edges(pts, m, sep2))
+      return false;
   if (!flip_pass(pts, sep2))
     return false;
 
@@ -978,11 +977,7 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
 
   // Lengths, areas, perimeters and the seeds of multifold vertices, in the
   // order cells() finds them.
-  auto same_vertex = [&](int a, int b) {
-    const double dx = t.vertices[a].x - t.vertices[b].x, dy = t.vertices[a].y - t.vertices[b].y;
-    const double tol = kZeroEdge * std::min(t.radius[a], t.radius[b]);
-    return dx * dx + dy * dy <= tol * tol;
-  };
+  auto same_vertex = [&](int a, int b) { return same_centre(t, a, b); };
   seeds_.clear();
   t.edge_length.resize(used);
   t.area.resize(n_owned);
@@ -1009,52 +1004,7 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
           seeds_.push_back(m);
       }
     }
-    double area2 = 0.0, perim = 0.0;
-    const double cx = pts.x(cc), cy = pts.y(cc);
-    double *el = EL + o;
-    // The same arithmetic as cells(), in two passes: the squared lengths
-    // (and the area), then their square roots two at a time.
-    constexpr int kBatch = 32;
-    if (len <= kBatch) {
-      double q[kBatch + 1];
-      Vec2 h0 = H[cv[0]];
-      for (int k = 0; k < len; ++k) {
-        const Vec2 h1 = H[cv[k + 1 == len ? 0 : k + 1]];
-        area2 += (h0.x - cx) * (h1.y - cy) - (h1.x - cx) * (h0.y - cy);
-        const double dx = h1.x - h0.x, dy = h1.y - h0.y;
-        q[k] = dx * dx + dy * dy;
-        h0 = h1;
-      }
-      q[len] = 0.0;
-      roots(q, len);
-      double r0 = RAD[cv[0]];
-      for (int k = 0; k < len; ++k) {
-        const int t0 = cv[k];
-        const double r1 = RAD[cv[k + 1 == len ? 0 : k + 1]];
-        const double d = q[k];
-        const double l = d > kZeroEdge * std::min(r0, r1) ? d : 0.0;
-        el[k] = l;
-        perim += l;
-        if (l == 0.0)
-          seeds_.push_back(t0);
-        r0 = r1;
-      }
-    } else {
-      for (int k = 0; k < len; ++k) {
-        const int t0 = cv[k], t1 = cv[k + 1 == len ? 0 : k + 1];
-        const Vec2 &h0 = H[t0], &h1 = H[t1];
-        area2 += (h0.x - cx) * (h1.y - cy) - (h1.x - cx) * (h0.y - cy);
-        const double dx = h1.x - h0.x, dy = h1.y - h0.y;
-        const double d = root(dx * dx + dy * dy);
-        const double l = d > kZeroEdge * std::min(RAD[t0], RAD[t1]) ? d : 0.0;
-        el[k] = l;
-        perim += l;
-        if (l == 0.0)
-          seeds_.push_back(t0);
-      }
-    }
-    t.area[cc] = 0.5 * area2;
-    t.perimeter[cc] = perim;
+    cell_geometry(pts.x(cc), pts.y(cc), cv, len, H, RAD, EL + o, t.area[cc], t.perimeter[cc]);
     if (observer && (cc + 1 - block_start == kBlock || cc + 1 == n_owned)) {
       observer->cells(t, block_start, cc + 1);
       block_start = cc + 1;

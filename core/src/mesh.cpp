@@ -779,13 +779,12 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
   find_groups(pts, t, [&](int m) { return compact[m]; }, [&](int k) { return mesh_of[k]; });
   last_incremental_ = false;
   t.mesh_stamp = stamp_ = next_stamp();
-  stamp_owned_ = n_owned;
 }
 
 bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const double *roi_hi,
                    Tessellation &t, CellObserver *observer) {
   if (!valid_ || pts.n != n_points_ || stamp_ == 0 || t.mesh_stamp != stamp_ ||
-      stamp_owned_ != n_owned || t.n_owned != n_owned || t.unbounded_cell >= 0 ||
+      t.n_owned != n_owned || t.unbounded_cell >= 0 ||
       static_cast<int>(t.cell_offset.size()) != n_owned + 1 || n_owned > n_points_) {
     if (!update(pts, roi_lo, roi_hi))
       return false;
@@ -1013,7 +1012,6 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
   find_groups(pts, t, [nft](int m) { return m < nft ? m : -1; }, [](int k) { return k; });
   t.unbounded_cell = -1;
   t.mesh_stamp = stamp_ = next_stamp();
-  stamp_owned_ = n_owned;
   last_incremental_ = true;
   if (observer) observer->end(t);
   return true;

@@ -86,7 +86,6 @@ private:
   // Stamp of the Tessellation the last cells()/advance() filled (0: none, or
   // the mesh changed since).
   mutable unsigned long stamp_ = 0;
-  mutable int stamp_owned_ = -1;
   mutable bool last_incremental_ = false;
   std::vector<int> flipped_;      // triangles whose corners changed in this update
   std::vector<char> dirty_;       // per point: its star changed in this update

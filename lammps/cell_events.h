@@ -52,6 +52,9 @@ enum Stream : uint64_t {
   CYCLE = 5,
   PHASE = 6,
   DIRECTION = 7,
+  AXIS_Z = 8,         // 3d: the second coordinate of a random direction
+  DIRECTION_Z = 9,
+  NOISE_AXIS = 10,    // 3d: the axis about which the noise turns a polarity
   DEATH = 11,
   DEATH_PRIORITY = 12
 };

@@ -24,7 +24,6 @@
 #include "update.h"
 
 #include "tessera/polarity.h"
-#include "tessera/tessellation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -37,18 +36,24 @@ namespace {
 
 constexpr int NCOLS = 9;
 
-// Same criterion as Tessellation::coordination_number: an edge counts as a
-// neighbour relation if it is longer than this fraction of the cell's mean
-// edge length, so zero-length edges of multifold vertices do not.
+// A shared piece counts as a neighbour relation if it exceeds this fraction
+// of the cell's mean edge length (2d) or of its surface (3d), so that the
+// zero-length edges and zero-area faces of multifold vertices do not
+// (tessera::CellView::coordination_number).
 constexpr double REL_TOL = 1e-9;
 
-double edge_floor(const tessera::Tessellation &t, int c)
+// The size below which cell c's pieces are no neighbour relation.
+double piece_floor(const tessera::CellView &v, int c)
 {
-  const int o = t.cell_offset[c], m = t.cell_size(c);
-  if (m == 0) return 0.0;
+  if (v.dimension() == 3) return REL_TOL * v.boundary(c);
   double mean = 0.0;
-  for (int k = 0; k < m; k++) mean += t.edge_length[o + k];
-  return REL_TOL * mean / m;
+  int m = 0;
+  for (int k = v.piece_begin(c); k < v.piece_end(c); k++)
+    if (v.piece_neighbor(k) >= 0) {
+      mean += v.piece_size(k);
+      m++;
+    }
+  return m ? REL_TOL * mean / m : 0.0;
 }
 
 }    // namespace
@@ -97,7 +102,7 @@ ComputeVertexAtom::ComputeVertexAtom(LAMMPS *lmp, int narg, char **arg) :
   // Voronoi neighbours of each atom at the previous compute_vector(), which
   // must migrate with the atoms: column 0 is how many tags follow (-1: none
   // yet, so nothing is counted for that atom), then up to MAXNEIGH tags of
-  // neighbours with larger IDs, ascending.  Not written to restart files: a
+  // neighbours, ascending.  Not written to restart files: a
   // restarted run starts counting afresh.
   id_fix = utils::strdup(std::string(id) + "_COMPUTE_STORE");
   fix = static_cast<tessera_compat::FixStorePerAtom *>(
@@ -149,9 +154,7 @@ void ComputeVertexAtom::set_arrays(int i)
 
 void ComputeVertexAtom::check_tessellation()
 {
-  const bool current =
-      domain->dimension == 3 ? pair->tessellation3_current() : pair->tessellation_current();
-  int stale = current ? 0 : 1, any;
+  int stale = pair->cells_current() ? 0 : 1, any;
   MPI_Allreduce(&stale, &any, 1, MPI_INT, MPI_MAX, world);
   if (any)
     error->all(FLERR,
@@ -175,7 +178,18 @@ void ComputeVertexAtom::communicate_velocities()
     vel[3 * i + 1] = v[i][1];
     vel[3 * i + 2] = v[i][2];
   }
+  comm_what = 0;
   tessera_compat::forward_comm(comm, this);
+}
+
+/* flag[0..nlocal) to the ghost atoms (one value each). */
+
+void ComputeVertexAtom::communicate_flags()
+{
+  flag.resize(atom->nmax);
+  comm_what = 1;
+  tessera_compat::forward_comm(comm, this);
+  comm_what = 0;
 }
 
 int ComputeVertexAtom::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
@@ -184,6 +198,10 @@ int ComputeVertexAtom::pack_forward_comm(int n, int *list, double *buf, int /*pb
   int m = 0;
   for (int k = 0; k < n; k++) {
     const int j = list[k];
+    if (comm_what == 1) {
+      buf[m++] = flag[j];
+      continue;
+    }
     buf[m++] = vel[3 * j];
     buf[m++] = vel[3 * j + 1];
     buf[m++] = vel[3 * j + 2];
@@ -195,6 +213,10 @@ void ComputeVertexAtom::unpack_forward_comm(int n, int first, double *buf)
 {
   int m = 0;
   for (int i = first; i < first + n; i++) {
+    if (comm_what == 1) {
+      flag[i] = buf[m++];
+      continue;
+    }
     vel[3 * i] = buf[m++];
     vel[3 * i + 1] = buf[m++];
     vel[3 * i + 2] = buf[m++];
@@ -207,11 +229,6 @@ void ComputeVertexAtom::compute_peratom()
 {
   invoked_peratom = update->ntimestep;
   check_tessellation();
-  if (domain->dimension == 3) {
-    compute_peratom_3d();    // compute_vertex_atom_3d.cpp
-    return;
-  }
-
   if (atom->nmax > nmax) {
     memory->destroy(values);
     nmax = atom->nmax;
@@ -220,32 +237,49 @@ void ComputeVertexAtom::compute_peratom()
   }
 
   communicate_velocities();
-  const tessera::Tessellation &t = pair->tessellation();
-  const std::vector<double> &energy = pair->cell_energy();
+  const tessera::CellView &v = pair->cells();
+  const int dim = v.dimension();
   const int nlocal = atom->nlocal;
-  coordination.resize(nlocal);
-  orientation.resize(nlocal);
-  tessera::velocity_observables(t, vel.data(), 3, coordination.data(), orientation.data());
-
+  // Velocity coordination and orientation (tessera::velocity_observables in
+  // 2d; the same definitions with 3d unit vectors in 3d).
+  auto unit = [&](int i, double u[3]) {
+    const double *w = &vel[3 * static_cast<size_t>(i)];
+    double s2 = 0.0;
+    for (int d = 0; d < dim; d++) s2 += w[d] * w[d];
+    const double s = std::sqrt(s2);
+    if (!(s > 0.0)) return false;
+    for (int d = 0; d < 3; d++) u[d] = d < dim ? w[d] / s : 0.0;
+    return true;
+  };
   const int *mask = atom->mask;
   for (int i = 0; i < nlocal; i++) {
     double *row = values[i];
-    if (!(mask[i] & groupbit)) {
-      for (int k = 0; k < NCOLS; k++) row[k] = 0.0;
+    for (int k = 0; k < NCOLS; k++) row[k] = 0.0;
+    if (!(mask[i] & groupbit)) continue;
+    row[0] = v.measure(i);
+    row[1] = v.boundary(i);
+    row[2] = v.shape_index(i);
+    row[3] = v.coordination_number(i, REL_TOL);
+    row[4] = v.energy ? v.energy[i] : 0.0;
+    // Finite cells: free (cell-medium) arc length, and 1 for a cell at an edge.
+    row[7] = v.free_length(i);
+    row[8] = v.at_edge(i) ? 1.0 : 0.0;
+    double ui[3], uj[3];
+    if (!unit(i, ui)) {
+      row[6] = -1.0;
       continue;
     }
-    const double a = t.area[i], p = t.perimeter[i];
-    row[0] = a;
-    row[1] = p;
-    row[2] = a > 0.0 ? p / std::sqrt(a) : 0.0;
-    row[3] = t.coordination_number(i, REL_TOL);
-    row[4] = energy[i];
-    row[5] = coordination[i];
-    row[6] = orientation[i];
-    // Finite cells: free (cell-medium) arc length, and 1 for a cell at an edge.
-    const bool finite = pair->finite_radius() > 0.0;
-    row[7] = finite ? pair->finite_cells().free_length[i] : 0.0;
-    row[8] = finite && pair->finite_cells().at_edge(i) ? 1.0 : 0.0;
+    row[6] = std::acos(std::max(-1.0, std::min(1.0, ui[0])));
+    const double floor = piece_floor(v, i);
+    double sum = 0.0;
+    int count = 0;
+    for (int k = v.piece_begin(i); k < v.piece_end(i); k++) {
+      const int j = v.piece_neighbor(k);
+      if (j < 0 || !(v.piece_size(k) > floor) || !unit(j, uj)) continue;
+      sum += ui[0] * uj[0] + ui[1] * uj[1] + ui[2] * uj[2];
+      count++;
+    }
+    row[5] = count ? sum / count : 0.0;
   }
 }
 
@@ -255,29 +289,23 @@ void ComputeVertexAtom::compute_vector()
 {
   invoked_vector = update->ntimestep;
   check_tessellation();
-  // Asked again for the same tessellation (LAMMPS may invoke a compute twice
-  // on one step, e.g. at a run's setup): every value is a function of that
-  // tessellation, and the neighbour exchanges are those since the previous
-  // tessellation, not 0.
+  // Asked again for the same cells (LAMMPS may invoke a compute twice on one
+  // step, e.g. at a run's setup): every value is a function of those cells,
+  // and the neighbour exchanges are those since the previous cells, not 0.
   if (pair->compute_count() == vector_of) return;
   vector_of = pair->compute_count();
-  if (domain->dimension == 3) {
-    compute_vector_3d();    // compute_vertex_atom_3d.cpp
-    return;
-  }
 
-  const tessera::Tessellation &t = pair->tessellation();
+  const tessera::CellView &v = pair->cells();
   const int *mask = atom->mask;
   double local[4] = {0.0, 0.0, 0.0, 0.0}, all[4];
-  const bool finite = pair->finite_radius() > 0.0;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    if (finite && pair->finite_cells().at_edge(i)) {
+    if (v.at_edge(i)) {
       local[2] += 1.0;
-      local[3] += pair->finite_cells().free_length[i];
+      local[3] += v.free_length(i);
     }
-    if (!(t.area[i] > 0.0)) continue;
-    local[0] += t.perimeter[i] / std::sqrt(t.area[i]);
+    if (!(v.measure(i) > 0.0)) continue;
+    local[0] += v.shape_index(i);
     local[1] += 1.0;
   }
   MPI_Allreduce(local, all, 4, MPI_DOUBLE, MPI_SUM, world);
@@ -288,84 +316,135 @@ void ComputeVertexAtom::compute_vector()
   vector[4] = all[3];    // free perimeter of the tissue
 }
 
-/* Voronoi vertices where four or more cells of the group meet, each counted
-   once over all ranks and periodic images. */
+/* 2d: Voronoi vertices where four or more cells of the group meet, each
+   counted once over all ranks and periodic images.  3d: pairs of group
+   cells whose shared face has zero area (they meet at a vertex of more than
+   four cells, co-spherical centres), each pair counted once by the owner of
+   the lower ID. */
 
 double ComputeVertexAtom::count_multifold()
 {
-  const tessera::Tessellation &t = pair->tessellation();
+  const tessera::CellView &v = pair->cells();
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
   const tagint *tag = atom->tag;
-
-  // The tessellation lists each multifold vertex around the owned cells with
-  // its complete ring of cells (owned and ghost); with 'rosette L' the
-  // clusters of vertices joined by junctions shorter than L take their place.
-  // A vertex is counted by the copy in which the group member with the
-  // lowest ID is an owned atom: once over all ranks and periodic images.
-  const int *offset, *members;
-  int nclusters;
-  if (rosette > 0.0) {
-    t.short_edge_clusters(rosette, cluster_offset, cluster_members);
-    offset = cluster_offset.data();
-    members = cluster_members.data();
-    nclusters = static_cast<int>(cluster_offset.size()) - 1;
-  } else {
-    offset = t.group_offset.data();
-    members = t.group_point.data();
-    nclusters = static_cast<int>(t.group_offset.size()) - 1;
-  }
   bigint count = 0;
-  for (int g = 0; g < nclusters; g++) {
-    int in_group = 0, lowest = -1;
-    for (int k = offset[g]; k < offset[g + 1]; k++) {
-      const int j = members[k];
-      if (!(mask[j] & groupbit)) continue;
-      in_group++;
-      if (lowest < 0 || tag[j] < tag[lowest]) lowest = j;
+  if (v.dimension() == 3) {
+    for (int i = 0; i < nlocal; i++) {
+      if (!(mask[i] & groupbit) || !(v.measure(i) > 0.0)) continue;
+      const double floor = piece_floor(v, i);
+      for (int k = v.piece_begin(i); k < v.piece_end(i); k++) {
+        const int j = v.piece_neighbor(k);
+        if (j >= 0 && !(v.piece_size(k) > floor) && (mask[j] & groupbit) && tag[j] > tag[i])
+          count++;
+      }
     }
-    if (in_group >= 4 && lowest < nlocal) count++;
+  } else {
+    // The view lists each multifold vertex around the owned cells with its
+    // complete ring of cells (owned and ghost); with 'rosette L' the
+    // clusters of vertices joined by junctions shorter than L take their
+    // place.  A vertex is counted by the copy in which the group member with
+    // the lowest ID is an owned atom: once over all ranks and images.
+    if (rosette > 0.0) {
+      if (!v.short_edge_clusters(rosette, cluster_offset, cluster_members)) {
+        cluster_offset.assign(1, 0);
+        cluster_members.clear();
+      }
+    } else {
+      cluster_offset.assign(1, 0);
+      cluster_members.clear();
+      std::vector<int> ring;
+      for (int g = 0; g < v.multifold_count(); g++) {
+        v.multifold_ring(g, ring);
+        cluster_members.insert(cluster_members.end(), ring.begin(), ring.end());
+        cluster_offset.push_back(static_cast<int>(cluster_members.size()));
+      }
+    }
+    const int nclusters = static_cast<int>(cluster_offset.size()) - 1;
+    for (int g = 0; g < nclusters; g++) {
+      int in_group = 0, lowest = -1;
+      for (int k = cluster_offset[g]; k < cluster_offset[g + 1]; k++) {
+        const int j = cluster_members[k];
+        if (!(mask[j] & groupbit)) continue;
+        in_group++;
+        if (lowest < 0 || tag[j] < tag[lowest]) lowest = j;
+      }
+      if (in_group >= 4 && lowest < nlocal) count++;
+    }
   }
   bigint total;
   MPI_Allreduce(&count, &total, 1, MPI_LMP_BIGINT, MPI_SUM, world);
   return static_cast<double>(total);
 }
 
-/* Tags of the group's Voronoi neighbours of owned cell c (non-zero edges)
-   with IDs larger than c's, ascending and without repeats. */
+/* Tags of the group's neighbours of owned cell c (across edges of non-zero
+   length or faces of non-zero area), ascending and without repeats. */
 
 void ComputeVertexAtom::neighbor_tags(int c, std::vector<tagint> &out)
 {
-  if (domain->dimension == 3) {
-    neighbor_tags_3d(c, out);    // compute_vertex_atom_3d.cpp
-    return;
-  }
-  const tessera::Tessellation &t = pair->tessellation();
+  const tessera::CellView &v = pair->cells();
   const int *mask = atom->mask;
   const tagint *tag = atom->tag;
   out.clear();
-  const double zero_len = edge_floor(t, c);
-  for (int k = t.cell_offset[c]; k < t.cell_offset[c + 1]; k++) {
-    if (t.edge_length[k] <= zero_len) continue;
-    const int j = t.cell_neighbor[k];
-    if ((mask[j] & groupbit) && tag[j] > tag[c]) out.push_back(tag[j]);
+  const double floor = piece_floor(v, c);
+  for (int k = v.piece_begin(c); k < v.piece_end(c); k++) {
+    const int j = v.piece_neighbor(k);
+    if (j < 0 || !(v.piece_size(k) > floor)) continue;
+    if (mask[j] & groupbit) out.push_back(tag[j]);
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 
 /* Neighbour exchanges (T1 transitions) since the previous call: the number
-   of pairs of group cells that share a non-zero edge now but did not then.
-   Each pair is counted by the cell with the lower atom ID.  Every T1 makes
-   one new pair (and breaks one), so this counts T1 transitions. */
+   of pairs of group cells that share a non-zero edge (face) now but did not
+   then.  Each pair is counted by the cell with the lower atom ID.  Every T1
+   makes one new pair (and breaks one), so this counts T1 transitions.
+   Births and deaths also make new pairs, which are not exchanges: a pair
+   counts only if both cells existed at the previous call and neither cell's
+   neighbourhood changed by an event since (a neighbour that is new, or a
+   remembered neighbour that no longer exists).  Exchanges next to a
+   division or death in the same interval are therefore not counted. */
 
 double ComputeVertexAtom::count_new_neighbors()
 {
   const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
   const int *mask = atom->mask;
+  const tagint *tag = atom->tag;
   double **memo = fix->astore;
 
+  // Which cells existed at the previous call (they have a memory), on the
+  // ghosts too.
+  flag.assign(atom->nmax, 0.0);
+  for (int i = 0; i < nlocal; i++) flag[i] = (mask[i] & groupbit) && memo[i][0] >= 0.0 ? 1.0 : 0.0;
+  communicate_flags();
+  std::vector<char> known(flag.begin(), flag.begin() + nall);
+  present.assign(tag, tag + nall);
+  std::sort(present.begin(), present.end());
+
+  // Cells touched by an event: a neighbour without a memory (just born or
+  // just joined the group), or a remembered neighbour that is gone.
   std::vector<tagint> now;
+  flag.assign(atom->nmax, 0.0);
+  const tessera::CellView &v = pair->cells();
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    bool touched = !known[i];
+    const double floor = piece_floor(v, i);
+    for (int k = v.piece_begin(i); !touched && k < v.piece_end(i); k++) {
+      const int j = v.piece_neighbor(k);
+      if (j >= 0 && v.piece_size(k) > floor && (mask[j] & groupbit) && !known[j]) touched = true;
+    }
+    const double *old = memo[i];
+    const int kept = old[0] >= 0.0 ? MIN(static_cast<int>(old[0]), MAXNEIGH) : 0;
+    for (int k = 0; !touched && k < kept; k++)
+      if (!std::binary_search(present.begin(), present.end(), static_cast<tagint>(old[1 + k])))
+        touched = true;
+    flag[i] = touched ? 1.0 : 0.0;
+  }
+  communicate_flags();
+
   bigint count = 0;
   int most = 0;
   for (int i = 0; i < nlocal; i++) {
@@ -376,14 +455,25 @@ double ComputeVertexAtom::count_new_neighbors()
     }
     neighbor_tags(i, now);
     const int nold = static_cast<int>(old[0]);
-    if (nold >= 0) {
+    if (nold >= 0 && flag[i] == 0.0) {
       const int kept = MIN(nold, MAXNEIGH);
       for (tagint j : now) {
+        if (j <= tag[i]) continue;    // each pair once, by the lower ID
         const double *begin = old + 1, *end = old + 1 + kept;
-        const bool known = std::binary_search(begin, end, static_cast<double>(j));
+        const bool seen = std::binary_search(begin, end, static_cast<double>(j));
         // Beyond the remembered tags we cannot tell: do not count.
         const bool unknown = nold > MAXNEIGH && static_cast<double>(j) > old[kept];
-        if (!known && !unknown) count++;
+        if (seen || unknown) continue;
+        // The neighbour's own state: it existed and no event touched it.
+        bool eligible = false;
+        for (int k = v.piece_begin(i); k < v.piece_end(i); k++) {
+          const int q = v.piece_neighbor(k);
+          if (q >= 0 && tag[q] == j) {
+            eligible = known[q] && flag[q] == 0.0;
+            break;
+          }
+        }
+        if (eligible) count++;
       }
     }
     const int n = static_cast<int>(now.size());
@@ -396,8 +486,8 @@ double ComputeVertexAtom::count_new_neighbors()
   MPI_Allreduce(&most, &most_all, 1, MPI_INT, MPI_MAX, world);
   if (most_all > MAXNEIGH && !warned_overflow && comm->me == 0)
     error->warning(FLERR,
-                   "compute vertex/atom {}: a cell has {} Voronoi neighbours with larger IDs, "
-                   "more than the {} it remembers; neighbour exchanges may be under-counted",
+                   "compute vertex/atom {}: a cell has {} Voronoi neighbours, more than the "
+                   "{} it remembers; neighbour exchanges may be under-counted",
                    id, most_all, MAXNEIGH);
   if (most_all > MAXNEIGH) warned_overflow = 1;
 

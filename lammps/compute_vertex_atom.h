@@ -36,7 +36,7 @@ class ComputeVertexAtom : public Compute {
 
  protected:
   int nmax;
-  double **values;            // per-atom output, nmax x 7
+  double **values;            // per-atom output, nmax x NCOLS
   std::vector<double> vel;    // stride-3 velocities of owned and ghost atoms
   std::vector<double> coordination, orientation;
   char *id_fix;
@@ -53,10 +53,11 @@ class ComputeVertexAtom : public Compute {
   bigint vector_of = -1;    // pair's compute_count() of the last global vector
   void neighbor_tags(int, std::vector<tagint> &);
 
-  // dimension 3 (compute_vertex_atom_3d.cpp)
-  void compute_peratom_3d();
-  void compute_vector_3d();
-  void neighbor_tags_3d(int, std::vector<tagint> &);
+  // Forward communication: velocities (3 values) or one flag per atom.
+  int comm_what = 0;
+  std::vector<double> flag;    // per owned and ghost atom (see count_new_neighbors)
+  void communicate_flags();
+  std::vector<tagint> present;    // sorted tags of owned and ghost atoms
 };
 
 }    // namespace LAMMPS_NS

@@ -2,11 +2,14 @@
    Tessera: active Voronoi vertex model in LAMMPS.
    SPDX-License-Identifier: GPL-2.0-or-later
 
-   compute vertex/local: one row per junction (Voronoi edge of non-zero
-   length) of each owned cell of the group, from the tessellation that
-   pair_style vertex/voronoi computed for the forces of this timestep:
-   cell ID, neighbour ID, the junction's two end vertices (in the frame of
-   the cell's own coordinates, counter-clockwise) and its length.
+   compute vertex/local: the boundary of each owned cell of the group, from
+   the cells pair_style vertex/voronoi computed for the forces of this
+   timestep, for every model.  2d: one row per junction (edge of non-zero
+   length) and per free arc (finite cells; neighbour ID 0): cell ID,
+   neighbour ID, the piece's two ends (counter-clockwise) and its length.
+   3d: one row per edge of each face polygon (faces of non-zero area): cell
+   ID, neighbour ID, the edge's two ends (counter-clockwise seen from the
+   neighbour) and the face's area.
 ------------------------------------------------------------------------- */
 
 #include "compute_vertex_local.h"
@@ -19,7 +22,7 @@
 #include "pair_vertex_voronoi.h"
 #include "update.h"
 
-#include "tessera/tessellation.h"
+#include "tessera/cells.h"
 
 #include <cstring>
 
@@ -27,7 +30,8 @@ using namespace LAMMPS_NS;
 
 namespace {
 
-constexpr int NCOLS = 7;
+constexpr int NCOLS_2D = 7;
+constexpr int NCOLS_3D = 9;
 
 }    // namespace
 
@@ -45,14 +49,10 @@ ComputeVertexLocal::ComputeVertexLocal(LAMMPS *lmp, int narg, char **arg) :
                arg[3]);
   if (atom->tag_enable == 0)
     error->all(FLERR, "compute vertex/local requires atom IDs (atom_modify id yes)");
-  if (domain->dimension == 3)
-    error->all(FLERR,
-               "compute vertex/local lists 2d junctions and is not available in 3d; use "
-               "compute vertex/atom for the 3d cells");
 
   local_flag = 1;
   size_local_rows = 0;
-  size_local_cols = NCOLS;
+  size_local_cols = domain->dimension == 3 ? NCOLS_3D : NCOLS_2D;
 }
 
 ComputeVertexLocal::~ComputeVertexLocal()
@@ -77,7 +77,7 @@ void ComputeVertexLocal::compute_local()
 {
   invoked_local = update->ntimestep;
 
-  int stale = pair->tessellation_current() ? 0 : 1, any;
+  int stale = pair->cells_current() ? 0 : 1, any;
   MPI_Allreduce(&stale, &any, 1, MPI_INT, MPI_MAX, world);
   if (any)
     error->all(FLERR,
@@ -86,54 +86,68 @@ void ComputeVertexLocal::compute_local()
                "current tessellation",
                id, update->ntimestep);
 
-  const tessera::Tessellation &t = pair->tessellation();
+  const tessera::CellView &v = pair->cells();
+  const int dim = v.dimension();
+  const int ncols = dim == 3 ? NCOLS_3D : NCOLS_2D;
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
   const tagint *tag = atom->tag;
 
-  int n = 0;
-  for (int i = 0; i < nlocal; i++)
-    if (mask[i] & groupbit)
-      for (int k = t.cell_offset[i]; k < t.cell_offset[i + 1]; k++)
-        if (t.edge_length[k] > 0.0) n++;
+  // The rows, appended to a flat buffer first (their number is known only
+  // after the faces' polygons are read).
+  std::vector<double> &buf = flat;
+  buf.clear();
+  std::vector<double> xyz;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    if (dim == 2) {
+      // Pieces of zero length (the edges of a multifold vertex) are not
+      // junctions: they are left out, and a row ends where the next row
+      // starts, so that a cell's rows close exactly into its boundary.
+      const size_t first = buf.size();
+      for (int k = v.piece_begin(i); k < v.piece_end(i); k++) {
+        if (!(v.piece_size(k) > 0.0)) continue;
+        xyz.clear();
+        v.piece_corners(k, xyz);
+        const int j = v.piece_neighbor(k);
+        if (buf.size() > first) {
+          buf[buf.size() - 3] = xyz[0];
+          buf[buf.size() - 2] = xyz[1];
+        }
+        buf.insert(buf.end(), {static_cast<double>(tag[i]), j >= 0 ? static_cast<double>(tag[j]) : 0.0,
+                               xyz[0], xyz[1], xyz[2], xyz[3], v.piece_size(k)});
+      }
+      if (buf.size() > first) {
+        buf[buf.size() - 3] = buf[first + 2];
+        buf[buf.size() - 2] = buf[first + 3];
+      }
+      continue;
+    }
+    const double floor = 1e-9 * v.boundary(i);
+    for (int k = v.piece_begin(i); k < v.piece_end(i); k++) {
+      if (!(v.piece_size(k) > floor)) continue;
+      xyz.clear();
+      const int m = v.piece_corners(k, xyz);
+      const double jd = static_cast<double>(tag[v.piece_neighbor(k)]);
+      for (int q = 0; q < m; q++) {
+        const double *a = &xyz[3 * q], *b = &xyz[3 * ((q + 1) % m)];
+        // Repeated corners (several tetrahedra with one circumcentre) are
+        // one corner of the polygon.
+        if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) continue;
+        buf.insert(buf.end(), {static_cast<double>(tag[i]), jd, a[0], a[1], a[2], b[0], b[1], b[2],
+                               v.piece_size(k)});
+      }
+    }
+  }
+  const int n = static_cast<int>(buf.size() / ncols);
   if (n > nmax) {
     memory->destroy(rows);
     nmax = MAX(n, 1);
-    memory->create(rows, nmax, NCOLS, "vertex/local:rows");
+    memory->create(rows, nmax, ncols, "vertex/local:rows");
   }
-
-  // Edge k runs from vertex k to vertex k+1 (cyclically) of the cell.  The
-  // zero-length edges of a multifold vertex are not junctions: they are left
-  // out, and a junction ends where the next junction starts, so that a cell's
-  // rows close exactly into its counter-clockwise polygon.
-  int m = 0;
-  for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    const int o = t.cell_offset[i], len = t.cell_size(i);
-    const int first = m;
-    for (int e = 0; e < len; e++) {
-      const int k = o + e;
-      if (!(t.edge_length[k] > 0.0)) continue;
-      const tessera::Vec2 &h = t.vertices[t.cell_vertex[k]];
-      double *row = rows[m];
-      row[0] = static_cast<double>(tag[i]);
-      row[1] = static_cast<double>(tag[t.cell_neighbor[k]]);
-      row[2] = h.x;
-      row[3] = h.y;
-      row[6] = t.edge_length[k];
-      if (m > first) {
-        rows[m - 1][4] = h.x;
-        rows[m - 1][5] = h.y;
-      }
-      m++;
-    }
-    if (m > first) {
-      rows[m - 1][4] = rows[first][2];
-      rows[m - 1][5] = rows[first][3];
-    }
-  }
-
-  size_local_rows = m;
+  for (int r = 0; r < n; r++)
+    for (int c = 0; c < ncols; c++) rows[r][c] = buf[static_cast<size_t>(r) * ncols + c];
+  size_local_rows = n;
   array_local = rows;
 }
 
@@ -141,5 +155,5 @@ void ComputeVertexLocal::compute_local()
 
 double ComputeVertexLocal::memory_usage()
 {
-  return (double) nmax * NCOLS * sizeof(double);
+  return (double) nmax * size_local_cols * sizeof(double) + flat.capacity() * sizeof(double);
 }

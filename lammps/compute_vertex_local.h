@@ -14,6 +14,8 @@ ComputeStyle(vertex/local,ComputeVertexLocal);
 
 #include "compute.h"
 
+#include <vector>
+
 namespace LAMMPS_NS {
 
 class ComputeVertexLocal : public Compute {
@@ -28,6 +30,7 @@ class ComputeVertexLocal : public Compute {
   int nmax;          // rows allocated
   double **rows;     // nmax x 7: cell ID, neighbour ID, x1 y1 x2 y2, length
   class PairVertexVoronoi *pair;
+  std::vector<double> flat;    // the rows of this step, row-major
 };
 
 }    // namespace LAMMPS_NS

@@ -131,7 +131,7 @@ void FixCellDeath::decide()
   const tagint *tag = atom->tag;
   double **x = atom->x;
   const uint64_t step = update->ntimestep;
-  if (trigger == AREA && !pair->tessellation_current())
+  if (trigger == AREA && !pair->cells_current())
     error->all(FLERR,
                "fix cell/death: the tessellation of this step is not available (pair_style "
                "vertex/voronoi must compute forces every step)");
@@ -143,7 +143,7 @@ void FixCellDeath::decide()
     if (!(mask[i] & groupbit)) continue;
     if (region && !region->match(x[i][0], x[i][1], x[i][2])) continue;
     const bool die = trigger == RATE ? uniform01(seed, tag[i], step, DEATH) < rate * update->dt
-                                     : pair->tessellation().area[i] < area_min;
+                                     : pair->cells().measure(i) < area_min;
     if (!die) continue;
     pending.insert(tag[i]);
     mine.push_back({uniform01(seed, tag[i], step, DEATH_PRIORITY), tag[i]});

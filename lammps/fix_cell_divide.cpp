@@ -169,7 +169,6 @@ FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
   if (axis == POLARITY && !atom->mu_flag)
     error->all(FLERR, "fix cell/divide: axis polarity needs atom_style dipole (the polarity is mu)");
   if (!atom->tag_enable) error->all(FLERR, "fix cell/divide requires atom IDs");
-  if (domain->dimension != 2) error->all(FLERR, "fix cell/divide requires a 2d simulation");
 
   force_reneighbor = 1;
   next_reneighbor = -1;
@@ -260,49 +259,91 @@ double FixCellDivide::draw_cycle(tagint tag, uint64_t step) const
   return cycle_mean + cycle_spread * (2.0 * uniform01(seed, tag, step, CYCLE) - 1.0);
 }
 
-/* Direction (ux, uy) along which the daughters of local atom i are placed. */
+/* A uniform random unit vector (2d: in the plane) from the draws of one
+   cell at one step, streams s1 and s2. */
 
-void FixCellDivide::cell_axis(int i, double &ux, double &uy) const
+static void random_direction(uint64_t seed, tagint t, uint64_t step, uint64_t s1, uint64_t s2,
+                             int dim, double *u)
+{
+  const double phi = MathConst::MY_2PI * uniform01(seed, t, step, s1);
+  if (dim == 2) {
+    u[0] = std::cos(phi);
+    u[1] = std::sin(phi);
+    u[2] = 0.0;
+    return;
+  }
+  const double z = 2.0 * uniform01(seed, t, step, s2) - 1.0, r = std::sqrt(MAX(0.0, 1.0 - z * z));
+  u[0] = r * std::cos(phi);
+  u[1] = r * std::sin(phi);
+  u[2] = z;
+}
+
+/* Direction u (3 values) along which the daughters of local atom i are
+   placed: the division plane is normal to it. */
+
+void FixCellDivide::cell_axis(int i, double *u) const
 {
   const tagint t = atom->tag[i];
   const uint64_t step = update->ntimestep;
-  double theta = MathConst::MY_2PI * uniform01(seed, t, step, AXIS);
+  const int dim = domain->dimension;
+  random_direction(seed, t, step, AXIS, AXIS_Z, dim, u);
   if (axis == POLARITY) {
     const double *mu = atom->mu[i];
-    if (std::hypot(mu[0], mu[1]) > 0.0) theta = std::atan2(mu[1], mu[0]);
+    if (dim == 2 && std::hypot(mu[0], mu[1]) > 0.0) {
+      const double theta = std::atan2(mu[1], mu[0]);
+      u[0] = std::cos(theta);
+      u[1] = std::sin(theta);
+    }
+    const double m = std::sqrt(mu[0] * mu[0] + mu[1] * mu[1] + mu[2] * mu[2]);
+    if (dim == 3 && m > 0.0)
+      for (int d = 0; d < 3; d++) u[d] = mu[d] / m;
   } else if (axis == LONG || axis == SHORT) {
-    // Second moments of the cell polygon about its centroid (triangle fan).
-    const tessera::Tessellation &tess = pair->tessellation();
-    double a = 0.0, cx = 0.0, cy = 0.0, sxx = 0.0, syy = 0.0, sxy = 0.0;
-    const int o = tess.cell_offset[i], m = tess.cell_offset[i + 1] - o;
-    const double px = atom->x[i][0], py = atom->x[i][1];
-    for (int k = 0; k < m; k++) {
-      const tessera::Vec2 &p = tess.vertices[tess.cell_vertex[o + k]];
-      const tessera::Vec2 &q = tess.vertices[tess.cell_vertex[o + (k + 1) % m]];
-      const double x0 = p.x - px, y0 = p.y - py, x1 = q.x - px, y1 = q.y - py;
-      const double cr = x0 * y1 - x1 * y0;
-      a += 0.5 * cr;
-      cx += cr * (x0 + x1) / 6.0;
-      cy += cr * (y0 + y1) / 6.0;
-      sxx += cr * (x0 * x0 + x0 * x1 + x1 * x1) / 12.0;
-      syy += cr * (y0 * y0 + y0 * y1 + y1 * y1) / 12.0;
-      sxy += cr * (2 * x0 * y0 + x0 * y1 + x1 * y0 + 2 * x1 * y1) / 24.0;
-    }
-    if (a > 0.0) {
-      cx /= a;
-      cy /= a;
-      sxx -= a * cx * cx;
-      syy -= a * cy * cy;
-      sxy -= a * cx * cy;
-      // A round cell (isotropic tensor) keeps the random axis.
-      if (std::hypot(sxx - syy, 2.0 * sxy) > 1e-12 * (sxx + syy)) {
-        theta = 0.5 * std::atan2(2.0 * sxy, sxx - syy);    // the long axis
-        if (axis == SHORT) theta += 0.5 * MathConst::MY_PI;
-      }
-    }
+    // The principal axes of the cell's second moments (any model: polygons,
+    // finite cells with their arcs, polyhedra); a cell whose tensor is
+    // isotropic keeps the random axis.
+    double a[3] = {0.0, 0.0, 0.0};
+    if (pair->cells().principal_axis(i, axis == LONG, a))
+      for (int d = 0; d < 3; d++) u[d] = a[d];
   }
-  ux = std::cos(theta);
-  uy = std::sin(theta);
+}
+
+/* The unit polarity of a daughter k (3 values): her mother's direction (or
+   a random one if she had none), turned by the noise: by a uniform angle in
+   [-eta, eta] in the plane (2d), or about a random axis normal to it (3d). */
+
+static void daughter_polarity(uint64_t seed, tagint t, uint64_t step, double noise, int dim,
+                              const double *mu, double *n)
+{
+  if (dim == 2) {
+    double th = std::hypot(mu[0], mu[1]) > 0.0 ? std::atan2(mu[1], mu[0])
+                                               : MathConst::MY_2PI * uniform01(seed, t, step, DIRECTION);
+    if (noise > 0.0) th += noise * (2.0 * uniform01(seed, t, step, NOISE) - 1.0);
+    n[0] = std::cos(th);
+    n[1] = std::sin(th);
+    n[2] = 0.0;
+    return;
+  }
+  double m = 0.0;
+  for (int d = 0; d < dim; d++) m += mu[d] * mu[d];
+  m = std::sqrt(m);
+  if (m > 0.0)
+    for (int d = 0; d < 3; d++) n[d] = d < dim ? mu[d] / m : 0.0;
+  else
+    random_direction(seed, t, step, DIRECTION, DIRECTION_Z, dim, n);
+  if (!(noise > 0.0)) return;
+  const double th = noise * (2.0 * uniform01(seed, t, step, NOISE) - 1.0);
+  // An axis normal to n: a random direction less its component along n.
+  double a[3];
+  random_direction(seed, t, step, NOISE_AXIS, AXIS_Z, 3, a);
+  const double an = a[0] * n[0] + a[1] * n[1] + a[2] * n[2];
+  for (int d = 0; d < 3; d++) a[d] -= an * n[d];
+  const double la = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+  if (!(la > 1e-12)) return;
+  for (int d = 0; d < 3; d++) a[d] /= la;
+  // Rodrigues: n cos th + (a x n) sin th (a is normal to n).
+  const double axn[3] = {a[1] * n[2] - a[2] * n[1], a[2] * n[0] - a[0] * n[2],
+                         a[0] * n[1] - a[1] * n[0]};
+  for (int d = 0; d < 3; d++) n[d] = n[d] * std::cos(th) + axn[d] * std::sin(th);
 }
 
 /* Ages, then preferred-area growth and this step's division decisions. */
@@ -325,7 +366,7 @@ void FixCellDivide::decide()
   const uint64_t step = update->ntimestep;
 
   const bool need_tess = trigger == AREA || axis == LONG || axis == SHORT;
-  if (need_tess && !pair->tessellation_current())
+  if (need_tess && !pair->cells_current())
     error->all(FLERR,
                "fix cell/divide: the tessellation of this step is not available (pair_style "
                "vertex/voronoi must compute forces every step)");
@@ -342,11 +383,11 @@ void FixCellDivide::decide()
     else if (trigger == CYCLE)
       divide = cellstate[i][AGE] >= cellstate[i][CYCLE_TIME];
     else
-      divide = pair->tessellation().area[i] > area_max;
+      divide = pair->cells().measure(i) > area_max;
     if (!divide) continue;
-    double ux, uy;
-    cell_axis(i, ux, uy);
-    pending[tag[i]] = {ux, uy};
+    std::array<double, 3> u;
+    cell_axis(i, u.data());
+    pending[tag[i]] = u;
     mine.push_back({uniform01(seed, tag[i], step, PRIORITY), tag[i]});
   }
 
@@ -403,7 +444,7 @@ void FixCellDivide::pre_exchange()
     if (found == pending.end()) continue;
     const auto rank = daughter_tag.find(atom->tag[i]);
     if (rank == daughter_tag.end()) continue;    // over the cap
-    const double ux = found->second.first, uy = found->second.second;
+    const std::array<double, 3> &u = found->second;
     if (atom->nlocal == atom->nmax) atom->avec->grow(0);
     const int j = atom->nlocal;
     atom->avec->copy(i, j, 0);    // every per-atom value, and every fix's
@@ -412,10 +453,10 @@ void FixCellDivide::pre_exchange()
     atom->tag[j] = maxtag_all + 1 + rank->second;
     double **x = atom->x;
     const double h = 0.5 * separation;
-    x[i][0] -= h * ux;
-    x[i][1] -= h * uy;
-    x[j][0] += h * ux;
-    x[j][1] += h * uy;
+    for (int d = 0; d < domain->dimension; d++) {
+      x[i][d] -= h * u[d];
+      x[j][d] += h * u[d];
+    }
     for (const int k : {i, j}) {
       cellstate[k][AGE] = 0.0;
       cellstate[k][GENERATION] += 1.0;
@@ -423,16 +464,12 @@ void FixCellDivide::pre_exchange()
       if (growth && cellstate[k][AREA0_BASE] > 0.0)
         atom->dvector[area0_index][k] = cellstate[k][AREA0_BASE];
       if (atom->mu_flag) {
-        // A unit in-plane polarity: the mother's direction (or a random one
-        // if she had none), turned by the noise.
         double *mu = atom->mu[k];
-        double th = std::hypot(mu[0], mu[1]) > 0.0
-            ? std::atan2(mu[1], mu[0])
-            : MathConst::MY_2PI * uniform01(seed, atom->tag[k], step, DIRECTION);
-        if (noise > 0.0) th += noise * (2.0 * uniform01(seed, atom->tag[k], step, NOISE) - 1.0);
-        mu[0] = std::cos(th);
-        mu[1] = std::sin(th);
-        mu[2] = 0.0;
+        double n[3];
+        daughter_polarity(seed, atom->tag[k], step, noise, domain->dimension, mu, n);
+        mu[0] = n[0];
+        mu[1] = n[1];
+        mu[2] = n[2];
         mu[3] = 1.0;
       }
     }

@@ -16,6 +16,7 @@ FixStyle(cell/divide,FixCellDivide);
 #include "fix.h"
 
 #include <string>
+#include <array>
 #include <unordered_map>
 #include <vector>
 
@@ -62,12 +63,12 @@ class FixCellDivide : public Fix {
   double **cellstate;    // per atom: age, generation, cycle time, base A0
   // Mothers of the next event step: atom ID -> division axis (ux, uy), and
   // the daughters' atom IDs assigned from the global sorted list.
-  std::unordered_map<tagint, std::pair<double, double>> pending;
+  std::unordered_map<tagint, std::array<double, 3>> pending;    // division axis
   std::unordered_map<tagint, tagint> daughter_tag;
   cell_events::EventCount events;
 
   double draw_cycle(tagint, uint64_t) const;
-  void cell_axis(int, double &, double &) const;
+  void cell_axis(int, double *) const;
   void fill_base_area0();
   void decide();
 };

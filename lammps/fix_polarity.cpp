@@ -150,11 +150,11 @@ void FixPolarity::init()
   else
     init_angles();
   find_driver();
-  if (driven && domain->dimension == 3)
-    error->all(FLERR,
-               "fix polarity {}: fix brownian/heun integrates 2d polarity angles only; in 3d use "
-               "fix brownian (forward Euler)",
-               id);
+}
+
+int FixPolarity::coupled_size() const
+{
+  return domain->dimension == 3 ? 3 : 1;
 }
 
 /* Atoms with mu = 0 get a uniformly random polarity angle (thesis 4.1.4: a
@@ -344,8 +344,8 @@ void FixPolarity::initial_integrate(int /*vflag*/)
   tau.resize(nlocal);
 
   if (params.J_S != 0.0) {
-    const tessera::Tessellation &t = pair->tessellation();
-    if (pair->tessellation_step() != update->ntimestep - 1 || t.n_owned != nlocal)
+    const tessera::Contacts t = pair->cells().contacts();
+    if (pair->cells_step() != update->ntimestep - 1 || t.n_owned != nlocal)
       error->one(FLERR,
                  "fix polarity: the tessellation of pair vertex/voronoi is not from the "
                  "previous step");
@@ -490,12 +490,14 @@ void FixPolarity::post_force_3d()
   }
 }
 
-void FixPolarity::initial_integrate_3d()
+/* The field h_i = J_S sum_j n_j + J_G (n_i.g) g + J_V vhat_i of every
+   local atom (tau, 3 per atom), from the unit polarities of owned and ghost
+   atoms and the cells of state_step. */
+
+void FixPolarity::field_3d(bigint state_step)
 {
   const int nlocal = atom->nlocal;
   double **mu = atom->mu;
-  const int *mask = atom->mask;
-  const tagint *tag = atom->tag;
   if (static_cast<int>(has_v.size()) != nlocal)
     error->one(FLERR, "fix polarity: internal error: velocity directions not recorded");
   const int nall = nlocal + atom->nghost;
@@ -504,18 +506,19 @@ void FixPolarity::initial_integrate_3d()
     const double inv = mu[i][3] > 0.0 ? 1.0 / mu[i][3] : 0.0;
     for (int d = 0; d < 3; d++) unit[3 * i + d] = mu[i][d] * inv;
   }
-  // The field each cell's polarity turns towards.
   tau.assign(3 * nlocal, 0.0);
   if (params.J_S != 0.0) {
-    const tessera::Tessellation3 &t = pair->tessellation3();
-    if (!(pair->tessellation3_step() == update->ntimestep - 1) || t.n_owned != nlocal)
+    const tessera::CellView &v = pair->cells();
+    const tessera::Contacts t = v.contacts();
+    if (pair->cells_step() != state_step || t.n_owned != nlocal)
       error->one(FLERR,
-                 "fix polarity: the tessellation of pair vertex/voronoi is not from the "
-                 "previous step");
+                 "fix polarity: the tessellation of pair vertex/voronoi is from step {}, the "
+                 "polarities need it for step {}",
+                 pair->cells_step(), state_step);
     for (int i = 0; i < nlocal; i++)
-      for (int f = t.cell_offset[i]; f < t.cell_offset[i + 1]; f++) {
-        if (!(t.face_area[f] > 1e-9 * t.surface[i])) continue;    // Voronoi neighbours only
-        const int j = t.face_neighbor[f];
+      for (int f = t.offset[i]; f < t.offset[i + 1]; f++) {
+        if (!(t.size[f] > 1e-9 * v.boundary(i))) continue;    // Voronoi neighbours only
+        const int j = t.neighbor[f];
         for (int d = 0; d < 3; d++) tau[3 * i + d] += params.J_S * unit[3 * j + d];
       }
   }
@@ -529,6 +532,41 @@ void FixPolarity::initial_integrate_3d()
     if (params.J_V != 0.0 && has_v[i])
       for (int d = 0; d < 3; d++) tau[3 * i + d] += params.J_V * vhat[3 * i + d];
   }
+}
+
+/* mu of local atom i rotated about the vector w by the angle |w| (Rodrigues),
+   its length kept (1 if it had none). */
+
+void FixPolarity::rotate_3d(int i, const double *w)
+{
+  double **mu = atom->mu;
+  const double m = mu[i][3] > 0.0 ? mu[i][3] : 1.0;
+  const double n[3] = {mu[i][0] / m, mu[i][1] / m, mu[i][2] / m};
+  const double a = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  double r[3] = {n[0], n[1], n[2]};
+  if (a > 0.0) {
+    double s, c;
+    sincos_small(a, s, c);
+    const double k[3] = {w[0] / a, w[1] / a, w[2] / a};
+    const double kn = k[0] * n[0] + k[1] * n[1] + k[2] * n[2];
+    const double kxn[3] = {k[1] * n[2] - k[2] * n[1], k[2] * n[0] - k[0] * n[2],
+                           k[0] * n[1] - k[1] * n[0]};
+    for (int d = 0; d < 3; d++) r[d] = n[d] * c + kxn[d] * s + k[d] * kn * (1.0 - c);
+  }
+  const double inv = 1.0 / std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+  for (int d = 0; d < 3; d++) mu[i][d] = m * r[d] * inv;
+  mu[i][3] = m;
+}
+
+void FixPolarity::initial_integrate_3d()
+{
+  const int nlocal = atom->nlocal;
+  double **mu = atom->mu;
+  const int *mask = atom->mask;
+  const tagint *tag = atom->tag;
+  // Cells that appeared since (fix deposit, create_atoms) get a direction.
+  init_angles_3d();
+  field_3d(update->ntimestep - 1);
 
   const double dt = update->dt;
   const double noise = std::sqrt(2.0 * d_rot * dt);
@@ -544,23 +582,9 @@ void FixPolarity::initial_integrate_3d()
     if (d_rot > 0.0)
       for (int d = 0; d < 3; d++)
         w[d] += noise * gaussian(seed ^ 0x5bd1e995ULL, 3 * static_cast<uint64_t>(tag[i]) + d, step);
-    // Rodrigues: rotate n about w by |w|.
-    const double a = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
-    double r[3] = {n[0], n[1], n[2]};
-    if (a > 0.0) {
-      double s, c;
-      sincos_small(a, s, c);
-      const double k[3] = {w[0] / a, w[1] / a, w[2] / a};
-      const double kn = k[0] * n[0] + k[1] * n[1] + k[2] * n[2];
-      const double kxn[3] = {k[1] * n[2] - k[2] * n[1], k[2] * n[0] - k[0] * n[2],
-                             k[0] * n[1] - k[1] * n[0]};
-      for (int d = 0; d < 3; d++) r[d] = n[d] * c + kxn[d] * s + k[d] * kn * (1.0 - c);
-    }
-    const double m = mu[i][3] > 0.0 ? mu[i][3] : 1.0;
-    const double inv = 1.0 / std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-    for (int d = 0; d < 3; d++) mu[i][d] = m * r[d] * inv;
-    mu[i][3] = m;
+    rotate_3d(i, w);
   }
+  (void) mu;
 }
 
 /* 3d: polar order |<n>| and nematic order <P2(n.g)> = <(3 (n.g)^2 - 1)/2>
@@ -631,12 +655,12 @@ void FixPolarity::angle_torques(bigint state_step)
   }
   tau.resize(nlocal);
   if (params.J_S != 0.0) {
-    const tessera::Tessellation &t = pair->tessellation();
-    if (pair->tessellation_step() != state_step || t.n_owned != nlocal)
+    const tessera::Contacts t = pair->cells().contacts();
+    if (pair->cells_step() != state_step || t.n_owned != nlocal)
       error->one(FLERR,
                  "fix polarity: the tessellation of pair vertex/voronoi is from step {}, the "
                  "integrator needs it for step {}",
-                 pair->tessellation_step(), state_step);
+                 pair->cells_step(), state_step);
     tessera::polarity_torque_vec(t, unit.data(), 2, params, vhat.data(), has_v.data(),
                                  tau.data());
   } else {
@@ -652,6 +676,28 @@ void FixPolarity::coupled_rate(double *rate, int stride, bigint state_step)
   // The integrator has put the velocity of this state into v.
   double **v = atom->v;
   const int nlocal = atom->nlocal;
+  if (domain->dimension == 3) {
+    // The rotation vector's rate (1/gamma_R) n x h.
+    vhat.resize(3 * nlocal);
+    has_v.assign(nlocal, 0);
+    if (params.J_V != 0.0)
+      for (int i = 0; i < nlocal; i++) {
+        const double s = std::sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
+        has_v[i] = s > 0.0;
+        for (int d = 0; d < 3; d++) vhat[3 * i + d] = has_v[i] ? v[i][d] / s : 0.0;
+      }
+    init_angles_3d();
+    field_3d(state_step);
+    const int *mask = atom->mask;
+    for (int i = 0; i < nlocal; i++) {
+      const double *n = &unit[3 * i], *h = &tau[3 * i];
+      const bool on = mask[i] & groupbit;
+      rate[i * stride] = on ? (n[1] * h[2] - n[2] * h[1]) / gamma_r : 0.0;
+      rate[i * stride + 1] = on ? (n[2] * h[0] - n[0] * h[2]) / gamma_r : 0.0;
+      rate[i * stride + 2] = on ? (n[0] * h[1] - n[1] * h[0]) / gamma_r : 0.0;
+    }
+    return;
+  }
   vhat.resize(2 * nlocal);
   has_v.assign(nlocal, 0);
   if (params.J_V != 0.0)
@@ -673,6 +719,15 @@ void FixPolarity::coupled_noise(double *w, int stride)
   const tagint *tag = atom->tag;
   const double noise = std::sqrt(2.0 * d_rot * update->dt);
   const bigint step = update->ntimestep;
+  if (domain->dimension == 3) {
+    // The same Gaussian increments as the forward Euler step draws.
+    for (int i = 0; i < atom->nlocal; i++)
+      for (int d = 0; d < 3; d++)
+        w[i * stride + d] = (d_rot > 0.0 && (mask[i] & groupbit))
+            ? noise * gaussian(seed ^ 0x5bd1e995ULL, 3 * static_cast<uint64_t>(tag[i]) + d, step)
+            : 0.0;
+    return;
+  }
   for (int i = 0; i < atom->nlocal; i++)
     w[i * stride] =
         (d_rot > 0.0 && (mask[i] & groupbit)) ? noise * gaussian(seed, tag[i], step) : 0.0;
@@ -681,8 +736,14 @@ void FixPolarity::coupled_noise(double *w, int stride)
 void FixPolarity::coupled_advance(const double *dq, int stride)
 {
   const int *mask = atom->mask;
+  const bool three = domain->dimension == 3;
   for (int i = 0; i < atom->nlocal; i++)
-    if (mask[i] & groupbit) rotate(i, dq[i * stride]);
+    if (mask[i] & groupbit) {
+      if (three)
+        rotate_3d(i, dq + i * stride);
+      else
+        rotate(i, dq[i * stride]);
+    }
 }
 
 /* mu of local atom i turned by dth, its length kept (1 if it had none). */

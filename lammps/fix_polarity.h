@@ -58,7 +58,8 @@ class FixPolarity : public Fix, public CoupledDof {
   // Integration by a predictor-corrector integrator (fix brownian/heun, see
   // coupled_dof.h): the angle of each cell is its degree of freedom.
  public:
-  int coupled_size() const override { return 1; }
+  // 2d: the angle; 3d: the rotation vector (three components).
+  int coupled_size() const override;
   void coupled_rate(double *, int, bigint) override;
   void coupled_noise(double *, int) override;
   void coupled_advance(const double *, int) override;
@@ -68,6 +69,9 @@ class FixPolarity : public Fix, public CoupledDof {
   void find_driver();
   void angle_torques(bigint state_step);
   void rotate(int i, double dth);
+  // 3d: the field each polarity turns towards (tau, 3 per atom) at state_step.
+  void field_3d(bigint state_step);
+  void rotate_3d(int i, const double *w);
 };
 
 }    // namespace LAMMPS_NS

@@ -14,18 +14,31 @@ PairStyle(vertex/voronoi,PairVertexVoronoi);
 
 #include "pair.h"
 
+#include "tessera/cells.h"
 #include "tessera/energy.h"
-#include "tessera/finite.h"
-#include "tessera/mesh.h"
-#include "tessera/tessellation.h"
-#include "tessera/voronoi3d.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
 
+class VertexModel;
+
+/* The face of pair_style vertex/voronoi: settings, pair_coeff, the per-type
+   table, fix adapt (extract/reinit), restart files, the ghost shell and the
+   accumulation of energy and virial.  The cells themselves are computed by
+   one unit per model (pair_vertex_voronoi_confluent.cpp, _finite.cpp,
+   _3d.cpp, all behind the VertexModel interface), chosen in init_style from
+   the dimension and the 'radius' keyword.  Every consumer reads the cells
+   through cells(), the model-independent view (tessera/cells.h). */
+
 class PairVertexVoronoi : public Pair {
+  friend class VertexModel;
+  friend class VertexConfluent;
+  friend class VertexFinite;
+  friend class Vertex3d;
+
  public:
   PairVertexVoronoi(class LAMMPS *);
   ~PairVertexVoronoi() override;
@@ -42,31 +55,23 @@ class PairVertexVoronoi : public Pair {
   void reinit() override;
   double memory_usage() override;
 
-  // The tessellation of the last force computation: owned cells are the local
-  // atoms 0..nlocal-1, cell_neighbor entries are local atom indices (owned or
-  // ghost).  Valid for the timestep tessellation_step() until atoms are
-  // exchanged or sorted.  Used by fix polarity and compute vertex/atom.
-  const tessera::Tessellation &tessellation() const { return tess; }
-  bigint tessellation_step() const { return tess_step; }
-  const std::vector<double> &cell_energy() const { return cell_e; }
-  // Whether the tessellation was computed at the current timestep.
-  bool tessellation_current() const;
+  // This step's owned cells (owned cell c is local atom c; neighbours and
+  // rings are local atom indices, owned or ghost), for every model.  Valid
+  // for the timestep cells_step() until atoms are exchanged or sorted.
+  const tessera::CellView &cells() const;
+  bigint cells_step() const { return tess_step; }
+  // Whether cells() describes the current timestep's atoms.
+  bool cells_current() const;
   // Force computations since the style was created (never reset): tells
-  // computes whether the tessellation changed since they last looked.
+  // computes whether the cells changed since they last looked.
   bigint compute_count() const { return ncompute; }
-  // dimension 3: the same for the 3D cells (pair_vertex_voronoi_3d.cpp).
-  const tessera::Tessellation3 &tessellation3() const { return tess3; }
-  bigint tessellation3_step() const { return tess3_step; }
-  bool tessellation3_current() const;
-  // For the step guard: sqrt(A0) of a type, and owned atom i's closest
-  // Voronoi neighbour (ID, distance) at the last force computation.
-  double cell_size(int type) const;
-  bool closest_neighbour(int i, const double *owned_xy, tagint &j, double &d) const;
-  // Finite Voronoi cells ('radius r'): r, or 0 for the confluent model; the
-  // cells of the last force computation (tessellation() then holds their
-  // contact edges only).
+  // Finite Voronoi radius r, or 0 (confluent or 3D cells).
   double finite_radius() const { return radius; }
-  const tessera::FiniteTessellation &finite_cells() const { return ftess; }
+  // For the step guard: sqrt(A0) of a type (cbrt(V0) in 3D), and owned atom
+  // i's closest neighbour (ID, distance) at the last force computation, with
+  // owned atoms at owned_x (dimension values per atom, recorded then).
+  double cell_size(int type) const;
+  bool closest_neighbour(int i, const double *owned_x, tagint &j, double &d) const;
 
  protected:
   double cut_global;
@@ -76,6 +81,8 @@ class PairVertexVoronoi : public Pair {
   double **lambda;                // per type pair
   int **lambda_set;               // 1 if pair_coeff I J gave Lambda_IJ explicitly
   int *type_set;                  // 1 if pair_coeff I I gave the cell parameters
+  int *quad_set;                  // 1 if they came in the quadratic form
+  double *energy0;                // per type: the quadratic form's constant (see build_model)
   tessera::Model model;
   // Model-parameter plumbing for fix adapt and the quadratic heterotypic
   // tension (see build_model() and reinit()).
@@ -86,13 +93,9 @@ class PairVertexVoronoi : public Pair {
   int read_restart_settings_version(FILE *);
   void print_model() const;
 
-  tessera::Tessellation tess;
+  std::unique_ptr<VertexModel> unit;  // the model's unit, made in init_style
   bigint tess_step;
-  tessera::Mesh mesh;
-  tessera::CellPass cell_pass;   // the forces' per-cell half, run by Mesh::advance
-  bool fuse_cells = false;       // hand cell_pass to the next Mesh::advance
   int incremental;      // 1: keep the triangulation between steps, 0: rebuild every step, 2: check
-  bigint mesh_ncalls;   // neighbor->ncalls when the mesh was built: atoms re-ordered since?
   int reference_every;  // time a from-scratch triangulation every this many steps (0: never)
   double stats[8];      // pvector: see the doc (times, rebuilds, flips, steps, reference)
   std::vector<int> type0;
@@ -102,18 +105,27 @@ class PairVertexVoronoi : public Pair {
   double radius;                 // finite Voronoi radius (0: confluent model)
   double *free_tension;          // per type: tension of free arcs (internal F)
   int free_set;                  // 1 if some pair_coeff gave 'free'
-  tessera::FiniteTessellation ftess;
   std::vector<double> free_t0;   // free_tension, 0-based
-  void compute_finite();
-  void bind_cell_area0();
 
   void allocate();
-  bool tessellate();  // true if the ghost shell had to grow (atoms re-acquired)
+  // Shared by the units: this step's 0-based types, cell energy array and
+  // per-cell A0 ('fix property/atom d_area0').
+  void prepare_atoms();
+  void bind_cell_area0();
+  // The shared tail of every unit: the constant of the quadratic forms, the
+  // per-atom energy and virial, the global energy and the f dot r virial.
+  // cell_w holds nw values per cell (4 in 2d, 9 in 3d) when vflag_atom.
+  void accumulate(double energy, int nw);
+  // A cell needs the ghost shell this much wider on some rank (the maximum
+  // over ranks is taken here; 0: complete, infinity: a cell is unbounded):
+  // widen it and re-acquire the atoms (true: the unit tessellates again) or
+  // stop with an error that names the cutoff to use.
+  bool ghost_shell_complete(double need_local);
   void grow_ghost_shell(double);
-  int grow;             // widen the ghost shell when a cell needs it (default) or stop
+  int grow;               // widen the ghost shell when a cell needs it (default) or stop
   double cutghost_saved;  // comm->cutghostuser before this style raised it, or -1
-  // Closest pair of centres among the owned cells' Voronoi neighbours at the
-  // last force computation (atom IDs, distance, step), to name in errors.
+  // Closest pair of centres among the owned cells' neighbours at the last
+  // force computation (atom IDs, distance, step), to name in errors.
   tagint close_i, close_j;
   double close_d;
   bigint close_step;
@@ -121,16 +133,7 @@ class PairVertexVoronoi : public Pair {
   void note_closest_pair(int i, int q, double d2);
   void check_lost_atoms();
   std::string guard_id;
-  void check_against_scratch(const tessera::Points &, const tessera::Region &, double);
-  tessera::Region subdomain() const;
   double ghost_width() const;
-
-  // dimension 3 (pair_vertex_voronoi_3d.cpp): a CGAL rebuild every step.
-  tessera::Tessellation3 tess3;
-  bigint tess3_step = -1;
-  void init_style_3d();
-  void compute_3d(int, int);
-  bool tessellate_3d();  // true if the ghost shell had to grow
 };
 
 }    // namespace LAMMPS_NS

@@ -169,7 +169,7 @@ void CellView::second_moments(int c, double *out) const {
   const int dim = dimension();
   for (int a = 0; a < dim; ++a)
     for (int b = 0; b < dim; ++b)
-      out[dim * a + b] = m.m0 > 0.0 ? m.m2[a][b] - m.m1[a] * m.m1[b] / m.m0 : 0.0;
+      out[dim * a + b] = m.m0 > 0.0 ? m.m2[a][b] - m.m0 * (m.m1[a] / m.m0) * (m.m1[b] / m.m0) : 0.0;
 }
 
 bool CellView::principal_axis(int c, bool longest, double *x) const {

@@ -13,14 +13,14 @@
 
 namespace tessera {
 
-void polarity_torque(const Tessellation &t, const double *theta, const PolarityParams &p,
+void polarity_torque(const Contacts &t, const double *theta, const PolarityParams &p,
                      const double *psi, const unsigned char *has_psi, double *tau) {
   for (int c = 0; c < t.n_owned; ++c) {
     const double th = theta[c];
     double neighbours = 0.0;
     if (p.J_S != 0.0) {
-      for (int k = t.cell_offset[c]; k < t.cell_offset[c + 1]; ++k)
-        if (t.edge_length[k] > 0.0) neighbours += std::sin(theta[t.cell_neighbor[k]] - th);
+      for (int k = t.offset[c]; k < t.offset[c + 1]; ++k)
+        if (t.size[k] > 0.0) neighbours += std::sin(theta[t.neighbor[k]] - th);
     }
     const double dg = th - p.phi_G;
     double v = p.J_S * neighbours - p.J_G * std::sin(dg) * std::cos(dg);
@@ -29,7 +29,7 @@ void polarity_torque(const Tessellation &t, const double *theta, const PolarityP
   }
 }
 
-void polarity_torque_vec_reference(const Tessellation &t, const double *n, int n_stride,
+void polarity_torque_vec_reference(const Contacts &t, const double *n, int n_stride,
                                    const PolarityParams &p, const double *vhat,
                                    const unsigned char *has_v, double *tau) {
   const double cphi = std::cos(p.phi_G), sphi = std::sin(p.phi_G);
@@ -38,9 +38,9 @@ void polarity_torque_vec_reference(const Tessellation &t, const double *n, int n
     double cross = 0.0;
     if (p.J_S != 0.0) {
       double sx = 0.0, sy = 0.0;  // sum of the neighbours' polarities
-      for (int k = t.cell_offset[c]; k < t.cell_offset[c + 1]; ++k) {
-        if (!(t.edge_length[k] > 0.0)) continue;
-        const long j = static_cast<long>(t.cell_neighbor[k]) * n_stride;
+      for (int k = t.offset[c]; k < t.offset[c + 1]; ++k) {
+        if (!(t.size[k] > 0.0)) continue;
+        const long j = static_cast<long>(t.neighbor[k]) * n_stride;
         sx += n[j];
         sy += n[j + 1];
       }
@@ -59,15 +59,15 @@ void polarity_torque_vec_reference(const Tessellation &t, const double *n, int n
 // skipped (no branch).  That is the same value: the sums start at +0.0 and
 // round-to-nearest never produces -0.0 from a sum with a +0.0 term, so adding
 // +0.0 leaves every partial sum unchanged.
-void polarity_torque_vec(const Tessellation &t, const double *n, int n_stride,
+void polarity_torque_vec(const Contacts &t, const double *n, int n_stride,
                          const PolarityParams &p, const double *vhat, const unsigned char *has_v,
                          double *tau) {
 #if defined(__SSE2__)
   if (n_stride == 2 && p.J_S != 0.0) {
     const double cphi = std::cos(p.phi_G), sphi = std::sin(p.phi_G);
-    const int *offset = t.cell_offset.data();
-    const int *nbr = t.cell_neighbor.data();
-    const double *len = t.edge_length.data();
+    const int *offset = t.offset;
+    const int *nbr = t.neighbor;
+    const double *len = t.size;
     const __m128d zero = _mm_setzero_pd();
     const bool use_v = p.J_V != 0.0 && vhat;
     for (int c = 0; c < t.n_owned; ++c) {
@@ -212,7 +212,7 @@ void rotate_polarities(int n, const double *u, const double *dth, double *mu,
                                          mu + 4 * static_cast<long>(i), active ? active + i : nullptr);
 }
 
-void velocity_observables(const Tessellation &t, const double *vel, int vel_stride,
+void velocity_observables(const Contacts &t, const double *vel, int vel_stride,
                           double *coordination, double *orientation) {
   auto unit = [&](int i, double &ux, double &uy) {
     const double vx = vel[static_cast<long>(i) * vel_stride];
@@ -234,9 +234,9 @@ void velocity_observables(const Tessellation &t, const double *vel, int vel_stri
     if (coordination) {
       double sum = 0.0;
       int count = 0;
-      for (int k = t.cell_offset[c]; k < t.cell_offset[c + 1]; ++k) {
+      for (int k = t.offset[c]; k < t.offset[c + 1]; ++k) {
         double wx, wy;
-        if (t.edge_length[k] > 0.0 && unit(t.cell_neighbor[k], wx, wy)) {
+        if (t.size[k] > 0.0 && unit(t.neighbor[k], wx, wy)) {
           sum += ux * wx + uy * wy;
           ++count;
         }

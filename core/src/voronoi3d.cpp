@@ -430,7 +430,7 @@ double energy_3d(const Tessellation3 &t, const int *type, const Model &model, do
     double tension = 0.0;
     for (int f = t.cell_offset[c]; f < t.cell_offset[c + 1]; ++f)
       tension += model.lambda_of(type[c], type[t.face_neighbor[f]]) * t.face_area[f];
-    const double dv = t.volume[c] - ct.A0;
+    const double dv = t.volume[c] - model.area0_of(c, type[c]);
     const double e = 0.5 * ct.K * dv * dv + 0.5 * ct.Gamma * t.surface[c] * t.surface[c] + w * tension;
     if (cell_energy) cell_energy[c] = e;
     total += e;
@@ -489,7 +489,7 @@ ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const
   for (int c = 0; c < t.n_owned; ++c) {
     own.clear();
     const CellType &ct = model.types[type[c]];
-    const double dedv = ct.K * (t.volume[c] - ct.A0);
+    const double dedv = ct.K * (t.volume[c] - model.area0_of(c, type[c]));
     const double deds = ct.Gamma * t.surface[c];
     const V3 xc = load(pts, c);
     for (int f = t.cell_offset[c]; f < t.cell_offset[c + 1]; ++f) {

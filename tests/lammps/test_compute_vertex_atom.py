@@ -419,8 +419,8 @@ run 0
         self.check_fluid(2)
 
     def test_created_atom(self):
-        """An atom created between computations starts without memory (it has
-        the highest ID, so its pairs are counted by its older neighbours)."""
+        """A cell created between computations makes new pairs with its
+        neighbours: a birth, not a neighbour exchange, so not counted."""
         script = tissue("sq", ny=10, extra="displace_atoms all random 0.1 0.1 0 771") + """
 thermo_style custom step atoms c_va[3]
 run 0
@@ -436,9 +436,31 @@ run 0
         first, second = run.dump("first.dump")[0], run.dump("second.dump")[0]
         before = PeriodicVoronoi(first["x"], first["y"], first["box"]).pairs()
         after = PeriodicVoronoi(second["x"], second["y"], second["box"]).pairs()
-        new = len(after - before)
-        self.assertGreaterEqual(new, 3)    # at least the new cell's own edges
-        self.assertEqual([r["c_va[3]"] for r in rows], [0, new, 0])
+        new = after - before
+        self.assertGreaterEqual(len(new), 3)    # the new cell's own edges
+        self.assertTrue(all(101 in pair for pair in new))
+        self.assertEqual([r["c_va[3]"] for r in rows], [0, 0, 0])
+
+    def test_deleted_atom(self):
+        """When a cell is removed its neighbours close the gap and make new
+        pairs among themselves: a death, not a neighbour exchange."""
+        script = tissue("hex", ny=10, extra="displace_atoms all random 0.1 0.1 0 771") + """
+thermo_style custom step atoms c_va[3]
+run 0
+write_dump all custom first.dump id x y modify sort id format float %.17g
+group gone id 37
+delete_atoms group gone
+run 0
+write_dump all custom second.dump id x y modify sort id format float %.17g
+run 0
+"""
+        run = self.run_lmp(script)
+        rows = thermo_rows(run.stdout)
+        first, second = run.dump("first.dump")[0], run.dump("second.dump")[0]
+        before = PeriodicVoronoi(first["x"], first["y"], first["box"]).pairs()
+        after = PeriodicVoronoi(second["x"], second["y"], second["box"]).pairs()
+        self.assertGreaterEqual(len(after - before), 1)    # the gap closed by new pairs
+        self.assertEqual([r["c_va[3]"] for r in rows], [0, 0, 0])
 
 
 class Errors(LammpsTestCase):

@@ -161,8 +161,11 @@ run 0
             lam1, lam2 = -c * G * P01, -c * G * P02
             lam12 = 0.5 * (lam1 + lam2) + sigma / weight
             e = thermo(run)[0][1]
+            # Half the cells of each type; each adds its quadratic form's
+            # constant KP P0^2 (pe is the written energy).
+            constant = 0.5 * KP * P01 ** 2 + 0.5 * KP * P02 ** 2
             self.assertAlmostEqual(e, hex_energy_per_cell(2 * KA, 1.0, G, lam1, lam2, lam12,
-                                                          weight), delta=1e-12)
+                                                          weight) + constant, delta=1e-12)
             # the log's matrix shows the effective value
             self.assertRegex(run.stdout, r"\n\s+1\s+%.4g\s+%.4g\n" % (lam1, lam12))
 
@@ -213,6 +216,9 @@ run 3
         lam12 = 0.5 * (-0.5 + lam2) + 0.3 / 2.0
         # type 1 and 2 differ in Gamma here: per cell 0.5 * (G1 + G2) / 2 P^2
         e = (0.25 * (0.1 + G2) * P * P + 2.0 * L * (0.5 * -0.5 + 0.5 * lam2 + 2.0 * lam12)) * n
+        # Type 2 was given in the quadratic form (KP 0.05, P0 3.2): its half of
+        # the cells adds the constant KP P0^2 each, which the restart keeps.
+        e += 0.5 * n * 0.05 * 3.2 ** 2
         pe = [float(l.split()[1]) for l in run.stdout.splitlines()
               if re.match(r"^\s+3\s", l) and len(l.split()) == 3]
         self.assertTrue(pe, run.stdout)

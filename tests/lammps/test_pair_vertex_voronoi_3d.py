@@ -229,9 +229,9 @@ print "R $(pe:%.17g) $(c_cells[1]:%.17g) $(c_cells[2]:%.17g)"
         np.testing.assert_array_equal(fr["c_cells[4]"], faces)
         self.assertLess(np.abs(np.column_stack([fr["fx"], fr["fy"], fr["fz"]])).max(), 1e-10)
         pe, mean_s, zero = printed(run, "R")[0]
-        # The pair style drops the constant KS S0^2 of the quadratic form.
-        expect = N * (KV * (V - V0) ** 2 + KS * (S - S0) ** 2 - KS * S0 ** 2)
-        self.assertAlmostEqual(pe, expect, delta=1e-10 * abs(expect))
+        # pe is the written energy, the constant KS S0^2 of the quadratic form included.
+        expect = N * (KV * (V - V0) ** 2 + KS * (S - S0) ** 2)
+        self.assertAlmostEqual(pe, expect, delta=1e-12 * abs(expect))
         self.assertAlmostEqual(mean_s, s, delta=1e-12)
         self.assertEqual(zero, zero_faces_per_cell * N)
 
@@ -542,17 +542,12 @@ run 3
 
 
 class Errors(LammpsTestCase):
-    def test_2d_only_features(self):
+    def test_finite_cells_are_2d(self):
+        # (per-cell V0, fix brownian/heun's 3d polarities and compute
+        # vertex/local in 3d work: tests/lammps/test_feature_matrix.py)
         run = self.run_lmp(tissue3d().replace("vertex/voronoi 3.0", "vertex/voronoi 3.0 radius 0.8")
                            + "run 0\n", ok=False)
         self.assertLammpsError(run, "finite cells ('radius') are for 2d")
-        run = self.run_lmp(tissue3d() + "fix pa all property/atom d_area0\nset group all d_area0 1.0\n"
-                           "run 0\n", ok=False)
-        self.assertLammpsError(run, "per-atom preferred areas (d_area0) are for 2d")
-        run = self.run_lmp(tissue3d().replace("atom_style atomic", "atom_style dipole") +
-                           "fix p all polarity 0.1 1.0\nfix h all brownian/heun 1.0 1 gamma_t 1.0\n"
-                           "run 1\n", ok=False)
-        self.assertLammpsError(run, "brownian/heun integrates 2d polarity angles only")
 
     def test_2d_only_keywords(self):
         for kw, msg in (("incremental check", "'incremental check' is for 2d"),
@@ -560,10 +555,6 @@ class Errors(LammpsTestCase):
             run = self.run_lmp(tissue3d().replace("vertex/voronoi 3.0", "vertex/voronoi 3.0 " + kw)
                                + "run 0\n", ok=False)
             self.assertLammpsError(run, msg)
-
-    def test_vertex_local(self):
-        run = self.run_lmp(tissue3d() + "compute l all vertex/local\nrun 0\n", ok=False)
-        self.assertLammpsError(run, "not available in 3d")
 
     def test_non_periodic_z(self):
         run = self.run_lmp(tissue3d().replace("boundary p p p", "boundary p p f") + "run 0\n",

@@ -3,6 +3,7 @@
 // Polarity dynamics and velocity observables (doc/model.md, Dynamics and Observables).
 #pragma once
 
+#include "tessera/cells.h"
 #include "tessera/tessellation.h"
 
 #include <cmath>
@@ -23,7 +24,7 @@ struct PolarityParams {
 // for every point of t (owned and ghost); psi (optional, n_owned entries) is
 // the direction of each owned cell's velocity, with has_psi[i] == 0 where the
 // velocity is zero (no velocity torque then).  tau gets n_owned values.
-void polarity_torque(const Tessellation &t, const double *theta, const PolarityParams &p,
+void polarity_torque(const Contacts &t, const double *theta, const PolarityParams &p,
                      const double *psi, const unsigned char *has_psi, double *tau);
 
 // The same torque from unit polarity vectors n (stride n_stride, for every
@@ -32,14 +33,14 @@ void polarity_torque(const Tessellation &t, const double *theta, const PolarityP
 //   (c', s') = n rotated by -phi, sin(th_i - psi_i) = vhat_i x n_i.
 // vhat (optional, stride 2, n_owned entries) is the unit velocity; has_v[i]
 // == 0 where the velocity is zero.
-void polarity_torque_vec(const Tessellation &t, const double *n, int n_stride,
+void polarity_torque_vec(const Contacts &t, const double *n, int n_stride,
                          const PolarityParams &p, const double *vhat, const unsigned char *has_v,
                          double *tau);
 
 // The same torque by the plain loop (any stride): the oracle of the fast path
 // above, which takes stride 2 and sums the neighbours two components at a time
 // (the same additions in the same order, so the same values bit for bit).
-void polarity_torque_vec_reference(const Tessellation &t, const double *n, int n_stride,
+void polarity_torque_vec_reference(const Contacts &t, const double *n, int n_stride,
                                    const PolarityParams &p, const double *vhat,
                                    const unsigned char *has_v, double *tau);
 
@@ -85,7 +86,35 @@ void rotate_polarities_reference(int n, const double *u, const double *dth, doub
 // velocity get coordination 0 and orientation -1 (a value outside [0, pi], so
 // dumps show it and averages are not poisoned by NaN); neighbours with zero
 // velocity are left out of the mean.
-void velocity_observables(const Tessellation &t, const double *vel, int vel_stride,
+void velocity_observables(const Contacts &t, const double *vel, int vel_stride,
                           double *coordination, double *orientation);
+
+// The same functions on a confluent tessellation's neighbour lists.
+inline Contacts contacts_of(const Tessellation &t) {
+  Contacts c;
+  c.n_owned = t.n_owned;
+  c.offset = t.cell_offset.data();
+  c.neighbor = t.cell_neighbor.data();
+  c.size = t.edge_length.data();
+  return c;
+}
+inline void polarity_torque(const Tessellation &t, const double *theta, const PolarityParams &p,
+                            const double *psi, const unsigned char *has_psi, double *tau) {
+  polarity_torque(contacts_of(t), theta, p, psi, has_psi, tau);
+}
+inline void polarity_torque_vec(const Tessellation &t, const double *n, int n_stride,
+                                const PolarityParams &p, const double *vhat,
+                                const unsigned char *has_v, double *tau) {
+  polarity_torque_vec(contacts_of(t), n, n_stride, p, vhat, has_v, tau);
+}
+inline void polarity_torque_vec_reference(const Tessellation &t, const double *n, int n_stride,
+                                          const PolarityParams &p, const double *vhat,
+                                          const unsigned char *has_v, double *tau) {
+  polarity_torque_vec_reference(contacts_of(t), n, n_stride, p, vhat, has_v, tau);
+}
+inline void velocity_observables(const Tessellation &t, const double *vel, int vel_stride,
+                                 double *coordination, double *orientation) {
+  velocity_observables(contacts_of(t), vel, vel_stride, coordination, orientation);
+}
 
 }  // namespace tessera

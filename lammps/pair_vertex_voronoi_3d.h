@@ -1,0 +1,35 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+------------------------------------------------------------------------- */
+
+#ifndef LMP_PAIR_VERTEX_VORONOI_3D_H
+#define LMP_PAIR_VERTEX_VORONOI_3D_H
+
+#include "pair_vertex_voronoi_model.h"
+
+#include "tessera/voronoi3d.h"
+
+namespace LAMMPS_NS {
+
+// 3D Voronoi polyhedra ('dimension 3'): a CGAL tetrahedralisation of owned
+// and ghost atoms every step.
+class Vertex3d : public VertexModel {
+ public:
+  Vertex3d(LAMMPS *lmp, PairVertexVoronoi *p) : VertexModel(lmp, p) {}
+  const char *name() const override { return "3d"; }
+  void init() override;
+  void compute(int eflag, int vflag) override;
+  tessera::CellView &view() override { return cells_; }
+  double memory_usage() const override;
+
+ private:
+  tessera::Tessellation3 tess3;
+  tessera::Cells3 cells_;
+  bool tessellate();    // true if the ghost shell had to grow
+  tessera::Region3 subdomain() const;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif

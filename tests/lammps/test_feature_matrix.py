@@ -1,0 +1,606 @@
+#!/usr/bin/python3
+# Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
+"""Every model with every feature: one test per line of feature_matrix.txt.
+
+A model is the start of an input script (a jittered tissue of that model,
+two cell types, atom style dipole); a feature is a check that can fail
+against something independent of the code's own output: central
+differences of pe for forces and the virial, sums that must equal the total
+energy or the box, rows that must close each cell's boundary, a second run
+that must agree (restart, rank counts, pair_coeff instead of fix adapt), the
+geometry of a division.  A line whose expectation is "error <fragment>" must
+stop with a LAMMPS ERROR line that contains the fragment."""
+
+import math
+import os
+import re
+
+import numpy as np
+
+import lmptest
+from lmptest import LammpsTestCase
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+# Two types in the quadratic form (so that pe includes its constant), a
+# heterotypic tension between them.  2d: KA A0 KP P0; 3d: KV V0 KS S0.
+COEFFS_2D = """pair_coeff 1 1 quadratic 1.0 1.0 0.1 3.7
+pair_coeff 2 2 quadratic 1.2 0.9 0.12 3.8
+pair_coeff 1 2 quadratic 0.05
+"""
+COEFFS_FINITE = """pair_coeff 1 1 quadratic 1.0 1.2 0.1 3.9 free 0.2
+pair_coeff 2 2 quadratic 1.2 1.1 0.12 3.8 free 0.3
+pair_coeff 1 2 quadratic 0.05
+"""
+COEFFS_3D = """pair_coeff 1 1 quadratic 1.0 1.0 0.05 5.6
+pair_coeff 2 2 quadratic 1.2 0.9 0.06 5.5
+pair_coeff 1 2 quadratic 0.05
+"""
+
+
+def model_script(model, data=None):
+    """The input script of a model's tissue up to the pair style; from a
+    data file if given (the same atom IDs on any number of ranks)."""
+    three = model.startswith("3d")
+    finite = model.startswith("finite")
+    head = "units lj\natom_style dipole\natom_modify map array\n"
+    if not three:
+        head = "dimension 2\n" + head
+    if model == "finite_open":
+        head += "boundary f f p\n"
+    else:
+        head += "boundary p p p\n"
+    if data:
+        body = f"read_data {data}\n"
+    elif three:
+        # BCC: generic Voronoi vertices (a cubic lattice's are co-spherical,
+        # whose jittered cells change topology all the time).
+        region = ("region box prism 0 3 0 3 0 3 1.0 1.0 0.0" if model == "3d_tri"
+                  else "region box block 0 3 0 3 0 3")
+        body = f"""lattice bcc 1.0
+{region}
+create_box 2 box
+create_atoms 1 box
+set type 1 type/fraction 2 0.4 7731
+displace_atoms all random 0.05 0.05 0.05 4821 units box
+set group all dipole/random 3313 1.0
+"""
+    elif model == "finite_open":
+        body = """lattice hex 1.0
+region box block -3 10 -3 9 -0.5 0.5
+create_box 2 box
+region tissue block 0 7 0 6 -0.5 0.5
+create_atoms 1 region tissue
+set type 1 type/fraction 2 0.4 7731
+displace_atoms all random 0.08 0.08 0 4821 units box
+set group all dipole/random 3313 1.0
+"""
+    else:
+        region = ("region box prism 0 7 0 6 -0.5 0.5 1.5 0 0" if model == "confluent_tri"
+                  else "region box block 0 7 0 6 -0.5 0.5")
+        body = f"""lattice hex 1.0
+{region}
+create_box 2 box
+create_atoms 1 box
+set type 1 type/fraction 2 0.4 7731
+displace_atoms all random 0.1 0.1 0 4821 units box
+set group all dipole/random 3313 1.0
+"""
+    body += "mass * 1.0\n"
+    if three:
+        pair = "pair_style vertex/voronoi 3.0\n" + COEFFS_3D
+    elif finite:
+        r = 0.7 if model == "finite_open" else 0.58
+        pair = f"pair_style vertex/voronoi {2.2 * r:.3f} radius {r}\n" + COEFFS_FINITE
+    else:
+        pair = "pair_style vertex/voronoi 3.0\n" + COEFFS_2D
+    return head + body + pair + "thermo_modify norm no format float %.17g\n"
+
+
+def dim_of(model):
+    return 3 if model.startswith("3d") else 2
+
+
+def printed(run, key):
+    return [[float(w) for w in line.split()[1:]] for line in run.stdout.splitlines()
+            if line.startswith(key + " ")]
+
+
+def read_matrix():
+    cells = []
+    with open(os.path.join(HERE, "feature_matrix.txt")) as f:
+        for line in f:
+            line = line.split("#", 1)[0].strip()
+            if not line:
+                continue
+            model, feature, expect = line.split(None, 2)
+            cells.append((model, feature, expect))
+    return cells
+
+
+def local_rows(run, name):
+    """Rows of a dump local file: a list of frames, each an array."""
+    frames, rows, n = [], [], 0
+    lines = run.text(name).split("\n")
+    i = 0
+    while i < len(lines):
+        if lines[i].startswith("ITEM: NUMBER OF ENTRIES"):
+            n = int(lines[i + 1])
+        if lines[i].startswith("ITEM: ENTRIES"):
+            rows = [[float(w) for w in lines[i + 1 + k].split()] for k in range(n)]
+            frames.append(np.array(rows).reshape(n, -1))
+            i += 1 + n
+            continue
+        i += 1
+    return frames
+
+
+class FeatureMatrix(LammpsTestCase):
+    """One test per (model, feature); methods are added from the data file."""
+
+    def run_lmp(self, script, **kw):
+        # thermo_style resets thermo_modify: pe is the total energy (norm no)
+        # after every thermo_style too.
+        script = re.sub(r"^(thermo_style .*)$", r"\1\nthermo_modify norm no format float %.17g",
+                        script, flags=re.M)
+        return super().run_lmp(script, **kw)
+
+    # ---- the checks: each gets the model and returns nothing (asserts) ----
+
+    def check_forces(self, model):
+        d = dim_of(model)
+        h = 1e-5
+        moves = ""
+        for atom in (5, 17):
+            moves += f"group a{atom} id {atom}\nrun 0\n"
+            moves += f'print "F {atom} $(fx[{atom}]:%.17g) $(fy[{atom}]:%.17g) $(fz[{atom}]:%.17g)"\n'
+            for k, axis in enumerate("xyz"[:d]):
+                v = ["0", "0", "0"]
+                v[k] = repr(h)
+                moves += f"displace_atoms a{atom} move {' '.join(v)} units box\nrun 0\n"
+                moves += f'print "EP {atom} {k} $(pe:%.17g)"\n'
+                v[k] = repr(-2 * h)
+                moves += f"displace_atoms a{atom} move {' '.join(v)} units box\nrun 0\n"
+                moves += f'print "EM {atom} {k} $(pe:%.17g)"\n'
+                v[k] = repr(h)
+                moves += f"displace_atoms a{atom} move {' '.join(v)} units box\n"
+        run = self.run_lmp(model_script(model) + "thermo_style custom step pe\nrun 0\n" + moves)
+        forces = {int(r[0]): r[1:] for r in printed(run, "F")}
+        ep = {(int(r[0]), int(r[1])): r[2] for r in printed(run, "EP")}
+        em = {(int(r[0]), int(r[1])): r[2] for r in printed(run, "EM")}
+        scale = max(abs(x) for f in forces.values() for x in f) + 1e-3
+        for (atom, k), e_plus in ep.items():
+            fd = -(e_plus - em[(atom, k)]) / (2 * h)
+            self.assertAlmostEqual(forces[atom][k], fd, delta=1e-6 * scale,
+                                   msg=f"atom {atom} component {k}")
+        self.assertGreater(scale, 1e-3)    # a check with forces to check
+
+    def check_virial(self, model):
+        e = 1e-6
+        # A uniform strain along x: in a triclinic box the tilts of the
+        # vectors with an x part (xy, xz) scale with lx.
+        def strain(s):
+            tilt = ""
+            if model.endswith("_tri"):
+                tilt = " xy final $(xy*%r)" % s + (" xz final $(xz*%r)" % s if dim_of(model) == 3 else "")
+            return f"change_box all x scale {s!r}{tilt} remap units box\n"
+        script = model_script(model) + f"""thermo_style custom step pe pxx vol
+run 0
+print "P $(pxx:%.17g) $(vol:%.17g) $(lx:%.17g)"
+{strain(1 + e)}run 0
+print "EP $(pe:%.17g)"
+{strain((1 - e) / (1 + e))}run 0
+print "EM $(pe:%.17g)"
+"""
+        run = self.run_lmp(script)
+        pxx, vol, _ = printed(run, "P")[0]
+        dedx = (printed(run, "EP")[0][0] - printed(run, "EM")[0][0]) / (2 * e)
+        # (vol is the area in 2d, as LAMMPS's pressure divides by it.)
+        self.assertAlmostEqual(pxx, -dedx / vol, delta=1e-5 * (abs(pxx) + 1e-3))
+
+    def check_vertex_atom(self, model):
+        script = model_script(model) + """compute c all vertex/atom
+compute e all reduce sum c_c[5]
+compute a all reduce sum c_c[1]
+thermo_style custom step pe c_e c_a c_c[1] c_c[2] c_c[3] c_c[4] c_c[5] vol
+dump d all custom 1 cells.dump id type x y z c_c[1] c_c[2] c_c[3] c_c[4] c_c[5] c_c[6] c_c[7] c_c[8] c_c[9]
+dump_modify d format float %.17g
+run 0
+print "T $(pe:%.17g) $(c_e:%.17g) $(c_a:%.17g) $(vol:%.17g)"
+print "V $(c_c[1]:%.17g) $(c_c[2]:%.17g) $(c_c[3]:%.17g) $(c_c[4]:%.17g) $(c_c[5]:%.17g)"
+"""
+        run = self.run_lmp(script)
+        pe, esum, asum, vol = printed(run, "T")[0]
+        # The cells' energies add up to pe (constants of the quadratic form included).
+        self.assertAlmostEqual(esum, pe, delta=1e-10 * abs(pe))
+        if model not in ("finite_open", "finite_per"):
+            self.assertAlmostEqual(asum, vol, delta=1e-9 * vol)    # the cells tile the box
+        else:
+            self.assertLess(asum, vol)
+        f = run.dump("cells.dump")[0]
+        d = dim_of(model)
+        meas, bound, shape, nb = f["c_c[1]"], f["c_c[2]"], f["c_c[3]"], f["c_c[4]"]
+        for col in ("c_c[%d]" % k for k in range(1, 10)):
+            self.assertTrue(np.all(np.isfinite(f[col])), col)
+        expect = bound / meas ** 0.5 if d == 2 else bound / meas ** (2.0 / 3.0)
+        np.testing.assert_allclose(shape, expect, rtol=1e-12)
+        self.assertTrue(np.all(nb >= (0 if model == "finite_open" else 3)))
+        np.testing.assert_allclose(f["c_c[5]"].sum(), pe, rtol=1e-10)
+        free, edge = f["c_c[8]"], f["c_c[9]"]
+        if model.startswith("finite"):
+            self.assertTrue(np.all(free <= bound + 1e-12))
+            np.testing.assert_array_equal(edge, (free > 0).astype(float))
+            if model == "finite_open":
+                self.assertGreater(edge.sum(), 0)
+        else:
+            self.assertTrue(np.all(free == 0) and np.all(edge == 0))
+        mean_shape = printed(run, "V")[0][0]
+        self.assertAlmostEqual(mean_shape, shape.mean(), delta=1e-9)
+
+    def check_vertex_local(self, model):
+        d = dim_of(model)
+        cols = "c_l[1] c_l[2] c_l[3] c_l[4] c_l[5] c_l[6] c_l[7]" + (" c_l[8] c_l[9]" if d == 3 else "")
+        script = model_script(model) + f"""compute c all vertex/atom
+compute l all vertex/local
+dump d all local 1 faces.dump {cols}
+dump_modify d format float %.17g
+dump e all custom 1 cells.dump id c_c[1] c_c[2]
+dump_modify e format float %.17g
+run 0
+"""
+        run = self.run_lmp(script)
+        rows = local_rows(run, "faces.dump")[0]
+        cells = run.dump("cells.dump")[0]
+        perim = dict(zip(cells["id"], cells["c_c[2]"]))
+        ids = rows[:, 0].astype(int)
+        self.assertEqual(set(ids), set(perim))
+        if d == 2:
+            # Each cell's rows close into its boundary; lengths add up to the perimeter.
+            for cid in set(ids):
+                r = rows[ids == cid]
+                np.testing.assert_allclose(r[:-1, 4:6], r[1:, 2:4], atol=1e-12)
+                np.testing.assert_allclose(r[-1, 4:6], r[0, 2:4], atol=1e-12)
+                self.assertAlmostEqual(r[:, 6].sum(), perim[cid], delta=1e-10 * perim[cid])
+                arcs = r[r[:, 1] == 0]
+                if not model.startswith("finite"):
+                    self.assertEqual(len(arcs), 0)
+            if model == "finite_open":
+                self.assertGreater(int((rows[:, 1] == 0).sum()), 0)
+        else:
+            # Each face's edges close into a polygon; face areas add up to the surface.
+            for cid in set(ids):
+                r = rows[ids == cid]
+                surface = 0.0
+                for nb in set(r[:, 1].astype(int)):
+                    face = r[r[:, 1] == nb]
+                    starts = {tuple(np.round(p, 9)) for p in face[:, 2:5]}
+                    ends = {tuple(np.round(p, 9)) for p in face[:, 5:8]}
+                    self.assertEqual(starts, ends)
+                    surface += face[0, 8]
+                    # The polygon's area (fan from its first corner) is the face area.
+                    p0 = face[0, 2:5]
+                    vec = sum(np.cross(a - p0, b - p0) for a, b in zip(face[:, 2:5], face[:, 5:8]))
+                    self.assertAlmostEqual(0.5 * np.linalg.norm(vec), face[0, 8], delta=1e-9)
+                self.assertAlmostEqual(surface, perim[cid], delta=1e-8 * perim[cid])
+
+    def dynamics(self, model, integrator, steps=30, extra=""):
+        return model_script(model) + f"""fix p all polarity 0.3 1.0 neighbor 0.5 noise 0.2 77
+fix b all {integrator} 1.0 1 gamma_t 1.0 rng none
+timestep 0.005
+{extra}
+thermo_style custom step pe
+run {steps}
+write_dump all custom end.dump id x y z mux muy muz modify format float %.17g
+"""
+
+    def check_unit_polarities(self, model, frame):
+        n = np.sqrt(frame["mux"] ** 2 + frame["muy"] ** 2 + frame["muz"] ** 2)
+        np.testing.assert_allclose(n, 1.0, atol=1e-12)
+        if dim_of(model) == 2:
+            self.assertTrue(np.all(frame["muz"] == 0.0))
+
+    def check_polarity(self, model):
+        start = self.run_lmp(model_script(model) + "run 0\nwrite_dump all custom s.dump id mux muy muz\n")
+        run = self.run_lmp(self.dynamics(model, "brownian"))
+        f = run.dump("end.dump")[0]
+        self.check_unit_polarities(model, f)
+        s = start.dump("s.dump")[0]
+        self.assertGreater(np.abs(f["mux"] - s["mux"]).max(), 1e-3)    # they turned
+
+    def check_brownian(self, model):
+        run = self.run_lmp(self.dynamics(model, "brownian"))
+        self.check_unit_polarities(model, run.dump("end.dump")[0])
+
+    def check_heun(self, model):
+        # Second order without noise: halving dt changes the end state ~4x less.
+        def state(dt, steps):
+            script = model_script(model) + f"""fix p all polarity 0.3 1.0 neighbor 0.5
+fix b all brownian/heun 1.0 1 gamma_t 1.0 rng none
+timestep {dt}
+run {steps}
+write_dump all custom end.dump id xu yu zu mux muy muz modify format float %.17g
+"""
+            f = self.run_lmp(script).dump("end.dump")[0]
+            return np.concatenate([f[c] for c in ("xu", "yu", "zu", "mux", "muy", "muz")])
+        # Against the finest of dt, dt/2, dt/4 the errors shrink by
+        # (1 - 1/16) / (1/4 - 1/16) = 5 for second order, 3 for first.
+        a, b, c = state(0.004, 10), state(0.002, 20), state(0.001, 40)
+        e1, e2 = np.abs(a - c).max(), np.abs(b - c).max()
+        self.assertGreater(e1, 0.0)
+        self.assertGreater(e1 / e2, 4.2, f"errors {e1} {e2}: not second order")
+
+    def check_divide(self, model):
+        d = dim_of(model)
+        cases = [("rate 20.0", "random"), ("cycle 0.05 spread 0.01", "long"),
+                 ("area 0.5", "short"), ("rate 20.0", "polarity")]
+        for trigger, axis in cases:
+            script = model_script(model) + f"""fix b all brownian 1.0 1 gamma_t 1.0 rng none
+compute c all vertex/atom
+fix div all cell/divide {trigger} seed 4821 axis {axis} separation 0.1 max 110
+timestep 0.005
+thermo_style custom step atoms pe
+print "N0 $(atoms)"
+run 4
+print "N1 $(atoms)"
+"""
+            run = self.run_lmp(script)
+            n0, n1 = printed(run, "N0")[0][0], printed(run, "N1")[0][0]
+            self.assertGreater(n1, n0, f"{trigger} axis {axis}: no division")
+        if model in ("confluent", "3d"):
+            self.check_division_axis(model)
+
+    def check_division_axis(self, model):
+        """With the area trigger every cell divides, along its long axis
+        (Hertwig): the daughter sits at +h u from the mother's centre, with u
+        the long principal axis of the mother's cell, computed here from the
+        cell's boundary (vertex/local rows) by numpy."""
+        d = dim_of(model)
+        cols = "c_l[1] c_l[2] c_l[3] c_l[4] c_l[5] c_l[6] c_l[7]" + (" c_l[8] c_l[9]" if d == 3 else "")
+        h = 0.005
+        script = model_script(model) + f"""compute l all vertex/local
+dump f all local 1 faces.dump {cols}
+dump_modify f format float %.17g
+run 0
+undump f
+write_dump all custom before.dump id x y z modify format float %.17g
+fix div all cell/divide area 0.5 seed 4821 axis long separation {2 * h!r} max 100000
+run 1
+write_dump all custom after.dump id x y z modify format float %.17g
+"""
+        run = self.run_lmp(script)
+        rows = local_rows(run, "faces.dump")[0]
+        before, after = run.dump("before.dump")[0], run.dump("after.dump")[0]
+        n = len(before["id"])
+        self.assertEqual(len(after["id"]), 2 * n)
+        lengths = run.dump("before.dump")[0]["box"]
+        L = lengths[:, 1] - lengths[:, 0]
+        xb = np.stack([before[c] for c in "xyz"], axis=1)
+        xa = np.stack([after[c] for c in "xyz"], axis=1)
+        checked = 0
+        for k in range(n, 2 * n):
+            # The daughter's mother: the old centre 2h away (minimum image).
+            diff = xa[k] - xb
+            diff -= L * np.round(diff / L)
+            m = int(np.argmin(np.linalg.norm(diff[:, :d], axis=1)))
+            u = diff[m, :d] / np.linalg.norm(diff[m, :d])
+            axis = self.long_axis(rows, int(before["id"][m]), xb[m, :d], d)
+            if axis is None:
+                continue
+            self.assertAlmostEqual(abs(float(np.dot(u, axis))), 1.0, delta=1e-6)
+            checked += 1
+        self.assertGreater(checked, n // 2)
+
+    @staticmethod
+    def long_axis(rows, cid, centre, d):
+        """The long principal axis of a cell's second moments from its rows."""
+        r = rows[rows[:, 0].astype(int) == cid]
+        m0, m1, m2 = 0.0, np.zeros(d), np.zeros((d, d))
+        if d == 2:
+            for a, b in zip(r[:, 2:4] - centre, r[:, 4:6] - centre):
+                cr = a[0] * b[1] - a[1] * b[0]
+                m0 += cr / 2
+                m1 += cr * (a + b) / 6
+                m2 += cr / 24 * (2 * np.outer(a, a) + 2 * np.outer(b, b) + np.outer(a, b) + np.outer(b, a))
+        else:
+            for nb in set(r[:, 1].astype(int)):
+                face = r[r[:, 1] == nb][:, 2:5] - centre
+                for q in range(1, len(face) - 1):
+                    a, b, c = face[0], face[q], face[q + 1]
+                    v = np.dot(a, np.cross(b, c)) / 6
+                    s = a + b + c
+                    m0 += v
+                    m1 += v * s / 4
+                    m2 += v / 20 * (np.outer(a, a) + np.outer(b, b) + np.outer(c, c) + np.outer(s, s))
+        cov = m2 - np.outer(m1, m1) / m0
+        w, vec = np.linalg.eigh(cov)
+        if w[-1] - w[-2] < 1e-6 * w.sum():
+            return None
+        return vec[:, -1]
+
+    def check_death(self, model):
+        for trigger in ("rate 5.0", "area 100.0"):
+            script = model_script(model) + f"""fix b all brownian 1.0 1 gamma_t 1.0 rng none
+fix die all cell/death {trigger} seed 77 min 10
+timestep 0.005
+thermo_style custom step atoms pe
+print "N0 $(atoms)"
+run 5
+print "N1 $(atoms)"
+"""
+            run = self.run_lmp(script)
+            n0, n1 = printed(run, "N0")[0][0], printed(run, "N1")[0][0]
+            self.assertLess(n1, n0, trigger)
+            self.assertGreaterEqual(n1, 10)
+
+    def check_area0(self, model):
+        # Per-cell preferred measures: the energy of each cell follows its own
+        # A0 (FD of forces checked with them), and a uniform d_area0 equal to
+        # the types' values gives the same pe as no d_area0.
+        base = model_script(model)
+        same = self.run_lmp(base + """fix a0 all property/atom d_area0
+set type 1 d_area0 1.0
+set type 2 d_area0 0.9
+thermo_style custom step pe
+run 0
+print "E $(pe:%.17g)"
+""")
+        finite = model.startswith("finite")
+        if finite:
+            same_types = self.run_lmp(base.replace("quadratic 1.0 1.2", "quadratic 1.0 1.0")
+                                      .replace("quadratic 1.2 1.1", "quadratic 1.2 0.9")
+                                      + "run 0\nprint \"E $(pe:%.17g)\"\n")
+        else:
+            same_types = self.run_lmp(base + "run 0\nprint \"E $(pe:%.17g)\"\n")
+        self.assertAlmostEqual(printed(same, "E")[0][0], printed(same_types, "E")[0][0],
+                               delta=1e-12 * abs(printed(same, "E")[0][0]))
+        h = 1e-5
+        d = dim_of(model)
+        script = base + """fix a0 all property/atom d_area0
+variable a atom 0.8+0.05*(id%7)
+set group all d_area0 v_a
+thermo_style custom step pe
+run 0
+group a5 id 5
+print "F $(fx[5]:%.17g) $(fy[5]:%.17g) $(fz[5]:%.17g)"
+"""
+        for k in range(d):
+            v = ["0", "0", "0"]
+            v[k] = repr(h)
+            script += f"displace_atoms a5 move {' '.join(v)} units box\nrun 0\nprint \"EP $(pe:%.17g)\"\n"
+            v[k] = repr(-2 * h)
+            script += f"displace_atoms a5 move {' '.join(v)} units box\nrun 0\nprint \"EM $(pe:%.17g)\"\n"
+            v[k] = repr(h)
+            script += f"displace_atoms a5 move {' '.join(v)} units box\n"
+        run = self.run_lmp(script)
+        force = printed(run, "F")[0]
+        for k, (ep, em) in enumerate(zip(printed(run, "EP"), printed(run, "EM"))):
+            self.assertAlmostEqual(force[k], -(ep[0] - em[0]) / (2 * h), delta=2e-5 * (abs(force[k]) + 1))
+        self.assertNotAlmostEqual(printed(same, "E")[0][0], printed(run, "EP")[0][0], places=3)
+
+    def check_adapt(self, model):
+        # fix adapt to a new value gives the energy of pair_coeff with that value.
+        base = self.thesis_form(model)
+        for param, pair, value in (("kappa", "1 1", 1.7), ("area0", "2 2", 1.3),
+                                   ("gamma", "1 1", 0.4), ("lambda", "1 2", 0.25)):
+            adapted = self.run_lmp(base + f"""variable v equal {value}
+fix ad all adapt 1 pair vertex/voronoi {param} {pair} v_v reset no
+thermo_style custom step pe
+run 0
+print "E $(pe:%.17g)"
+""")
+            direct = self.run_lmp(self.thesis_form(model, (param, pair, value))
+                                  + "run 0\nprint \"E $(pe:%.17g)\"\n")
+            a, b = printed(adapted, "E")[0][0], printed(direct, "E")[0][0]
+            self.assertAlmostEqual(a, b, delta=1e-11 * abs(b), msg=param)
+
+    @staticmethod
+    def thesis_lines(model, change=None):
+        """The model's pair_coeff lines in the thesis form (K = 2 KA, Gamma =
+        2 KP, Lambda = -2 KP P0 / w with w = 1/2; free F less 2 KP P0): the
+        same forces, no constant.  change = (param, "I I", value) replaces one
+        per-type value."""
+        coeffs = {"3d": COEFFS_3D, "3d_tri": COEFFS_3D, "finite_open": COEFFS_FINITE,
+                  "finite_per": COEFFS_FINITE}.get(model, COEFFS_2D)
+        lines = []
+        for line in coeffs.splitlines():
+            w = line.split()
+            if w[1] != w[2]:
+                lines.append(line)
+                continue
+            t = int(w[1])
+            ka, a0, kp, p0 = (float(x) for x in w[4:8])
+            vals = {"kappa": 2 * ka, "area0": a0, "gamma": 2 * kp}
+            lam = -4 * kp * p0
+            if change and change[0] in vals and change[1] == f"{t} {t}":
+                vals[change[0]] = change[2]
+            free = " free %r" % (float(w[9]) - 2 * kp * p0) if len(w) > 8 else ""
+            lines.append(f"pair_coeff {t} {t} {vals['kappa']!r} {vals['area0']!r} "
+                         f"{vals['gamma']!r} {lam!r}{free}")
+        if change and change[0] == "lambda":
+            lines.append("pair_coeff %s %r" % (change[1], change[2]))
+        return "\n".join(lines) + "\n"
+
+    def thesis_form(self, model, change=None):
+        script = model_script(model)
+        coeffs = {"3d": COEFFS_3D, "3d_tri": COEFFS_3D, "finite_open": COEFFS_FINITE,
+                  "finite_per": COEFFS_FINITE}.get(model, COEFFS_2D)
+        return script.replace(coeffs, self.thesis_lines(model, change))
+
+    def check_restart(self, model):
+        dyn = """fix p all polarity 0.3 1.0 neighbor 0.5
+fix b all brownian 1.0 1 gamma_t 1.0 rng none
+timestep 0.005
+thermo_style custom step pe
+"""
+        end = "write_dump all custom end.dump id xu yu zu mux muy muz modify format float %.17g\n"
+        whole = self.run_lmp(model_script(model) + dyn + "run 20\n" + end).dump("end.dump")[0]
+        first = self.run_lmp(model_script(model) + dyn + "run 10\nwrite_restart half.restart\n")
+        head = "dimension 2\n" if dim_of(model) == 2 else ""
+        second = self.run_lmp(head + f"read_restart {first.path('half.restart')}\n" + dyn + "run 10\n" + end)
+        f = second.dump("end.dump")[0]
+        for col in ("xu", "yu", "zu", "mux", "muy", "muz"):
+            np.testing.assert_allclose(f[col], whole[col], rtol=0, atol=1e-10, err_msg=col)
+
+    def check_ranks(self, model):
+        data = self.run_lmp(model_script(model) + "write_data cfg.data\n").text("cfg.data")
+        results = []
+        for n in (1, 2, 4):
+            script = model_script(model, data="cfg.data") + """compute c all vertex/atom
+thermo_style custom step pe c_c[1]
+dump d all custom 1 f.dump id fx fy fz c_c[1] c_c[2]
+dump_modify d format float %.17g sort id
+run 0
+print "E $(pe:%.17g)"
+"""
+            run = self.run_lmp(script, nprocs=n, files={"cfg.data": data})
+            results.append((printed(run, "E")[0][0], run.dump("f.dump")[0]))
+        for e, f in results[1:]:
+            self.assertAlmostEqual(e, results[0][0], delta=1e-10 * abs(results[0][0]))
+            for col in ("fx", "fy", "fz", "c_c[1]", "c_c[2]"):
+                np.testing.assert_allclose(f[col], results[0][1][col], rtol=0, atol=1e-10, err_msg=col)
+
+    def check_deposit(self, model):
+        d = dim_of(model)
+        region = ("region ins block 1.5 2.5 0.5 1.5 0.5 1.5 units box" if d == 3 else
+                  "region ins block 1 5 1 5 -0.1 0.1 units box")
+        script = model_script(model) + f"""{region}
+fix p all polarity 0.3 1.0 neighbor 0.5
+fix b all brownian 1.0 1 gamma_t 1.0 rng none
+fix dep all deposit 3 1 4 4821 region ins near 0.45 attempt 500
+timestep 0.005
+thermo_style custom step atoms pe
+run 1
+print "N0 $(atoms)"
+run 12
+print "N1 $(atoms)"
+"""
+        run = self.run_lmp(script)
+        n0, n1 = printed(run, "N0")[0][0], printed(run, "N1")[0][0]
+        self.assertTrue(n0 + 1 <= n1 <= n0 + 3, f"{n0} -> {n1}")
+
+
+def _make(model, feature, expect):
+    check = getattr(FeatureMatrix, "check_" + feature)
+    if expect == "ok":
+        def test(self):
+            check(self, model)
+    else:
+        fragment = expect.split(None, 1)[1] if " " in expect else ""
+
+        def test(self):
+            # The feature's scripts must stop with the named error.
+            with self.assertRaises(AssertionError) as caught:
+                check(self, model)
+            self.assertIn(fragment, str(caught.exception))
+    if feature == "ranks":
+        test.nprocs = 4
+    test.__doc__ = f"{model} x {feature}: {expect}"
+    return test
+
+
+for _model, _feature, _expect in read_matrix():
+    setattr(FeatureMatrix, f"test_{_model}__{_feature}", _make(_model, _feature, _expect))
+
+
+if __name__ == "__main__":
+    lmptest.main()

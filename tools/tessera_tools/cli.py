@@ -61,14 +61,18 @@ def cmd_info(args):
     print(f"unwrapped positions: {'yes' if first.has_unwrapped() else 'no'}")
     if args.local:
         from .junctions import contact_lengths, paired_frames
+        from .measure import demix_series
 
         atoms, local = paired_frames(args.dump, args.local)[-1]
         contacts = contact_lengths(atoms, local)
-        total = sum(contacts.values())
-        hetero = sum(v for (a, b), v in contacts.items() if a != b)
         print(f"timestep {atoms.timestep}: junction length by type pair "
-              + ", ".join(f"{a}-{b} {v:.6g}" for (a, b), v in sorted(contacts.items()))
-              + f"; heterotypic fraction {hetero / total if total else float('nan'):.4f}")
+              + ", ".join(f"{a}-{b} {v:.6g}" for (a, b), v in sorted(contacts.items())) + " (length units)")
+        steps, times, frac, het, tot = demix_series(args.dump, args.local)
+        print(f"heterotypic junction fraction, {len(steps)} frame(s) both dumps hold:")
+        print("# timestep " + ("time " if times is not None else "") + "fraction heterotypic_length total_length")
+        for k in range(len(steps)):
+            t = f"{times[k]:.10g} " if times is not None else ""
+            print(f"{steps[k]} {t}{frac[k]:.6f} {het[k]:.8g} {tot[k]:.8g}")
     if args.stats:
         from .voronoi import tessellate_frame
 
@@ -187,13 +191,32 @@ def cmd_traj(args):
         values = plot_trajectories(traj, args.output, kinds=kinds, values=values, cmap=args.cmap,
                                    wrap=args.wrap, dpi=args.dpi, title=args.title, linewidth=args.linewidth)
         summary = ", ".join(f"mean {k} {np.nanmean(values[k]):.4g}" for k in kinds)
-        print(f"wrote {args.output}: {len(traj)} frames, {len(traj.ids)} cells, {summary}")
+        cells = (f"{len(traj.ids)} cells" if not traj.changing else
+                 f"{len(traj.ids)} cell IDs ({int(traj.present[0].sum())} in the first frame, "
+                 f"{int(traj.present[-1].sum())} in the last), each drawn while present")
+        print(f"wrote {args.output}: {len(traj)} frames, {cells}, {summary}")
     if args.hist:
         o = plot_angle_histogram(traj, args.hist, skip=args.hist_skip, bins=args.bins, dpi=args.dpi)
         near = np.mean((o < math.pi / 4) | (o > 3 * math.pi / 4)) if len(o) else float("nan")
         print(f"wrote {args.hist}: {len(o)} velocity samples, fraction within pi/4 of the x axis {near:.3f}")
-    if not args.output and not args.hist:
-        raise SystemExit("tessera-tools traj: nothing to do, give -o and/or --hist")
+    if args.msd:
+        msd, count = traj.msd()
+        dt = args.dt
+        t = (traj.timesteps - traj.timesteps[0]) * (dt if dt else 1.0)
+        if args.msd.lower().endswith((".png", ".pdf", ".svg")):
+            from .plots import plot_msd
+
+            plot_msd(t, msd, count, args.msd, time_label="time" if dt else "timesteps", dpi=args.dpi)
+        else:
+            np.savetxt(args.msd, np.column_stack([traj.timesteps, t, msd, count]), fmt=["%d", "%.10g", "%.10g", "%d"],
+                       header="timestep time MSD count: mean-square displacement from the first selected frame "
+                              "(length^2), averaged over the count cells present in both frames")
+        note = ("" if not traj.changing else
+                f"; IDs change, so the mean at each frame runs over the cells present in both frames "
+                f"({int(count.min())}-{int(count.max())} cells)")
+        print(f"wrote {args.msd}: MSD from timestep {traj.timesteps[0]}, last {msd[-1]:.6g} length^2{note}")
+    if not args.output and not args.hist and not args.msd:
+        raise SystemExit("tessera-tools traj: nothing to do, give -o, --hist and/or --msd")
 
 
 def cmd_log(args):
@@ -251,6 +274,54 @@ def _pm(value, err):
     if err is None or not np.isfinite(err):
         return f"{value:.8g}"
     return f"{value:.8g} +- {err:.2g}"
+
+
+def _moduli_table(args, states, ref, ref_name):
+    """Append one row per route (Hessian, quasistatic) to args.table (CSV, reduced units)."""
+    import csv
+    import os
+
+    from .moduli import seed_average, young_poisson
+
+    if args.quadratic:
+        p0 = args.quadratic[3] / math.sqrt(args.quadratic[1])
+    else:
+        w = 0.5 if args.tension == "edge" else 1.0
+        p0 = -w * args.coeff[3] / args.coeff[2] / math.sqrt(args.coeff[1])
+    rows = []
+    hs = [s["hessian"] for s in states if s["hessian"] is not None]
+    if hs:
+        row = dict(p0=p0, route="hessian", states=len(hs))
+        for key in ("G", "B", "E", "nu"):
+            mean, err = seed_average([h[key] for h in hs])
+            scale = 1.0 if key == "nu" else ref
+            row[key], row[key + "_err"] = mean / scale, err / scale
+        rows.append(row)
+    qs = [s["qs"] for s in states if s["qs"] is not None]
+    if qs:
+        row = dict(p0=p0, route="quasistatic", states=len(qs))
+        if len(qs) == 1:
+            q = qs[0]
+            for key in ("G", "B", "E", "nu"):
+                scale = 1.0 if key == "nu" else ref
+                row[key], row[key + "_err"] = q[key] / scale, q[key + "_err"] / scale
+        else:
+            for key in ("G", "B", "E", "nu"):
+                mean, err = seed_average([q[key] for q in qs])
+                scale = 1.0 if key == "nu" else ref
+                row[key], row[key + "_err"] = mean / scale, err / scale
+        rows.append(row)
+    fields = ["p0", "route", "states", "G", "G_err", "B", "B_err", "E", "E_err", "nu", "nu_err", "unit"]
+    new = not os.path.exists(args.table) or os.path.getsize(args.table) == 0
+    with open(args.table, "a", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=fields)
+        if new:
+            w.writeheader()
+        for row in rows:
+            row["unit"] = ref_name
+            w.writerow({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in row.items()})
+    print(f"appended {len(rows)} row(s) to {args.table} (moduli in {ref_name}; errors: "
+          + ("standard errors over the states)" if len(states) > 1 else "fit errors, none for one Hessian state)"))
 
 
 def cmd_moduli(args):
@@ -362,6 +433,8 @@ def cmd_moduli(args):
             print(f"  quasistatic ({len(qs)} states): " + ", ".join(parts))
     elif states[0]["hessian"] is not None:
         print("  (the Hessian values are exact for this state; --seeds N gives error bars over N states)")
+    if args.table:
+        _moduli_table(args, states, ref, ref_name)
     for line in bad:
         print(f"warning: {line}: not an energy minimum, so G and B are not its moduli; minimise further "
               f"(smaller ftol, min_style fire) or raise --fnorm-max", file=sys.stderr)
@@ -369,6 +442,158 @@ def cmd_moduli(args):
         if s["hessian"] is None:
             print(f"warning: {s['path']}: no Hessian route ({s['hessian_error'].splitlines()[0][:160]}); "
                   "the moduli above are the quasistatic slopes", file=sys.stderr)
+
+
+def _is_dump(path):
+    """True for a LAMMPS dump (first line 'ITEM: ...'), False for anything else (a log)."""
+    from .dump import _open
+
+    with _open(path) as f:
+        for line in f:
+            if line.strip():
+                return line.startswith("ITEM:")
+    return False
+
+
+def _log_series(path, column, x="auto"):
+    """(t, values, time known) of a thermo column over all runs of a log."""
+    from .logplot import parse_log
+
+    log = parse_log(path)
+    table = log.combined()
+    if column not in table:
+        raise SystemExit(f"tessera-tools plot: {path} has no thermo column '{column}' "
+                         f"(columns: {' '.join(log.names)}); name one with -c")
+    t = table["time"]
+    known = x != "step" and not np.all(np.isnan(t))
+    if not known:
+        t = table["Step"]
+    ok = np.isfinite(table[column])
+    return t[ok], table[column][ok], known
+
+
+def _dump_time_label(path, dt):
+    from .dump import iter_dump
+
+    first = next(iter_dump(path))
+    return first.time is not None or bool(dt)
+
+
+def cmd_plot_wound(args):
+    from .measure import frame_series, half_time
+    from .plots import TIME, STEP, plot_wound
+
+    if _is_dump(args.input):
+        value = args.value or ("open" if args.radius else None)
+        if value is None:
+            raise SystemExit("tessera-tools plot wound: for a dump give --radius R (the open area: box area "
+                             "minus the finite cells' area) or --value sum:COLUMN / mean:COLUMN / count")
+        steps, t, y = frame_series(args.input, value, dt=args.dt, radius=args.radius)
+        known = _dump_time_label(args.input, args.dt)
+        what = "open area (box minus cells)" if value == "open" else value
+    else:
+        if not args.column:
+            raise SystemExit("tessera-tools plot wound: for a log name the thermo column with -c, e.g. -c v_wound "
+                             "(see 'tessera-tools log LOG --list')")
+        t, y, known = _log_series(args.input, args.column, args.x)
+        what = args.column
+    half = half_time(t, y, args.fraction)
+    ylabel = args.ylabel or (r"wound area ($A_0$)" if not args.column and (args.value or "open") == "open"
+                             else what)
+    plot_wound(t, y, args.output, ylabel, xlabel=TIME if known else STEP, half=half if args.fraction == 0.5
+               else None, dpi=args.dpi, vector=args.vector, title=args.title)
+    unit = "time" if known else "timesteps"
+    print(f"wrote {args.output}: {what} from {y[0]:.6g} to {y[-1]:.6g} over {len(t)} points; falls to "
+          f"{args.fraction:g} of its first value at {half:.6g} {unit}"
+          + (" (never)" if not np.isfinite(half) else ""))
+
+
+def cmd_plot_growth(args):
+    from .measure import exponential_fit, frame_series
+    from .plots import TIME, STEP, plot_growth
+
+    if _is_dump(args.input):
+        _, t, n = frame_series(args.input, "count", dt=args.dt)
+        known = _dump_time_label(args.input, args.dt)
+    else:
+        t, n, known = _log_series(args.input, args.column, args.x)
+    fit = exponential_fit(t, n, args.tmin, args.tmax)
+    plot_growth(t, n, fit, args.output, xlabel=TIME if known else STEP, dpi=args.dpi, vector=args.vector,
+                title=args.title)
+    unit = "per unit time" if known else "per timestep"
+    print(f"wrote {args.output}: N from {n[0]:.0f} to {n[-1]:.0f}; fit N0 exp(r t) over t = {fit['tmin']:g} .. "
+          f"{fit['tmax']:g} ({fit['points']} points): r = {fit['rate']:.6g} +- {fit['rate_err']:.2g} {unit}, "
+          f"N0 = {fit['N0']:.4g}, doubling time ln2/r = {fit['doubling']:.6g} +- {fit['doubling_err']:.2g} "
+          f"{'time' if known else 'timesteps'} (errors from the scatter about the line)")
+
+
+def cmd_plot_shape(args):
+    from .measure import shape_samples
+    from .plots import plot_shape
+
+    frames = _select_frames(args.dump, args.frames or slice(-1, None))
+    q, z, rim = shape_samples(frames, args.q, args.z, args.edge, args.radius)
+    groups = plot_shape(q, z, rim, args.output, dpi=args.dpi, vector=args.vector, title=args.title)
+    print(f"wrote {args.output}: {len(frames)} frame(s), {len(q)} cells")
+    for name, (qq, zz) in groups.items():
+        if len(qq):
+            counts = {int(v): int(c) for v, c in zip(*np.unique(zz.astype(int), return_counts=True))}
+            print(f"  {name}: {len(qq)} cells, shape index mean {np.mean(qq):.6g} (std {np.std(qq):.3g}), "
+                  f"neighbours mean {np.mean(zz):.4g}, counts {counts}")
+    if not rim.any() and not (args.edge or args.radius):
+        print("  (no rim: a periodic confluent tissue; for open tissues give --edge COL, the edge flag column "
+              "of compute vertex/atom, e.g. c_cell[9], or --radius R)")
+
+
+def cmd_plot_demix(args):
+    from .dump import iter_dump
+    from .measure import demix_series
+    from .plots import TIME, STEP, plot_demix
+
+    steps, times, frac, het, tot = demix_series(args.dump, args.local)
+    known = times is not None or bool(args.dt)
+    t = times if times is not None else steps * (args.dt or 1.0)
+    first = next(iter_dump(args.dump))
+    _, counts = np.unique(np.asarray(first["type"]), return_counts=True)
+    x = counts / counts.sum()
+    reference = None if args.no_reference else float(1.0 - np.sum(x ** 2))
+    plot_demix([(args.label or "heterotypic fraction", t, frac)], args.output, xlabel=TIME if known else STEP,
+               dpi=args.dpi, vector=args.vector, reference=reference, title=args.title)
+    if args.csv:
+        np.savetxt(args.csv, np.column_stack([steps, t, frac, het, tot]), fmt=["%d", "%.10g", "%.8f", "%.10g", "%.10g"],
+                   delimiter=",", comments="",
+                   header="timestep,time,heterotypic_fraction,heterotypic_length,total_length")
+        print(f"wrote {args.csv}")
+    ref = f"; a random mixture of these types would give {reference:.4g}" if reference is not None else ""
+    print(f"wrote {args.output}: {len(steps)} frames, heterotypic junction fraction {frac[0]:.4f} -> {frac[-1]:.4f}{ref}")
+
+
+def cmd_plot_moduli(args):
+    import csv
+
+    from .plots import plot_moduli
+
+    rows = []
+    for path in args.tables:
+        with open(path, newline="") as f:
+            for r in csv.DictReader(f):
+                try:
+                    rows.append(dict(p0=float(r["p0"]), route=r["route"], unit=r.get("unit", "KA A0"),
+                                     **{k: float(r[k]) for k in ("G", "G_err", "B", "B_err")}))
+                except (KeyError, ValueError) as err:
+                    raise SystemExit(f"tessera-tools plot moduli: {path}: unreadable row {r} ({err}); "
+                                     "write the table with 'tessera-tools moduli ... --table FILE'") from None
+    if not rows:
+        raise SystemExit(f"tessera-tools plot moduli: no rows in {' '.join(args.tables)}")
+    if args.route != "both":
+        rows = [r for r in rows if r["route"] == args.route]
+    units = sorted({r["unit"] for r in rows})
+    if len(units) > 1:
+        raise SystemExit(f"tessera-tools plot moduli: the rows mix units {units}; plot them separately")
+    unit = {"KA A0": r"$K_A A_0$", "K A0": r"$K A_0$"}.get(units[0], units[0])
+    drawn = plot_moduli(rows, args.output, unit=unit, dpi=args.dpi, vector=args.vector, title=args.title)
+    print(f"wrote {args.output}: " + "; ".join(f"{route}: {len(v[0])} values of p0" for route, v in drawn.items())
+          + f" (moduli in {units[0]})")
 
 
 def build_parser():
@@ -385,7 +610,8 @@ def build_parser():
     q.add_argument("--stats", action="store_true", help="also tessellate the last frame and print cell statistics")
     q.add_argument("--local", metavar="DUMP",
                    help="dump local of compute vertex/local: also print the junction length between each pair "
-                        "of cell types and the heterotypic fraction, at the last common timestep")
+                        "of cell types at the last common timestep, and the heterotypic junction fraction of "
+                        "every frame both dumps hold (one line per frame)")
     q.set_defaults(func=cmd_info)
 
     r = sub.add_parser("render", help="picture of the Voronoi tessellation of a frame (PNG), or a series (GIF/MP4)",
@@ -463,6 +689,11 @@ def build_parser():
     t.add_argument("--kind", choices=("coordination", "orientation", "both"), default="both",
                    help="which colouring (default: both, side by side)")
     t.add_argument("--hist", metavar="PNG", help="also write a histogram of velocity angles")
+    t.add_argument("--msd", metavar="FILE",
+                   help="mean-square displacement from the first selected frame: a plot (.png/.pdf/.svg) or a "
+                        "table (any other name); with changing IDs (division, death) averaged over the cells "
+                        "present in both frames")
+    t.add_argument("--dt", type=float, help="timestep size, for times in --msd (default: timesteps)")
     t.add_argument("--hist-skip", type=int, default=0, metavar="K",
                    help="leave the first K selected frames out of the histogram (transient)")
     t.add_argument("--bins", type=int, default=36, help="histogram bins over [0, pi] (default 36)")
@@ -516,6 +747,9 @@ def build_parser():
     mo.add_argument("--seeds", type=int, metavar="N",
                     help="average over N independent states: the dump (and --quasistatic) names hold {seed}, "
                          "replaced by 1..N (see --first-seed); error bars are standard errors over the states")
+    mo.add_argument("--table", metavar="CSV",
+                    help="append p0, G, B, E, nu with errors (in KA A0 or K A0) to this CSV, one row per route; "
+                         "'tessera-tools plot moduli CSV' draws G and B against p0")
     mo.add_argument("--first-seed", type=int, default=1, metavar="S", help="first seed for --seeds (default 1)")
     mo.add_argument("--fnorm-max", type=float, default=1e-6, metavar="F",
                     help="warn when the force norm (LAMMPS fnorm) of a state or strain step exceeds F "
@@ -524,6 +758,82 @@ def build_parser():
     mo.add_argument("--exe", help="tessera-hessian executable (default: $TESSERA_HESSIAN, else build/core/ of the "
                          "repository, else PATH)")
     mo.set_defaults(func=cmd_moduli)
+
+    pl = sub.add_parser("plot", help="measurement figures: wound area, growth N(t), shapes, demixing, moduli vs p0",
+                        description="One figure per command, print quality (300 dpi, --vector pdf for a vector "
+                                    "copy), axes in the model's reduced units. See doc/howto_measure.md.")
+    psub = pl.add_subparsers(dest="what", metavar="WHAT")
+    psub.required = True
+
+    def common(p):
+        p.add_argument("-o", "--output", required=True, help="picture (.png, .pdf, .svg)")
+        p.add_argument("--dpi", type=int, default=300, help="resolution (default 300)")
+        p.add_argument("--vector", metavar="EXT", help="also write a vector copy (pdf or svg)")
+        p.add_argument("--title")
+
+    pw = psub.add_parser("wound", help="wound (hole) area against time, with the half-closure time",
+                         description="From a log: a thermo column (-c v_wound). From a dump: the open area "
+                                     "(box area minus the finite Voronoi cells of --radius R), or a per-frame "
+                                     "value --value sum:COL / mean:COL / count.")
+    pw.add_argument("input", help="log.lammps or a dump custom file")
+    pw.add_argument("-c", "--column", help="thermo column of a log (e.g. v_wound)")
+    pw.add_argument("--radius", type=float, help="dump: radius of the finite cells (pair_style ... radius R)")
+    pw.add_argument("--value", help="dump: per-frame value: open (default with --radius), sum:COL, mean:COL, count")
+    pw.add_argument("--dt", type=float, help="dump: timestep size (time = timestep x dt; else the dump's TIME)")
+    pw.add_argument("--x", choices=("auto", "step"), default="auto", help="log: time (default) or step")
+    pw.add_argument("--fraction", type=float, default=0.5,
+                    help="report when the value falls to this fraction of its first value (default 0.5)")
+    pw.add_argument("--ylabel")
+    common(pw)
+    pw.set_defaults(func=cmd_plot_wound)
+
+    pg = psub.add_parser("growth", help="number of cells N(t) with the exponential fit and doubling time",
+                         description="N(t) from a log column (default Atoms) or the cells of each dump frame; "
+                                     "fits ln N = ln N0 + r t by least squares up to the first maximum of N "
+                                     "(a 'max' cap does not bend it) or over --tmin/--tmax.")
+    pg.add_argument("input", help="log.lammps (thermo with Atoms) or a dump")
+    pg.add_argument("-c", "--column", default="Atoms", help="log: thermo column of the cell count (default Atoms)")
+    pg.add_argument("--tmin", type=float, help="fit from this time")
+    pg.add_argument("--tmax", type=float, help="fit up to this time (default: the first maximum of N)")
+    pg.add_argument("--dt", type=float, help="dump: timestep size")
+    pg.add_argument("--x", choices=("auto", "step"), default="auto", help="log: time (default) or step")
+    common(pg)
+    pg.set_defaults(func=cmd_plot_growth)
+
+    ps = psub.add_parser("shape", help="shape-index and neighbour-number histograms (interior and rim apart)",
+                         description="From dump columns of compute vertex/atom (--q c_cell[3] --z c_cell[4] "
+                                     "--edge c_cell[9]) or from the Voronoi tessellation of the frames (finite "
+                                     "cells with --radius R: cells with a free arc are the rim).")
+    ps.add_argument("dump")
+    ps.add_argument("--frames", type=_slice, help="frames pooled (default: the last), e.g. '-10:' or 'all'")
+    ps.add_argument("--q", metavar="COL", help="shape index column (default: computed)")
+    ps.add_argument("--z", metavar="COL", help="neighbour number column (default: computed)")
+    ps.add_argument("--edge", metavar="COL",
+                    help="edge flag column (compute vertex/atom column 9): 1 = rim, 0 = interior")
+    ps.add_argument("--radius", type=float, help="finite Voronoi cells of this radius (open tissues)")
+    common(ps)
+    ps.set_defaults(func=cmd_plot_shape)
+
+    pd = psub.add_parser("demix", help="heterotypic junction fraction against time (cell sorting)",
+                         description="From a per-atom dump with 'type' and a dump local of compute vertex/local "
+                                     "(rows: cell ID, neighbour ID, x1 y1 x2 y2, length) at the same timesteps.")
+    pd.add_argument("dump", help="per-atom dump with id and type")
+    pd.add_argument("local", help="dump local of compute vertex/local")
+    pd.add_argument("--dt", type=float, help="timestep size (else the dump's TIME, else timesteps)")
+    pd.add_argument("--csv", help="also write the series as CSV")
+    pd.add_argument("--label")
+    pd.add_argument("--no-reference", action="store_true",
+                    help="no line at the random-mixture value 1 - sum_t x_t^2")
+    common(pd)
+    pd.set_defaults(func=cmd_plot_demix)
+
+    pm = psub.add_parser("moduli", help="G and B against p0 with error bars",
+                         description="From tables written by 'tessera-tools moduli ... --table FILE' (one run "
+                                     "per p0, e.g. with --seeds N).")
+    pm.add_argument("tables", nargs="+", help="CSV table(s) of tessera-tools moduli --table")
+    pm.add_argument("--route", choices=("hessian", "quasistatic", "both"), default="both")
+    common(pm)
+    pm.set_defaults(func=cmd_plot_moduli)
     return p
 
 
@@ -533,6 +843,7 @@ def main(argv=None):
         args.func(args)
     except (OSError, KeyError, ValueError, RuntimeError) as err:
         msg = err.args[0] if isinstance(err, KeyError) and err.args else err
-        print(f"tessera-tools {args.command}: {msg}", file=sys.stderr)
+        what = args.command + (" " + args.what if getattr(args, "what", None) else "")
+        print(f"tessera-tools {what}: {msg}", file=sys.stderr)
         return 1
     return 0

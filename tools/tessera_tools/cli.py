@@ -517,7 +517,7 @@ def cmd_plot_growth(args):
         known = _dump_time_label(args.input, args.dt)
     else:
         t, n, known = _log_series(args.input, args.column, args.x)
-    fit = exponential_fit(t, n, args.tmin, args.tmax)
+    fit = exponential_fit(t, n, args.tmin, args.tmax, args.cap)
     plot_growth(t, n, fit, args.output, xlabel=TIME if known else STEP, dpi=args.dpi, vector=args.vector,
                 title=args.title)
     unit = "per unit time" if known else "per timestep"
@@ -795,6 +795,8 @@ def build_parser():
     pg.add_argument("-c", "--column", default="Atoms", help="log: thermo column of the cell count (default Atoms)")
     pg.add_argument("--tmin", type=float, help="fit from this time")
     pg.add_argument("--tmax", type=float, help="fit up to this time (default: the first maximum of N)")
+    pg.add_argument("--cap", type=float, metavar="N",
+                    help="leave out samples with N >= this (the 'max N' of fix cell/divide)")
     pg.add_argument("--dt", type=float, help="dump: timestep size")
     pg.add_argument("--x", choices=("auto", "step"), default="auto", help="log: time (default) or step")
     common(pg)

@@ -45,19 +45,24 @@ def demix_series(atoms_path, local_path, compute=None, column="type"):
             np.array(het), np.array(tot))
 
 
-def exponential_fit(t, n, tmin=None, tmax=None):
+def exponential_fit(t, n, tmin=None, tmax=None, cap=None):
     """Least-squares fit of ln N = ln N0 + r t over tmin <= t <= tmax (default: from the start to
-    the first time N reaches its maximum, so a cap does not bend the fit).  Returns a dict with
+    the first time N reaches its maximum, or to the point before a plateau at the maximum) and
+    N < cap (the 'max' of fix cell/divide: a sample at the cap is usually capped).  Returns a dict with
     rate, rate_err, N0, doubling = ln 2 / rate, doubling_err, and the fitted range; the errors
     are the standard errors of the slope from the scatter about the line (the points of one run
     are correlated in time, so they are a lower bound on the run-to-run spread)."""
     t = np.asarray(t, dtype=float)
     n = np.asarray(n, dtype=float)
     if tmax is None:
-        tmax = t[int(np.argmax(n))]
+        top = int(np.argmax(n))
+        # a plateau at the maximum (the 'max' cap of fix cell/divide) is not growth: stop before it
+        tmax = t[top] if np.sum(n == n[top]) == 1 else t[max(top - 1, 0)]
     if tmin is None:
         tmin = t[0]
     sel = (t >= tmin) & (t <= tmax) & (n > 0)
+    if cap is not None:
+        sel &= n < cap
     if sel.sum() < 3:
         raise ValueError(f"need at least 3 points with N > 0 between t = {tmin:g} and {tmax:g} for a fit "
                          f"with an error, got {int(sel.sum())}: widen the range (--tmin/--tmax)")

@@ -173,20 +173,22 @@ def plot_moduli(rows, out, unit=r"$K_A A_0$", dpi=300, vector=None, title=None):
     plt = _plt()
     fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
     drawn = {}
-    styles = {"hessian": ("o-", "tab:blue", "exact Hessian"), "quasistatic": ("x--", "k", "quasistatic steps")}
+    # the routes agree closely: open circles with a line, crosses without, so both stay visible
+    styles = {"hessian": (dict(fmt="o-", ms=8, mfc="none", mew=1.4, lw=1.2, capsize=4), "tab:blue", "exact Hessian"),
+              "quasistatic": (dict(fmt="x", ms=6, mew=1.4, capsize=2, elinewidth=0.8), "k", "quasistatic steps")}
     for route in ("hessian", "quasistatic"):
         rs = sorted((r for r in rows if r["route"] == route), key=lambda r: r["p0"])
         if not rs:
             continue
         p0 = np.array([r["p0"] for r in rs])
         cols = {k: np.array([r[k] for r in rs], dtype=float) for k in ("G", "G_err", "B", "B_err")}
-        fmt, colour, label = styles[route]
+        style, colour, label = styles[route]
         for ax, key in zip(axes, ("G", "B")):
             err = np.nan_to_num(cols[key + "_err"], nan=0.0)
-            ax.errorbar(p0, cols[key], yerr=err, fmt=fmt, color=colour, ms=5, capsize=3, lw=1.2, label=label)
+            ax.errorbar(p0, cols[key], yerr=err, color=colour, label=label, **style)
         drawn[route] = (p0, cols["G"], cols["G_err"], cols["B"], cols["B_err"])
     for ax, name in zip(axes, ("shear modulus $G$", "bulk modulus $B$")):
-        ax.axvline(Q_STAR, color="0.4", ls="--", lw=0.9)
+        ax.axvline(Q_STAR, color="0.4", ls="--", lw=0.9, label=r"$p_0 = 3.81$")
         ax.set_xlabel(r"target shape index $p_0$")
         ax.set_ylabel(f"{name} ({unit})")
         ax.legend(frameon=False, fontsize=9)

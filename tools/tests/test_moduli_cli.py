@@ -183,6 +183,33 @@ class WithHessian(unittest.TestCase):
         self.assertAlmostEqual(reduced, G / KA, places=6)
         self.assertNotIn("warning", err)
 
+    def test_table_rows_for_plot_moduli(self):
+        """--table appends p0 and the moduli in KA A0; two hexagon states give zero spread."""
+        import csv
+
+        a = math.sqrt(2 / math.sqrt(3))
+        for s, (nx, ny) in enumerate(((6, 4), (4, 6)), start=1):
+            pts, box = hex_lattice(nx, ny, a=a)
+            write_dump(self.path(f"hex{s}.dump"), [frame_from(pts, box)])
+        table = self.path("moduli.csv")
+        KA, KP = 2.0, 1.0
+        for p0 in (3.5, 3.6):
+            code, out, err = run("moduli", self.path("hex{seed}.dump"), "--seeds", "2", "--quadratic", str(KA), "1",
+                                 str(KP), str(p0), "--table", table)
+            self.assertEqual(code, 0, err)
+        with open(table) as f:
+            rows = list(csv.DictReader(f))
+        self.assertEqual([float(r["p0"]) for r in rows], [3.5, 3.6])
+        for r in rows:
+            p0 = float(r["p0"])
+            self.assertEqual(r["route"], "hessian")
+            self.assertAlmostEqual(float(r["G"]), 0.75 * KP * PH * (PH - p0) / KA, places=6)
+            self.assertAlmostEqual(float(r["B"]), (2 * KA + KP * PH * p0 / 2) / KA, places=5)
+            self.assertLess(float(r["G_err"]), 1e-8)
+        png = self.path("moduli.png")
+        code, out, err = run("plot", "moduli", table, "-o", png)
+        self.assertEqual(code, 0, err)
+
     def test_fnorm_warning(self):
         pts, box = hex_lattice(6, 4)
         pts = pts + np.random.default_rng(1).normal(scale=0.02, size=pts.shape)

@@ -596,6 +596,27 @@ def cmd_plot_moduli(args):
           + f" (moduli in {units[0]})")
 
 
+def cmd_env(args):
+    """Shell lines that let any python3 import tessera_tools and find Tessera's build."""
+    import os
+    import shlex
+
+    tools = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    repo = os.path.dirname(tools)
+    build = os.environ.get("TESSERA_BUILD") or os.path.join(repo, "build")
+    lines = []
+    if os.path.isfile(os.path.join(tools, "tessera-tools")):     # a source tree, not an installed copy
+        lines.append(f'export PYTHONPATH={shlex.quote(tools)}"${{PYTHONPATH:+:$PYTHONPATH}}"')
+        lines.append(f'export PATH={shlex.quote(tools)}":$PATH"')
+    if os.path.isdir(os.path.join(build, "lammps")):
+        lines.append(f"export TESSERA_BUILD={shlex.quote(build)}")
+        lines.append(f'export PATH={shlex.quote(os.path.join(build, "lammps"))}":$PATH"')
+    else:
+        print(f"# no build found at {build}: run scripts/build in the repository, or set TESSERA_BUILD",
+              file=sys.stderr)
+    print("\n".join(lines))
+
+
 def build_parser():
     p = argparse.ArgumentParser(
         prog="tessera-tools",
@@ -758,6 +779,13 @@ def build_parser():
     mo.add_argument("--exe", help="tessera-hessian executable (default: $TESSERA_HESSIAN, else build/core/ of the "
                          "repository, else PATH)")
     mo.set_defaults(func=cmd_moduli)
+
+    en = sub.add_parser("env", help="shell settings for running from anywhere (eval \"$(tessera-tools env)\")",
+                        description="Print export lines: PYTHONPATH (this tools/ directory, so any python3 can "
+                                    "import tessera_tools, e.g. the Python examples copied elsewhere), "
+                                    "TESSERA_BUILD (where libtessera_lammps.so and tessera-hessian are) and PATH "
+                                    "(tessera-tools, tessera-lmp).")
+    en.set_defaults(func=cmd_env)
 
     pl = sub.add_parser("plot", help="measurement figures: wound area, growth N(t), shapes, demixing, moduli vs p0",
                         description="One figure per command, print quality (300 dpi, --vector pdf for a vector "

@@ -206,7 +206,9 @@ def cmd_traj(args):
         if args.msd.lower().endswith((".png", ".pdf", ".svg")):
             from .plots import plot_msd
 
-            plot_msd(t, msd, count, args.msd, time_label="time" if dt else "timesteps", dpi=args.dpi)
+            from .plots import STEP, TIME
+
+            plot_msd(t, msd, count, args.msd, time_label=TIME if dt else STEP, dpi=max(300, args.dpi))
         else:
             np.savetxt(args.msd, np.column_stack([traj.timesteps, t, msd, count]), fmt=["%d", "%.10g", "%.10g", "%d"],
                        header="timestep time MSD count: mean-square displacement from the first selected frame "

@@ -49,11 +49,22 @@ def time_label(known):
     return TIME if known else STEP
 
 
+def _plain_log_ticks(axis):
+    """Ticks at 1, 2, 5 x 10^k written as plain numbers on a log axis."""
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+    axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    axis.set_minor_formatter(NullFormatter())
+
+
 def plot_msd(t, msd, count, out, time_label=TIME, dpi=300, vector=None):
     plt = _plt()
     fig, ax = plt.subplots(figsize=(5.2, 3.6))
     ok = (t > 0) & np.isfinite(msd) & (msd > 0)
     ax.loglog(t[ok], msd[ok], "o-", ms=3, color="tab:blue")
+    _plain_log_ticks(ax.xaxis)
+    _plain_log_ticks(ax.yaxis)
     ax.set_xlabel(time_label)
     ax.set_ylabel(r"MSD $\langle |\Delta r|^2\rangle$ " + LENGTH2)
     if count.min() != count.max():
@@ -88,17 +99,14 @@ def plot_growth(t, n, fit, out, xlabel=TIME, dpi=300, vector=None, title=None):
     fig, ax = plt.subplots(figsize=(5.2, 3.6))
     ax.semilogy(t, n, "o", ms=3.5, color="tab:blue", label="cells $N$")
     tt = np.linspace(fit["tmin"], fit["tmax"], 100)
-    label = (f"$N_0 e^{{rt}}$: $r$ = {fit['rate']:.4g} $\\pm$ {fit['rate_err']:.2g}, "
-             f"doubling {fit['doubling']:.3g} $\\pm$ {fit['doubling_err']:.2g}")
+    label = (f"fit $N_0 e^{{rt}}$, $r$ = {fit['rate']:.4g} $\\pm$ {fit['rate_err']:.2g}\n"
+             f"doubling time {fit['doubling']:.3g} $\\pm$ {fit['doubling_err']:.2g}")
     ax.semilogy(tt, fit["N0"] * np.exp(fit["rate"] * tt), "-", color="tab:red", lw=1.4, label=label)
     ax.set_xlabel(xlabel)
     ax.set_ylabel("number of cells $N$")
-    from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
-
-    ax.yaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
-    ax.yaxis.set_major_formatter(ScalarFormatter())
-    ax.yaxis.set_minor_formatter(NullFormatter())
-    ax.legend(frameon=False, fontsize=9, loc="lower right")
+    _plain_log_ticks(ax.yaxis)
+    # growth runs from lower left to upper right: the upper left is free
+    ax.legend(frameon=False, fontsize=9, loc="upper left")
     ax.grid(alpha=0.3, which="both")
     if title:
         ax.set_title(title, fontsize=11)

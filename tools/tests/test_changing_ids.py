@@ -92,6 +92,15 @@ class ChangingIDs(unittest.TestCase):
         self.assertEqual(code, 0, err)
         for k in range(3):
             self.assertTrue(is_png(pattern.format(index=k)))
+        try:
+            from PIL import Image
+        except ImportError:
+            return
+        gif = os.path.join(self.tmp.name, "movie.gif")
+        code, out, err = run("render", self.path, "-o", gif, "--frames", "all", "-q")
+        self.assertEqual(code, 0, err)
+        with Image.open(gif) as im:
+            self.assertEqual(im.n_frames, 3)
 
 
 if __name__ == "__main__":

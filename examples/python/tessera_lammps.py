@@ -21,9 +21,16 @@ _HERE = os.path.dirname(os.path.abspath(__file__))
 _TOOLS = os.path.join(os.path.dirname(os.path.dirname(_HERE)), "tools")
 
 try:
-    from tessera_tools import host
-except ImportError:    # not installed: the repository's tools/
-    sys.path.insert(0, _TOOLS)
+    from tessera_tools import host          # installed, or on PYTHONPATH
+except ImportError:
+    if not os.path.isdir(os.path.join(_TOOLS, "tessera_tools")):
+        sys.exit("tessera_lammps: cannot import tessera_tools (Tessera's tools/ package). Outside the "
+                 "repository either run 'eval \"$(<tessera>/tools/tessera-tools env)\"' first (sets "
+                 "PYTHONPATH and TESSERA_BUILD), or install it: /usr/bin/python3 -m venv "
+                 "--system-site-packages ~/tessera-venv && ~/tessera-venv/bin/pip install "
+                 "--no-build-isolation <tessera>/tools, then run the example with ~/tessera-venv/bin/python "
+                 "and TESSERA_BUILD=<tessera>/build (examples/python/README.md)")
+    sys.path.insert(0, _TOOLS)              # inside the repository: its tools/
     from tessera_tools import host
 
 find_library = host.find_library

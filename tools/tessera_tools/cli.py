@@ -61,14 +61,18 @@ def cmd_info(args):
     print(f"unwrapped positions: {'yes' if first.has_unwrapped() else 'no'}")
     if args.local:
         from .junctions import contact_lengths, paired_frames
+        from .measure import demix_series
 
         atoms, local = paired_frames(args.dump, args.local)[-1]
         contacts = contact_lengths(atoms, local)
-        total = sum(contacts.values())
-        hetero = sum(v for (a, b), v in contacts.items() if a != b)
         print(f"timestep {atoms.timestep}: junction length by type pair "
-              + ", ".join(f"{a}-{b} {v:.6g}" for (a, b), v in sorted(contacts.items()))
-              + f"; heterotypic fraction {hetero / total if total else float('nan'):.4f}")
+              + ", ".join(f"{a}-{b} {v:.6g}" for (a, b), v in sorted(contacts.items())) + " (length units)")
+        steps, times, frac, het, tot = demix_series(args.dump, args.local)
+        print(f"heterotypic junction fraction, {len(steps)} frame(s) both dumps hold:")
+        print("# timestep " + ("time " if times is not None else "") + "fraction heterotypic_length total_length")
+        for k in range(len(steps)):
+            t = f"{times[k]:.10g} " if times is not None else ""
+            print(f"{steps[k]} {t}{frac[k]:.6f} {het[k]:.8g} {tot[k]:.8g}")
     if args.stats:
         from .voronoi import tessellate_frame
 
@@ -187,13 +191,34 @@ def cmd_traj(args):
         values = plot_trajectories(traj, args.output, kinds=kinds, values=values, cmap=args.cmap,
                                    wrap=args.wrap, dpi=args.dpi, title=args.title, linewidth=args.linewidth)
         summary = ", ".join(f"mean {k} {np.nanmean(values[k]):.4g}" for k in kinds)
-        print(f"wrote {args.output}: {len(traj)} frames, {len(traj.ids)} cells, {summary}")
+        cells = (f"{len(traj.ids)} cells" if not traj.changing else
+                 f"{len(traj.ids)} cell IDs ({int(traj.present[0].sum())} in the first frame, "
+                 f"{int(traj.present[-1].sum())} in the last), each drawn while present")
+        print(f"wrote {args.output}: {len(traj)} frames, {cells}, {summary}")
     if args.hist:
         o = plot_angle_histogram(traj, args.hist, skip=args.hist_skip, bins=args.bins, dpi=args.dpi)
         near = np.mean((o < math.pi / 4) | (o > 3 * math.pi / 4)) if len(o) else float("nan")
         print(f"wrote {args.hist}: {len(o)} velocity samples, fraction within pi/4 of the x axis {near:.3f}")
-    if not args.output and not args.hist:
-        raise SystemExit("tessera-tools traj: nothing to do, give -o and/or --hist")
+    if args.msd:
+        msd, count = traj.msd()
+        dt = args.dt
+        t = (traj.timesteps - traj.timesteps[0]) * (dt if dt else 1.0)
+        if args.msd.lower().endswith((".png", ".pdf", ".svg")):
+            from .plots import plot_msd
+
+            from .plots import STEP, TIME
+
+            plot_msd(t, msd, count, args.msd, time_label=TIME if dt else STEP, dpi=max(300, args.dpi))
+        else:
+            np.savetxt(args.msd, np.column_stack([traj.timesteps, t, msd, count]), fmt=["%d", "%.10g", "%.10g", "%d"],
+                       header="timestep time MSD count: mean-square displacement from the first selected frame "
+                              "(length^2), averaged over the count cells present in both frames")
+        note = ("" if not traj.changing else
+                f"; IDs change, so the mean at each frame runs over the cells present in both frames "
+                f"({int(count.min())}-{int(count.max())} cells)")
+        print(f"wrote {args.msd}: MSD from timestep {traj.timesteps[0]}, last {msd[-1]:.6g} length^2{note}")
+    if not args.output and not args.hist and not args.msd:
+        raise SystemExit("tessera-tools traj: nothing to do, give -o, --hist and/or --msd")
 
 
 def cmd_log(args):
@@ -236,33 +261,362 @@ def cmd_log(args):
     print(f"wrote {args.output}")
 
 
+def _seed_paths(pattern, seeds, first, option):
+    """The file of each seed: ``pattern`` with {seed} replaced by first .. first+seeds-1."""
+    if seeds is None:
+        return [pattern]
+    if "{seed}" not in pattern:
+        raise SystemExit(f"tessera-tools moduli: --seeds {seeds} needs '{{seed}}' in {option} "
+                         f"(got '{pattern}'), e.g. 'seed{{seed}}/minimised.dump' for seed1/, seed2/, ...")
+    return [pattern.replace("{seed}", str(s)) for s in range(first, first + seeds)]
+
+
+def _pm(value, err):
+    """'value +- err', err omitted when it is not a number."""
+    if err is None or not np.isfinite(err):
+        return f"{value:.8g}"
+    return f"{value:.8g} +- {err:.2g}"
+
+
+def _moduli_table(args, states, ref, ref_name):
+    """Append one row per route (Hessian, quasistatic) to args.table (CSV, reduced units)."""
+    import csv
+    import os
+
+    from .moduli import seed_average
+
+    if args.quadratic:
+        p0 = args.quadratic[3] / math.sqrt(args.quadratic[1])
+    else:
+        w = 0.5 if args.tension == "edge" else 1.0
+        p0 = -w * args.coeff[3] / args.coeff[2] / math.sqrt(args.coeff[1])
+    rows = []
+    hs = [s["hessian"] for s in states if s["hessian"] is not None]
+    if hs:
+        row = dict(p0=p0, route="hessian", states=len(hs))
+        for key in ("G", "B", "E", "nu"):
+            mean, err = seed_average([h[key] for h in hs])
+            scale = 1.0 if key == "nu" else ref
+            row[key], row[key + "_err"] = mean / scale, err / scale
+        rows.append(row)
+    qs = [s["qs"] for s in states if s["qs"] is not None]
+    if qs:
+        row = dict(p0=p0, route="quasistatic", states=len(qs))
+        if len(qs) == 1:
+            q = qs[0]
+            for key in ("G", "B", "E", "nu"):
+                scale = 1.0 if key == "nu" else ref
+                row[key], row[key + "_err"] = q[key] / scale, q[key + "_err"] / scale
+        else:
+            for key in ("G", "B", "E", "nu"):
+                mean, err = seed_average([q[key] for q in qs])
+                scale = 1.0 if key == "nu" else ref
+                row[key], row[key + "_err"] = mean / scale, err / scale
+        rows.append(row)
+    fields = ["p0", "route", "states", "G", "G_err", "B", "B_err", "E", "E_err", "nu", "nu_err", "unit"]
+    new = not os.path.exists(args.table) or os.path.getsize(args.table) == 0
+    with open(args.table, "a", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=fields)
+        if new:
+            w.writeheader()
+        for row in rows:
+            row["unit"] = ref_name
+            w.writerow({k: (f"{v:.10g}" if isinstance(v, float) else v) for k, v in row.items()})
+    print(f"appended {len(rows)} row(s) to {args.table} (moduli in {ref_name}; errors: "
+          + ("standard errors over the states)" if len(states) > 1 else "fit errors, none for one Hessian state)"))
+
+
 def cmd_moduli(args):
     from .dump import read_dump
-    from .moduli import Model, fit_quasistatic, frame_moduli
+    from .moduli import Model, fit_quasistatic, frame_moduli, seed_average
 
-    frame = read_dump(args.dump)[args.frame]
+    if args.seeds is not None and args.seeds < 1:
+        raise SystemExit(f"tessera-tools moduli: --seeds {args.seeds}: give the number of states, 1 or more")
+    dumps = _seed_paths(args.dump, args.seeds, args.first_seed, "the dump name")
+    qs_files = _seed_paths(args.quasistatic, args.seeds, args.first_seed, "--quasistatic") if args.quasistatic else None
     if args.quadratic:
+        ka, a0 = args.quadratic[0], args.quadratic[1]
         model = Model.quadratic(*args.quadratic, tension=args.tension)
+        ref, ref_name = ka * a0, "KA A0"     # KA of KA (A - A0)^2
     else:
+        ka, a0 = args.coeff[0], args.coeff[1]
         model = Model(*([v] for v in args.coeff[:3]), args.coeff[3], tension=args.tension)
-    m = frame_moduli(frame, model, exe=args.exe)
-    print(f"{args.dump}: {m['n']} cells, area {m['area']:.10g}, energy {m['energy']:.12g}, "
-          f"max |force| {m['max_force']:.3g}")
-    print(f"pressure {m['pressure']:.10g}, shear stress {m['shear_stress']:.10g}")
-    print(f"G = {m['G']:.10g} (affine {m['G_affine']:.10g}), B = {m['B']:.10g} (affine {m['B_affine']:.10g})")
-    print(f"E = {m['E']:.10g}, nu = {m['nu']:.10g}")
-    if "eigenvalues" in m:
-        print(f"spectrum: {m['zero_modes']} zero modes (2 are translations), {m['negative_modes']} negative, "
-              f"lowest non-zero eigenvalue {m['lowest_nonzero']:.6g}")
-        if args.spectrum:
-            np.savetxt(args.spectrum, m["eigenvalues"], fmt="%.12e",
-                       header="eigenvalues of the Hessian d2E/dr dr (squared angular frequencies at unit mass)")
-    if m["max_force"] > 1e-6:
-        print("warning: the forces are not ~0: this is not an energy minimum, so G and B are not its moduli")
-    if args.quasistatic:
-        q = fit_quasistatic(args.quasistatic)
-        print(f"quasistatic ({args.quasistatic}): G = {q['G']:.10g} +- {q['G_err']:.2g}, "
-              f"B = {q['B']:.10g} +- {q['B_err']:.2g}")
+        ref, ref_name = ka * a0, "K A0"      # K of K/2 (A - A0)^2
+    if ref <= 0:
+        raise SystemExit(f"tessera-tools moduli: the area stiffness times A0 is {ref:g}; it must be positive")
+
+    states = []
+    for k, path in enumerate(dumps):
+        frame = read_dump(path)[args.frame]
+        state = dict(path=path, frame=frame, hessian=None, qs=None)
+        try:
+            state["hessian"] = frame_moduli(frame, model, exe=args.exe)
+        except (RuntimeError, FileNotFoundError) as err:
+            if not qs_files or isinstance(err, FileNotFoundError) and args.exe:
+                if isinstance(err, FileNotFoundError):
+                    raise
+                raise SystemExit(f"tessera-tools moduli: {path}: {err}\n"
+                                 "The exact Hessian does not exist at this state. Give the strain steps of "
+                                 "examples/moduli/in.moduli with --quasistatic qs.dat: their slopes are the "
+                                 "moduli (doc/howto_moduli.md)") from None
+            state["hessian_error"] = str(err)
+        if qs_files:
+            state["qs"] = fit_quasistatic(qs_files[k])
+            state["qs_path"] = qs_files[k]
+        states.append(state)
+
+    units = states[0]["frame"].units
+    where = f"LAMMPS 'units {units}'" if units else "the LAMMPS units of the run (the dump does not name them)"
+    print(f"units: moduli, pressure and stress in energy/length^2 of {where}; energies in energy, areas in "
+          f"length^2. In the model's reduced units (energy {ref_name}^2, length sqrt(A0), so moduli in "
+          f"{ref_name}) they are the values divided by {ref_name} = {ref:g}")
+
+    def red(value, err=None):
+        """value (+- err) in the input's units, then in units of KA A0."""
+        if ref == 1:
+            return f"{_pm(value, err)} energy/length^2 (= {ref_name})"
+        e = None if err is None else err / ref
+        return f"{_pm(value, err)} energy/length^2 = {_pm(value / ref, e)} {ref_name}"
+
+    bad = []
+    for s in states:
+        label = s["path"]
+        m = s["hessian"]
+        if m is not None:
+            print(f"{label}: {m['n']} cells, area {m['area']:.10g} length^2, energy {m['energy']:.12g} energy, "
+                  f"fnorm {m['fnorm']:.3g} energy/length (max |force| {m['max_force']:.3g})")
+            print(f"  Hessian: G = {red(m['G'])}, B = {red(m['B'])} (affine G {m['G_affine']:.8g}, "
+                  f"B {m['B_affine']:.8g} energy/length^2)")
+            print(f"  E = {red(m['E'])}, nu = {m['nu']:.8g} (dimensionless); pressure {m['pressure']:.8g}, "
+                  f"shear stress {m['shear_stress']:.8g} energy/length^2")
+            if "eigenvalues" in m:
+                print(f"  spectrum: {m['zero_modes']} zero modes (2 are translations), {m['negative_modes']} "
+                      f"negative, lowest non-zero eigenvalue {m['lowest_nonzero']:.6g} energy/length^2 per mass")
+            if m["fnorm"] > args.fnorm_max:
+                bad.append(f"{label}: fnorm {m['fnorm']:.3g} > {args.fnorm_max:g}")
+        else:
+            print(f"{label}: no Hessian ({s['hessian_error'].splitlines()[0][:160]}); quasistatic route only")
+        q = s["qs"]
+        if q is not None:
+            print(f"  quasistatic ({s['qs_path']}, fit errors): G = {red(q['G'], q['G_err'])}, "
+                  f"B = {red(q['B'], q['B_err'])}")
+            print(f"  quasistatic: E = {red(q['E'], q['E_err'])}, nu = {_pm(q['nu'], q['nu_err'])} (dimensionless); "
+                  f"largest fnorm of the steps {q['fnorm']:.3g} energy/length")
+            if q["fnorm"] > args.fnorm_max:
+                bad.append(f"{s['qs_path']}: fnorm {q['fnorm']:.3g} > {args.fnorm_max:g} in a strain step")
+        if m is not None and args.spectrum and "eigenvalues" in m:
+            path = args.spectrum if len(states) == 1 else f"{args.spectrum}.{states.index(s) + args.first_seed}"
+            np.savetxt(path, m["eigenvalues"], fmt="%.12e",
+                       header="eigenvalues of the Hessian d2E/dr dr (squared angular frequencies at unit mass), "
+                              "energy/length^2 per mass")
+            print(f"  wrote {path}")
+
+    if len(states) > 1:
+        n = len(states)
+        print(f"over {n} states (mean +- standard error of the mean, sample std / sqrt(n)):")
+        hs = [s["hessian"] for s in states if s["hessian"] is not None]
+        if hs:
+            parts = []
+            for key in ("G", "B", "E"):
+                mean, err = seed_average([h[key] for h in hs])
+                parts.append(f"{key} = {red(mean, err)}")
+            mean, err = seed_average([h["nu"] for h in hs])
+            parts.append(f"nu = {_pm(mean, err)}")
+            print(f"  Hessian ({len(hs)} of {n} states): " + ", ".join(parts))
+        qs = [s["qs"] for s in states if s["qs"] is not None]
+        if qs:
+            parts = []
+            for key in ("G", "B", "E"):
+                mean, err = seed_average([q[key] for q in qs])
+                fit = float(np.sqrt(np.sum([q[key + "_err"] ** 2 for q in qs]))) / len(qs)
+                parts.append(f"{key} = {red(mean, err)} (fit error of the mean {fit / ref:.2g} {ref_name})")
+            mean, err = seed_average([q["nu"] for q in qs])
+            parts.append(f"nu = {_pm(mean, err)}")
+            print(f"  quasistatic ({len(qs)} states): " + ", ".join(parts))
+    elif states[0]["hessian"] is not None:
+        print("  (the Hessian values are exact for this state; --seeds N gives error bars over N states)")
+    if args.table:
+        _moduli_table(args, states, ref, ref_name)
+    for line in bad:
+        print(f"warning: {line}: not an energy minimum, so G and B are not its moduli; minimise further "
+              f"(smaller ftol, min_style fire) or raise --fnorm-max", file=sys.stderr)
+    for s in states:
+        if s["hessian"] is None:
+            print(f"warning: {s['path']}: no Hessian route ({s['hessian_error'].splitlines()[0][:160]}); "
+                  "the moduli above are the quasistatic slopes", file=sys.stderr)
+
+
+def _is_dump(path):
+    """True for a LAMMPS dump (first line 'ITEM: ...'), False for anything else (a log)."""
+    from .dump import _open
+
+    with _open(path) as f:
+        for line in f:
+            if line.strip():
+                return line.startswith("ITEM:")
+    return False
+
+
+def _log_series(path, column, x="auto"):
+    """(t, values, time known) of a thermo column over all runs of a log."""
+    from .logplot import parse_log
+
+    log = parse_log(path)
+    table = log.combined()
+    if column not in table:
+        raise SystemExit(f"tessera-tools plot: {path} has no thermo column '{column}' "
+                         f"(columns: {' '.join(log.names)}); name one with -c")
+    t = table["time"]
+    known = x != "step" and not np.all(np.isnan(t))
+    if not known:
+        t = table["Step"]
+    ok = np.isfinite(table[column])
+    return t[ok], table[column][ok], known
+
+
+def _dump_time_label(path, dt):
+    from .dump import iter_dump
+
+    first = next(iter_dump(path))
+    return first.time is not None or bool(dt)
+
+
+def cmd_plot_wound(args):
+    from .measure import frame_series, half_time
+    from .plots import TIME, STEP, plot_wound
+
+    if _is_dump(args.input):
+        value = args.value or ("open" if args.radius else None)
+        if value is None:
+            raise SystemExit("tessera-tools plot wound: for a dump give --radius R (the open area: box area "
+                             "minus the finite cells' area) or --value sum:COLUMN / mean:COLUMN / count")
+        steps, t, y = frame_series(args.input, value, dt=args.dt, radius=args.radius)
+        known = _dump_time_label(args.input, args.dt)
+        what = "open area (box minus cells)" if value == "open" else value
+    else:
+        if not args.column:
+            raise SystemExit("tessera-tools plot wound: for a log name the thermo column with -c, e.g. -c v_wound "
+                             "(see 'tessera-tools log LOG --list')")
+        t, y, known = _log_series(args.input, args.column, args.x)
+        what = args.column
+    half = half_time(t, y, args.fraction)
+    ylabel = args.ylabel or (r"wound area ($A_0$)" if not args.column and (args.value or "open") == "open"
+                             else what)
+    plot_wound(t, y, args.output, ylabel, xlabel=TIME if known else STEP, half=half if args.fraction == 0.5
+               else None, dpi=args.dpi, vector=args.vector, title=args.title)
+    unit = "time" if known else "timesteps"
+    print(f"wrote {args.output}: {what} from {y[0]:.6g} to {y[-1]:.6g} over {len(t)} points; falls to "
+          f"{args.fraction:g} of its first value at {half:.6g} {unit}"
+          + (" (never)" if not np.isfinite(half) else ""))
+
+
+def cmd_plot_growth(args):
+    from .measure import exponential_fit, frame_series
+    from .plots import TIME, STEP, plot_growth
+
+    if _is_dump(args.input):
+        _, t, n = frame_series(args.input, "count", dt=args.dt)
+        known = _dump_time_label(args.input, args.dt)
+    else:
+        t, n, known = _log_series(args.input, args.column, args.x)
+    fit = exponential_fit(t, n, args.tmin, args.tmax, args.cap)
+    plot_growth(t, n, fit, args.output, xlabel=TIME if known else STEP, dpi=args.dpi, vector=args.vector,
+                title=args.title)
+    unit = "per unit time" if known else "per timestep"
+    print(f"wrote {args.output}: N from {n[0]:.0f} to {n[-1]:.0f}; fit N0 exp(r t) over t = {fit['tmin']:g} .. "
+          f"{fit['tmax']:g} ({fit['points']} points): r = {fit['rate']:.6g} +- {fit['rate_err']:.2g} {unit}, "
+          f"N0 = {fit['N0']:.4g}, doubling time ln2/r = {fit['doubling']:.6g} +- {fit['doubling_err']:.2g} "
+          f"{'time' if known else 'timesteps'} (errors from the scatter about the line)")
+
+
+def cmd_plot_shape(args):
+    from .measure import shape_samples
+    from .plots import plot_shape
+
+    frames = _select_frames(args.dump, args.frames or slice(-1, None))
+    q, z, rim = shape_samples(frames, args.q, args.z, args.edge, args.radius)
+    groups = plot_shape(q, z, rim, args.output, dpi=args.dpi, vector=args.vector, title=args.title)
+    print(f"wrote {args.output}: {len(frames)} frame(s), {len(q)} cells")
+    for name, (qq, zz) in groups.items():
+        if len(qq):
+            counts = {int(v): int(c) for v, c in zip(*np.unique(zz.astype(int), return_counts=True))}
+            print(f"  {name}: {len(qq)} cells, shape index mean {np.mean(qq):.6g} (std {np.std(qq):.3g}), "
+                  f"neighbours mean {np.mean(zz):.4g}, counts {counts}")
+    if not rim.any() and not (args.edge or args.radius):
+        print("  (no rim: a periodic confluent tissue; for open tissues give --edge COL, the edge flag column "
+              "of compute vertex/atom, e.g. c_cell[9], or --radius R)")
+
+
+def cmd_plot_demix(args):
+    from .dump import iter_dump
+    from .measure import demix_series
+    from .plots import TIME, STEP, plot_demix
+
+    steps, times, frac, het, tot = demix_series(args.dump, args.local)
+    known = times is not None or bool(args.dt)
+    t = times if times is not None else steps * (args.dt or 1.0)
+    first = next(iter_dump(args.dump))
+    _, counts = np.unique(np.asarray(first["type"]), return_counts=True)
+    x = counts / counts.sum()
+    reference = None if args.no_reference else float(1.0 - np.sum(x ** 2))
+    plot_demix([(args.label or "heterotypic fraction", t, frac)], args.output, xlabel=TIME if known else STEP,
+               dpi=args.dpi, vector=args.vector, reference=reference, title=args.title)
+    if args.csv:
+        np.savetxt(args.csv, np.column_stack([steps, t, frac, het, tot]), fmt=["%d", "%.10g", "%.8f", "%.10g", "%.10g"],
+                   delimiter=",", comments="",
+                   header="timestep,time,heterotypic_fraction,heterotypic_length,total_length")
+        print(f"wrote {args.csv}")
+    ref = f"; a random mixture of these types would give {reference:.4g}" if reference is not None else ""
+    print(f"wrote {args.output}: {len(steps)} frames, heterotypic junction fraction {frac[0]:.4f} -> {frac[-1]:.4f}{ref}")
+
+
+def cmd_plot_moduli(args):
+    import csv
+
+    from .plots import plot_moduli
+
+    rows = []
+    for path in args.tables:
+        with open(path, newline="") as f:
+            for r in csv.DictReader(f):
+                try:
+                    rows.append(dict(p0=float(r["p0"]), route=r["route"], unit=r.get("unit", "KA A0"),
+                                     **{k: float(r[k]) for k in ("G", "G_err", "B", "B_err")}))
+                except (KeyError, ValueError) as err:
+                    raise SystemExit(f"tessera-tools plot moduli: {path}: unreadable row {r} ({err}); "
+                                     "write the table with 'tessera-tools moduli ... --table FILE'") from None
+    if not rows:
+        raise SystemExit(f"tessera-tools plot moduli: no rows in {' '.join(args.tables)}")
+    if args.route != "both":
+        rows = [r for r in rows if r["route"] == args.route]
+    units = sorted({r["unit"] for r in rows})
+    if len(units) > 1:
+        raise SystemExit(f"tessera-tools plot moduli: the rows mix units {units}; plot them separately")
+    unit = {"KA A0": r"$K_A A_0$", "K A0": r"$K A_0$"}.get(units[0], units[0])
+    drawn = plot_moduli(rows, args.output, unit=unit, dpi=args.dpi, vector=args.vector, title=args.title)
+    print(f"wrote {args.output}: " + "; ".join(f"{route}: {len(v[0])} values of p0" for route, v in drawn.items())
+          + f" (moduli in {units[0]})")
+
+
+def cmd_env(args):
+    """Shell lines that let any python3 import tessera_tools and find Tessera's build."""
+    import os
+    import shlex
+
+    tools = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    repo = os.path.dirname(tools)
+    build = os.environ.get("TESSERA_BUILD") or os.path.join(repo, "build")
+    lines = []
+    if os.path.isfile(os.path.join(tools, "tessera-tools")):     # a source tree, not an installed copy
+        lines.append(f'export PYTHONPATH={shlex.quote(tools)}"${{PYTHONPATH:+:$PYTHONPATH}}"')
+        lines.append(f'export PATH={shlex.quote(tools)}":$PATH"')
+    if os.path.isdir(os.path.join(build, "lammps")):
+        lines.append(f"export TESSERA_BUILD={shlex.quote(build)}")
+        lines.append(f'export PATH={shlex.quote(os.path.join(build, "lammps"))}":$PATH"')
+    else:
+        print(f"# no build found at {build}: run scripts/build in the repository, or set TESSERA_BUILD",
+              file=sys.stderr)
+    print("\n".join(lines))
 
 
 def build_parser():
@@ -279,7 +633,8 @@ def build_parser():
     q.add_argument("--stats", action="store_true", help="also tessellate the last frame and print cell statistics")
     q.add_argument("--local", metavar="DUMP",
                    help="dump local of compute vertex/local: also print the junction length between each pair "
-                        "of cell types and the heterotypic fraction, at the last common timestep")
+                        "of cell types at the last common timestep, and the heterotypic junction fraction of "
+                        "every frame both dumps hold (one line per frame)")
     q.set_defaults(func=cmd_info)
 
     r = sub.add_parser("render", help="picture of the Voronoi tessellation of a frame (PNG), or a series (GIF/MP4)",
@@ -351,12 +706,19 @@ def build_parser():
                                    "C_i = mean_j u_i.u_j over Voronoi neighbours (in [-1, 1]) and/or orientation "
                                    "O_i = arccos(u_i.x) (in [0, pi]), u = v/|v|.",
                        epilog="Positions: xu yu, or x y with ix iy (otherwise unwrapped by continuity). "
-                              "Velocities: vx vy (otherwise finite differences of positions).")
+                              "Velocities: vx vy (otherwise finite differences of positions). Frames may hold "
+                              "different atom IDs (division, death): each cell is drawn while present, and "
+                              "--msd averages over the cells present in both frames.")
     t.add_argument("dump", help="multi-frame LAMMPS dump custom file")
     t.add_argument("-o", "--output", help="trajectory picture (PNG)")
     t.add_argument("--kind", choices=("coordination", "orientation", "both"), default="both",
                    help="which colouring (default: both, side by side)")
     t.add_argument("--hist", metavar="PNG", help="also write a histogram of velocity angles")
+    t.add_argument("--msd", metavar="FILE",
+                   help="mean-square displacement from the first selected frame: a plot (.png/.pdf/.svg) or a "
+                        "table (any other name); with changing IDs (division, death) averaged over the cells "
+                        "present in both frames")
+    t.add_argument("--dt", type=float, help="timestep size, for times in --msd (default: timesteps)")
     t.add_argument("--hist-skip", type=int, default=0, metavar="K",
                    help="leave the first K selected frames out of the histogram (transient)")
     t.add_argument("--bins", type=int, default=36, help="histogram bins over [0, pi] (default 36)")
@@ -394,7 +756,8 @@ def build_parser():
                         description="Shear, bulk and Young's modulus, Poisson's ratio and the Hessian's spectrum of "
                                     "an energy-minimised periodic configuration, from the exact Hessian "
                                     "(tessera-hessian); see doc/howto_moduli.md.")
-    mo.add_argument("dump", help="LAMMPS dump with x y (and type) at full precision, e.g. write_dump ... format float %%.17g")
+    mo.add_argument("dump", help="LAMMPS dump with x y (and type) at full precision, e.g. write_dump ... format "
+                                 "float %%.17g; with --seeds a pattern with {seed}, e.g. 'seed{seed}/minimised.dump'")
     mo.add_argument("--frame", type=int, default=-1, help="frame index (default: the last)")
     mp = mo.add_mutually_exclusive_group(required=True)
     mp.add_argument("--quadratic", type=float, nargs=4, metavar=("KA", "A0", "KP", "P0"),
@@ -402,10 +765,109 @@ def build_parser():
     mp.add_argument("--coeff", type=float, nargs=4, metavar=("K", "A0", "GAMMA", "LAMBDA"),
                     help="one cell type, pair_coeff * * K A0 Gamma Lambda")
     mo.add_argument("--tension", choices=("edge", "cell"), default="edge", help="pair_style's tension (default edge)")
-    mo.add_argument("--quasistatic", help="also fit the strain steps of examples/moduli/in.moduli (its qs.dat)")
+    mo.add_argument("--quasistatic", metavar="QS.DAT",
+                    help="also fit the strain steps of examples/moduli/in.moduli (its qs.dat; with --seeds a "
+                         "pattern with {seed}); this route also works where the Hessian does not exist "
+                         "(multifold vertices)")
+    mo.add_argument("--seeds", type=int, metavar="N",
+                    help="average over N independent states: the dump (and --quasistatic) names hold {seed}, "
+                         "replaced by 1..N (see --first-seed); error bars are standard errors over the states")
+    mo.add_argument("--table", metavar="CSV",
+                    help="append p0, G, B, E, nu with errors (in KA A0 or K A0) to this CSV, one row per route; "
+                         "'tessera-tools plot moduli CSV' draws G and B against p0")
+    mo.add_argument("--first-seed", type=int, default=1, metavar="S", help="first seed for --seeds (default 1)")
+    mo.add_argument("--fnorm-max", type=float, default=1e-6, metavar="F",
+                    help="warn when the force norm (LAMMPS fnorm) of a state or strain step exceeds F "
+                         "(default 1e-6)")
     mo.add_argument("--spectrum", help="write the eigenvalues of the Hessian to this file")
-    mo.add_argument("--exe", help="tessera-hessian executable (default: $TESSERA_HESSIAN, build/core/)")
+    mo.add_argument("--exe", help="tessera-hessian executable (default: $TESSERA_HESSIAN, else build/core/ of the "
+                         "repository, else PATH)")
     mo.set_defaults(func=cmd_moduli)
+
+    en = sub.add_parser("env", help="shell settings for running from anywhere (eval \"$(tessera-tools env)\")",
+                        description="Print export lines: PYTHONPATH (this tools/ directory, so any python3 can "
+                                    "import tessera_tools, e.g. the Python examples copied elsewhere), "
+                                    "TESSERA_BUILD (where libtessera_lammps.so and tessera-hessian are) and PATH "
+                                    "(tessera-tools, tessera-lmp).")
+    en.set_defaults(func=cmd_env)
+
+    pl = sub.add_parser("plot", help="measurement figures: wound area, growth N(t), shapes, demixing, moduli vs p0",
+                        description="One figure per command, print quality (300 dpi, --vector pdf for a vector "
+                                    "copy), axes in the model's reduced units. See doc/howto_measure.md.")
+    psub = pl.add_subparsers(dest="what", metavar="WHAT")
+    psub.required = True
+
+    def common(p):
+        p.add_argument("-o", "--output", required=True, help="picture (.png, .pdf, .svg)")
+        p.add_argument("--dpi", type=int, default=300, help="resolution (default 300)")
+        p.add_argument("--vector", metavar="EXT", help="also write a vector copy (pdf or svg)")
+        p.add_argument("--title")
+
+    pw = psub.add_parser("wound", help="wound (hole) area against time, with the half-closure time",
+                         description="From a log: a thermo column (-c v_wound). From a dump: the open area "
+                                     "(box area minus the finite Voronoi cells of --radius R), or a per-frame "
+                                     "value --value sum:COL / mean:COL / count.")
+    pw.add_argument("input", help="log.lammps or a dump custom file")
+    pw.add_argument("-c", "--column", help="thermo column of a log (e.g. v_wound)")
+    pw.add_argument("--radius", type=float, help="dump: radius of the finite cells (pair_style ... radius R)")
+    pw.add_argument("--value", help="dump: per-frame value: open (default with --radius), sum:COL, mean:COL, count")
+    pw.add_argument("--dt", type=float, help="dump: timestep size (time = timestep x dt; else the dump's TIME)")
+    pw.add_argument("--x", choices=("auto", "step"), default="auto", help="log: time (default) or step")
+    pw.add_argument("--fraction", type=float, default=0.5,
+                    help="report when the value falls to this fraction of its first value (default 0.5)")
+    pw.add_argument("--ylabel")
+    common(pw)
+    pw.set_defaults(func=cmd_plot_wound)
+
+    pg = psub.add_parser("growth", help="number of cells N(t) with the exponential fit and doubling time",
+                         description="N(t) from a log column (default Atoms) or the cells of each dump frame; "
+                                     "fits ln N = ln N0 + r t by least squares up to the first maximum of N "
+                                     "(a 'max' cap does not bend it) or over --tmin/--tmax.")
+    pg.add_argument("input", help="log.lammps (thermo with Atoms) or a dump")
+    pg.add_argument("-c", "--column", default="Atoms", help="log: thermo column of the cell count (default Atoms)")
+    pg.add_argument("--tmin", type=float, help="fit from this time")
+    pg.add_argument("--tmax", type=float, help="fit up to this time (default: the first maximum of N)")
+    pg.add_argument("--cap", type=float, metavar="N",
+                    help="leave out samples with N >= this (the 'max N' of fix cell/divide)")
+    pg.add_argument("--dt", type=float, help="dump: timestep size")
+    pg.add_argument("--x", choices=("auto", "step"), default="auto", help="log: time (default) or step")
+    common(pg)
+    pg.set_defaults(func=cmd_plot_growth)
+
+    ps = psub.add_parser("shape", help="shape-index and neighbour-number histograms (interior and rim apart)",
+                         description="From dump columns of compute vertex/atom (--q c_cell[3] --z c_cell[4] "
+                                     "--edge c_cell[9]) or from the Voronoi tessellation of the frames (finite "
+                                     "cells with --radius R: cells with a free arc are the rim).")
+    ps.add_argument("dump")
+    ps.add_argument("--frames", type=_slice, help="frames pooled (default: the last), e.g. '-10:' or 'all'")
+    ps.add_argument("--q", metavar="COL", help="shape index column (default: computed)")
+    ps.add_argument("--z", metavar="COL", help="neighbour number column (default: computed)")
+    ps.add_argument("--edge", metavar="COL",
+                    help="edge flag column (compute vertex/atom column 9): 1 = rim, 0 = interior")
+    ps.add_argument("--radius", type=float, help="finite Voronoi cells of this radius (open tissues)")
+    common(ps)
+    ps.set_defaults(func=cmd_plot_shape)
+
+    pd = psub.add_parser("demix", help="heterotypic junction fraction against time (cell sorting)",
+                         description="From a per-atom dump with 'type' and a dump local of compute vertex/local "
+                                     "(rows: cell ID, neighbour ID, x1 y1 x2 y2, length) at the same timesteps.")
+    pd.add_argument("dump", help="per-atom dump with id and type")
+    pd.add_argument("local", help="dump local of compute vertex/local")
+    pd.add_argument("--dt", type=float, help="timestep size (else the dump's TIME, else timesteps)")
+    pd.add_argument("--csv", help="also write the series as CSV")
+    pd.add_argument("--label")
+    pd.add_argument("--no-reference", action="store_true",
+                    help="no line at the random-mixture value 1 - sum_t x_t^2")
+    common(pd)
+    pd.set_defaults(func=cmd_plot_demix)
+
+    pm = psub.add_parser("moduli", help="G and B against p0 with error bars",
+                         description="From tables written by 'tessera-tools moduli ... --table FILE' (one run "
+                                     "per p0, e.g. with --seeds N).")
+    pm.add_argument("tables", nargs="+", help="CSV table(s) of tessera-tools moduli --table")
+    pm.add_argument("--route", choices=("hessian", "quasistatic", "both"), default="both")
+    common(pm)
+    pm.set_defaults(func=cmd_plot_moduli)
     return p
 
 
@@ -415,6 +877,7 @@ def main(argv=None):
         args.func(args)
     except (OSError, KeyError, ValueError, RuntimeError) as err:
         msg = err.args[0] if isinstance(err, KeyError) and err.args else err
-        print(f"tessera-tools {args.command}: {msg}", file=sys.stderr)
+        what = args.command + (" " + args.what if getattr(args, "what", None) else "")
+        print(f"tessera-tools {what}: {msg}", file=sys.stderr)
         return 1
     return 0

@@ -104,8 +104,10 @@ class Box:
 class Frame:
     """One snapshot: ``frame['x']``, ``frame.timestep``, ``frame.box``."""
 
-    def __init__(self, timestep, box, columns, names=None, time=None):
+    def __init__(self, timestep, box, columns, names=None, time=None, units=None):
         self.timestep = int(timestep)
+        #: the LAMMPS units style (``dump_modify units yes`` writes it), else None
+        self.units = units
         self.box = box
         self.columns = dict(columns)
         self.names = list(names) if names is not None else list(self.columns)
@@ -254,7 +256,7 @@ def iter_dump(path):
             if not line.strip():
                 line = next_line()
                 continue
-            timestep, natoms, box, time = None, None, None, None
+            timestep, natoms, box, time, units = None, None, None, None, None
             while True:
                 if not line:
                     raise DumpFormatError(f"{path}:{lineno}: file ends inside a frame header")
@@ -268,6 +270,8 @@ def iter_dump(path):
                     natoms = int(next_line().split()[0])
                 elif item.startswith("BOX BOUNDS"):
                     box = _parse_box(line.strip(), [next_line() for _ in range(3)], where)
+                elif item.startswith("UNITS"):
+                    units = next_line().split()[0]
                 elif item.startswith("TIME"):
                     time = float(next_line().split()[0])
                 elif item.startswith("ATOMS") or item.startswith("ENTRIES"):
@@ -290,7 +294,7 @@ def iter_dump(path):
             if "id" in columns and not local:
                 order = np.argsort(columns["id"], kind="stable")
                 columns = {k: v[order] for k, v in columns.items()}
-            yield Frame(timestep, box, columns, names, time)
+            yield Frame(timestep, box, columns, names, time, units)
             line = next_line()
 
 

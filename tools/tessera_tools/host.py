@@ -17,13 +17,14 @@ Two hosts, one call:
   libtessera_lammps.so inserts the styles into the instance through its C
   function tessera_register(void *lmp), called with ctypes.  The library is
   $TESSERA_LAMMPS_LIB, else lammps/libtessera_lammps.so in $TESSERA_BUILD or
-  this repository's build/.
+  this repository's build/, else next to (or in ../lib of) tessera-lmp on PATH.
 
 Run serial or under mpirun; every rank calls register().
 """
 
 import ctypes
 import os
+import shutil
 
 _REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
@@ -43,15 +44,40 @@ def find_plugin():
                      "-D TESSERA_LAMMPS_SRC=<lammps>/src) or set TESSERA_PLUGIN")
 
 
+def library_places():
+    """Where :func:`find_library` looks, in order, as (description, path or None)."""
+    name = "libtessera_lammps.so"
+    places = [("$TESSERA_LAMMPS_LIB", os.environ.get("TESSERA_LAMMPS_LIB") or None)]
+    if os.environ.get("TESSERA_BUILD"):
+        places.append(("$TESSERA_BUILD/lammps", os.path.join(os.environ["TESSERA_BUILD"], "lammps", name)))
+    places.append(("this repository's build/lammps", os.path.join(_REPO, "build", "lammps", name)))
+    lmp = shutil.which("tessera-lmp")
+    if lmp:
+        bindir = os.path.dirname(os.path.realpath(lmp))
+        # a build tree holds both in build/lammps/; 'cmake --install' puts them in bin/ and lib/
+        places.append(("next to tessera-lmp on PATH", os.path.join(bindir, name)))
+        places.append(("../lib of tessera-lmp on PATH", os.path.join(os.path.dirname(bindir), "lib", name)))
+    else:
+        places.append(("next to tessera-lmp on PATH", None))
+    return places
+
+
 def find_library():
-    """$TESSERA_LAMMPS_LIB, else libtessera_lammps.so in the build directory
-    $TESSERA_BUILD or this repository's build/."""
-    path = os.environ.get("TESSERA_LAMMPS_LIB")
-    if not path:
-        build = os.environ.get("TESSERA_BUILD", os.path.join(_REPO, "build"))
-        path = os.path.join(build, "lammps", "libtessera_lammps.so")
-    return _existing(path, "libtessera_lammps.so",
-                     "build Tessera (scripts/build) or set TESSERA_LAMMPS_LIB")
+    """libtessera_lammps.so: $TESSERA_LAMMPS_LIB, else in the build directory $TESSERA_BUILD or
+    this repository's build/, else next to (or in ../lib of) the tessera-lmp found on PATH.
+    A $TESSERA_LAMMPS_LIB that does not exist is an error, not a reason to look elsewhere."""
+    env = os.environ.get("TESSERA_LAMMPS_LIB")
+    if env:
+        return _existing(env, "libtessera_lammps.so", "fix or unset TESSERA_LAMMPS_LIB")
+    places = library_places()
+    for _, path in places:
+        if path and os.path.exists(path):
+            return path
+    looked = "; ".join(f"{what} ({path or 'not set' if what.startswith('$') else path or 'none'})"
+                       for what, path in places)
+    raise FileNotFoundError("libtessera_lammps.so not found. Looked in: " + looked + ". Build Tessera "
+                            "(scripts/build) and set TESSERA_BUILD=<tessera>/build (or run "
+                            "'eval \"$(<tessera>/tools/tessera-tools env)\"'), or set TESSERA_LAMMPS_LIB")
 
 
 def has_plugin_support(lmp):

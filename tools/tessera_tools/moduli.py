@@ -24,11 +24,13 @@ configuration and does the linear algebra with numpy/scipy:
   a minimum (e.g. the hexagonal lattice above p0 = sqrt(8 sqrt 3) = 3.7224).
 
 The configuration must be an energy minimum (forces ~ 0) for G and B to be
-the moduli; ``max_force`` is reported so callers can check.  At a multifold
+the moduli; ``fnorm`` (the 2-norm of all forces, as LAMMPS's thermo keyword)
+and ``max_force`` are reported so callers can check.  At a multifold
 vertex the energy is not twice differentiable and tessera-hessian refuses.
 """
 
 import os
+import shutil
 import subprocess
 
 import numpy as np
@@ -37,17 +39,39 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 
 
-def find_hessian_exe(explicit=None):
-    """tessera-hessian: explicit path, $TESSERA_HESSIAN, $TESSERA_BUILD/core, build/core."""
-    candidates = [explicit, os.environ.get("TESSERA_HESSIAN")]
+def hessian_places():
+    """Where :func:`find_hessian_exe` looks, in order, as (description, path or None)."""
+    places = [("$TESSERA_HESSIAN", os.environ.get("TESSERA_HESSIAN") or None)]
     if os.environ.get("TESSERA_BUILD"):
-        candidates.append(os.path.join(os.environ["TESSERA_BUILD"], "core", "tessera-hessian"))
-    candidates.append(os.path.join(ROOT, "build", "core", "tessera-hessian"))
-    for path in candidates:
-        if path and os.path.isfile(path):
+        places.append(("$TESSERA_BUILD/core", os.path.join(os.environ["TESSERA_BUILD"], "core", "tessera-hessian")))
+    places.append(("the repository's build", os.path.join(ROOT, "build", "core", "tessera-hessian")))
+    places.append(("PATH", shutil.which("tessera-hessian")))
+    return places
+
+
+def find_hessian_exe(explicit=None):
+    """The tessera-hessian executable: ``explicit`` (--exe), else $TESSERA_HESSIAN, else where
+    scripts/build puts it (build/core/tessera-hessian of this repository, or $TESSERA_BUILD/core),
+    else the first on PATH.  A path that is given (explicit or $TESSERA_HESSIAN) but is not an
+    executable file is an error, not a reason to look elsewhere."""
+    if explicit:
+        if not (os.path.isfile(explicit) and os.access(explicit, os.X_OK)):
+            raise FileNotFoundError(f"--exe {explicit}: no executable file there; give the path of "
+                                    "tessera-hessian (scripts/build puts it in build/core/)")
+        return os.path.abspath(explicit)
+    env = os.environ.get("TESSERA_HESSIAN")
+    if env and not (os.path.isfile(env) and os.access(env, os.X_OK)):
+        raise FileNotFoundError(f"TESSERA_HESSIAN={env}: no executable file there; unset it or point it "
+                                "at tessera-hessian (scripts/build puts it in build/core/)")
+    places = hessian_places()
+    for _, path in places:
+        if path and os.path.isfile(path) and os.access(path, os.X_OK):
             return os.path.abspath(path)
-    raise FileNotFoundError("tessera-hessian not found: build it (cmake --build build --target "
-                            "tessera-hessian), or pass its path (or set TESSERA_HESSIAN)")
+    looked = "; ".join(f"{what}" + (f" ({path})" if path else " (not set)" if what.startswith("$") else
+                                     " (none)") for what, path in places)
+    raise FileNotFoundError("tessera-hessian not found. Looked in: " + looked +
+                            ". Build it (scripts/build, which puts it in build/core/), put it on PATH, "
+                            "set TESSERA_HESSIAN=/path/to/tessera-hessian, or pass --exe PATH")
 
 
 class Model:
@@ -166,7 +190,7 @@ def moduli(res, dense_limit=4000):
     out = dict(G=G, B=B, E=4 * B * G / (B + G), nu=(B - G) / (B + G), pressure=pressure,
                shear_stress=-res.virial[2] / V, G_affine=res.born_shear / V,
                B_affine=(res.born_dilation / V + 2 * pressure) / 4, energy=res.energy, area=V, n=res.n,
-               max_force=float(np.abs(res.force).max()))
+               max_force=float(np.abs(res.force).max()), fnorm=float(np.linalg.norm(res.force)))
     if lam is not None:
         tol = 1e-9 * max(1.0, np.abs(lam).max())
         out.update(eigenvalues=lam, zero_modes=int(np.sum(np.abs(lam) <= tol)),
@@ -206,4 +230,30 @@ def fit_quasistatic(path):
         out[name] = factor * slope
         out[name + "_err"] = factor * float(np.sqrt(cov[0, 0] * s2))
         out[kind] = a
+        if a.shape[1] >= 5:
+            out[kind + "_fnorm"] = float(np.max(a[:, 4]))
+    out["fnorm"] = max(out.get("shear_fnorm", 0.0), out.get("dilation_fnorm", 0.0))
+    out.update(young_poisson(out["G"], out["B"], out["G_err"], out["B_err"]))
     return out
+
+
+def young_poisson(G, B, G_err=0.0, B_err=0.0):
+    """E = 4 B G / (B + G) and nu = (B - G) / (B + G) (2D isotropic elasticity) with their
+    errors propagated linearly from independent errors of G and B."""
+    s = B + G
+    E = 4 * B * G / s
+    nu = (B - G) / s
+    E_err = float(np.hypot(4 * B * B / s ** 2 * G_err, 4 * G * G / s ** 2 * B_err))
+    nu_err = float(np.hypot(2 * B / s ** 2 * G_err, 2 * G / s ** 2 * B_err))
+    return dict(E=E, E_err=E_err, nu=nu, nu_err=nu_err)
+
+
+def seed_average(values):
+    """Mean and standard error of the mean (sample standard deviation / sqrt(n)) of the
+    values of independent states; the error is NaN for a single state."""
+    v = np.asarray([x for x in values if x is not None and np.isfinite(x)], dtype=float)
+    if len(v) == 0:
+        return float("nan"), float("nan")
+    if len(v) == 1:
+        return float(v[0]), float("nan")
+    return float(v.mean()), float(v.std(ddof=1) / np.sqrt(len(v)))

@@ -331,13 +331,21 @@ def render_series(frames, out, field="area", view="box", dpi=100, fps=5, title=N
     fig, ax = _figure(frames[0].box, view)
     # the colour bar is drawn once, from the first frame, on a fixed scale
     draw_tessellation(ax, frames[0], tessellations[0], field=field, view=view, norm_from=norm_from, **kwargs)
+    ax.set_title(_title(frames[0], field, title))
     fig.tight_layout()
     kwargs_nobar = dict(kwargs, colorbar=False)
+    last_box = None
     with writer.saving(fig, out, dpi):
         for frame, tess in wrap(list(zip(frames, tessellations)), desc="drawing"):
             ax.clear()
             draw_tessellation(ax, frame, tess, field=field, view=view, norm_from=norm_from, **kwargs_nobar)
             ax.set_title(_title(frame, field, title))
+            # each frame as it is: a box that changes (growth, shear) changes the tick labels,
+            # so the layout is redone for it (a fixed box keeps one layout: no jitter)
+            box = (frame.box.xlo, frame.box.xhi, frame.box.ylo, frame.box.yhi, frame.box.xy)
+            if last_box is not None and box != last_box:
+                fig.tight_layout()
+            last_box = box
             writer.grab_frame()
     plt.close(fig)
     return [out]

@@ -61,14 +61,17 @@ def coordination(neighbours, v):
 
 
 class Trajectory:
-    """Per-frame arrays for the same cells (matched by atom ID) across a dump.
+    """Per-frame arrays of the cells (matched by atom ID) across a dump.
 
+    The cells are the union of the IDs of all frames (``ids``, sorted): in a
+    dividing or dying tissue a frame's IDs may change, and the arrays hold NaN
+    where a cell is absent (``present`` (F, N) says where it is).
     timesteps (F,), ids (N,), positions (F, N, 2) unwrapped, wrapped (F, N, 2),
     velocities (F, N, 2), boxes (list of F Box), columns: dict name -> (F, N)
     for extra per-atom columns that were requested.
     """
 
-    def __init__(self, timesteps, ids, positions, wrapped, velocities, boxes, columns):
+    def __init__(self, timesteps, ids, positions, wrapped, velocities, boxes, columns, present=None):
         self.timesteps = timesteps
         self.ids = ids
         self.positions = positions
@@ -76,9 +79,15 @@ class Trajectory:
         self.velocities = velocities
         self.boxes = boxes
         self.columns = columns
+        self.present = present if present is not None else np.ones(positions.shape[:2], dtype=bool)
 
     def __len__(self):
         return len(self.timesteps)
+
+    @property
+    def changing(self):
+        """True when some cell is absent from some frame (division, death, cells leaving)."""
+        return not bool(self.present.all())
 
     def orientation(self):
         return np.array([orientation(v) for v in self.velocities])
@@ -87,12 +96,25 @@ class Trajectory:
         return np.array([velocity_angle(v) for v in self.velocities])
 
     def coordination(self):
-        """C_i per frame, neighbours from the periodic Voronoi tessellation of each frame."""
-        out = np.empty(self.positions.shape[:2])
+        """C_i per frame, neighbours from the periodic Voronoi tessellation of each frame's cells."""
+        out = np.full(self.positions.shape[:2], np.nan)
         for k in range(len(self)):
-            tess = periodic_voronoi(self.wrapped[k], self.boxes[k], self.ids)
-            out[k] = coordination(tess.neighbours, self.velocities[k])
+            here = np.nonzero(self.present[k])[0]
+            tess = periodic_voronoi(self.wrapped[k][here], self.boxes[k], self.ids[here])
+            out[k, here] = coordination(tess.neighbours, self.velocities[k][here])
         return out
+
+    def msd(self):
+        """Mean-square displacement from the first frame: (msd (F,), count (F,)), where the mean
+        at frame k runs over the cells present both in the first frame and in frame k (a cell born
+        later has no displacement from the first frame; a cell that died has none at frame k)."""
+        both = self.present[0][None, :] & self.present
+        d2 = np.sum((self.positions - self.positions[0][None]) ** 2, axis=2)
+        count = both.sum(axis=1)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            msd = np.where(both, d2, 0.0).sum(axis=1) / count
+        msd[count == 0] = np.nan
+        return msd, count
 
 
 def frame_axes(ax, points, pad_fraction):
@@ -132,60 +154,93 @@ def _warn(message):
 def load_trajectory(path, start=None, stop=None, every=None, velocity=("vx", "vy"), extra=(), quiet=False):
     """Read a multi-frame dump into a :class:`Trajectory`.
 
-    Unwrapped positions come from xu/yu or image flags; failing that they are
-    rebuilt by continuity (minimum-image steps between frames).  Velocities come
-    from the ``velocity`` columns; failing that from finite differences of the
-    unwrapped positions (only their direction matters here).
+    Cells are matched by atom ID; frames may hold different IDs (dividing or
+    dying tissues): the trajectory covers the union of the IDs, NaN where a
+    cell is absent.  Unwrapped positions come from xu/yu or image flags;
+    failing that they are rebuilt by continuity (minimum-image steps between
+    frames; a cell that appears starts at the image of its centre nearest to
+    the unwrapped position of its nearest neighbour, e.g. its mother).
+    Velocities come from the ``velocity`` columns; failing that from finite
+    differences of the unwrapped positions (only their direction matters here;
+    NaN where a cell is not in the neighbouring frames).
     """
     import itertools
 
-    timesteps, ids, unwrapped, wrapped, vel, boxes = [], None, [], [], [], []
-    extras = {name: [] for name in extra}
-    have_unwrapped = have_velocity = True
-    for frame in itertools.islice(iter_dump(path), start, stop, every):
-        if ids is None:
-            ids = frame.ids
-        elif len(frame.ids) != len(ids) or np.any(frame.ids != ids):
-            raise ValueError(f"{path}: timestep {frame.timestep} holds different atom IDs than the first frame")
-        timesteps.append(frame.timestep)
-        boxes.append(frame.box)
-        pos = frame.positions()
-        wrapped.append(pos)
-        if have_unwrapped and frame.has_unwrapped():
-            unwrapped.append(frame.unwrapped())
-        else:
-            have_unwrapped = False
-        if have_velocity and velocity[0] in frame and velocity[1] in frame:
-            vel.append(frame.vector(*velocity))
-        else:
-            have_velocity = False
-        for name in extra:
-            extras[name].append(np.asarray(frame[name], dtype=float))
-    if not timesteps:
+    frames = list(itertools.islice(iter_dump(path), start, stop, every))
+    if not frames:
         raise ValueError(f"{path}: no frames selected")
-    timesteps = np.array(timesteps)
-    wrapped = np.array(wrapped)
+    ids = np.unique(np.concatenate([np.asarray(f.ids) for f in frames]))
+    F, N = len(frames), len(ids)
+    present = np.zeros((F, N), dtype=bool)
+    wrapped = np.full((F, N, 2), np.nan)
+    unwrapped = np.full((F, N, 2), np.nan)
+    vel = np.full((F, N, 2), np.nan)
+    extras = {name: np.full((F, N), np.nan) for name in extra}
+    have_unwrapped = all(f.has_unwrapped() for f in frames)
+    have_velocity = all(velocity[0] in f and velocity[1] in f for f in frames)
+    timesteps = np.array([f.timestep for f in frames])
+    boxes = [f.box for f in frames]
+    for k, frame in enumerate(frames):
+        fids = np.asarray(frame.ids)
+        if len(np.unique(fids)) != len(fids):
+            raise ValueError(f"{path}: timestep {frame.timestep} holds repeated atom IDs")
+        col = np.searchsorted(ids, fids)
+        present[k, col] = True
+        wrapped[k, col] = frame.positions()
+        if have_unwrapped:
+            unwrapped[k, col] = frame.unwrapped()
+        if have_velocity:
+            vel[k, col] = frame.vector(*velocity)
+        for name in extra:
+            extras[name][k, col] = np.asarray(frame[name], dtype=float)
     if have_unwrapped:
-        positions = np.array(unwrapped)
+        positions = unwrapped
     else:
         if not quiet:
             _warn("no xu/yu or image flags in the dump: unwrapping by continuity "
                   "(wrong if a cell moves more than half a box between frames)")
-        positions = np.empty_like(wrapped)
-        positions[0] = wrapped[0]
-        for k in range(1, len(wrapped)):
-            step = boxes[k].minimum_image(wrapped[k] - wrapped[k - 1])
-            positions[k] = positions[k - 1] + step
+        positions = _unwrap_by_continuity(wrapped, present, boxes)
     if have_velocity:
-        velocities = np.array(vel)
+        velocities = vel
     else:
-        if len(timesteps) < 2:
+        if F < 2:
             raise ValueError(f"{path}: no {' '.join(velocity)} columns and a single frame: no velocities")
         if not quiet:
             _warn(f"no {' '.join(velocity)} columns: velocities from finite differences of positions")
         velocities = np.gradient(positions, timesteps.astype(float), axis=0)
-    columns = {name: np.array(values) for name, values in extras.items()}
-    return Trajectory(timesteps, ids, positions, wrapped, velocities, boxes, columns)
+    if not quiet and not present.all():
+        born = int(np.sum(~present[0] & present.any(axis=0)))
+        gone = int(np.sum(present[0] & ~present[-1]))
+        _warn(f"{path}: the frames hold different atom IDs ({N} in all, {int(present[0].sum())} in the first "
+              f"frame, {int(present[-1].sum())} in the last; {born} appear, {gone} of the first are gone): "
+              "each cell is followed while it is present")
+    return Trajectory(timesteps, ids, positions, wrapped, velocities, boxes, extras, present)
+
+
+def _unwrap_by_continuity(wrapped, present, boxes):
+    """Unwrapped positions from wrapped ones: each cell steps by the minimum image from its last
+    known position; a cell seen for the first time takes the image nearest to the unwrapped
+    position of its nearest cell already followed."""
+    F, N, _ = wrapped.shape
+    positions = np.full_like(wrapped, np.nan)
+    last = np.full((N, 2), np.nan)          # last unwrapped position of each cell
+    for k in range(F):
+        here = present[k]
+        known = here & ~np.isnan(last[:, 0])
+        if known.any():
+            positions[k, known] = last[known] + boxes[k].minimum_image(wrapped[k, known] - boxes[k].wrap(last[known]))
+        new = np.nonzero(here & ~known)[0]
+        if len(new):
+            ref = np.nonzero(known)[0]
+            for i in new:
+                if len(ref) == 0:
+                    positions[k, i] = wrapped[k, i]
+                    continue
+                d = boxes[k].minimum_image(wrapped[k, ref] - wrapped[k, i])
+                j = ref[np.argmin(np.sum(d ** 2, axis=1))]
+                positions[k, i] = positions[k, j] + boxes[k].minimum_image((wrapped[k, i] - wrapped[k, j])[None])[0]
+        last[here] = positions[k, here]
+    return positions
 
 
 def trajectory_segments(positions, values, wrapped=None, box=None):
@@ -201,14 +256,16 @@ def trajectory_segments(positions, values, wrapped=None, box=None):
     seg = np.stack([pts[:-1], pts[1:]], axis=2)  # (F-1, N, 2 ends, 2 coords)
     seg = seg.reshape(-1, 2, 2)
     vals = np.asarray(values[:-1], dtype=float).reshape(-1)
+    # a cell absent at either end (born or dead in between) has no segment
+    keep = np.all(np.isfinite(seg.reshape(-1, 4)), axis=1)
     if wrapped is not None:
         step_unwrapped = (positions[1:] - positions[:-1]).reshape(-1, 2)
         step_wrapped = (wrapped[1:] - wrapped[:-1]).reshape(-1, 2)
         # a boundary crossing changes the step by a whole box vector; dumps
         # print few digits, so compare against half the box, not round-off
-        keep = np.linalg.norm(step_unwrapped - step_wrapped, axis=1) < 0.5 * min(box.lx, box.ly)
-        seg, vals = seg[keep], vals[keep]
-    return seg, vals
+        with np.errstate(invalid="ignore"):
+            keep &= np.linalg.norm(step_unwrapped - step_wrapped, axis=1) < 0.5 * min(box.lx, box.ly)
+    return seg[keep], vals[keep]
 
 
 def draw_trajectories(ax, traj, values, kind, cmap=None, vmin=None, vmax=None, linewidth=None,
@@ -236,7 +293,12 @@ def draw_trajectories(ax, traj, values, kind, cmap=None, vmin=None, vmax=None, l
     if box:
         ax.add_patch(Polygon(traj.boxes[0].corners(), closed=True, fill=False,
                              edgecolor="0.3", linestyle="--", linewidth=0.8))
+        if not np.allclose(traj.boxes[-1].corners(), traj.boxes[0].corners()):
+            # a deforming box (growth, shear): the last frame's box dotted
+            ax.add_patch(Polygon(traj.boxes[-1].corners(), closed=True, fill=False,
+                                 edgecolor="0.3", linestyle=":", linewidth=0.8))
     pts = seg.reshape(-1, 2) if len(seg) else traj.positions.reshape(-1, 2)
+    pts = pts[np.all(np.isfinite(pts), axis=1)]
     corners = traj.boxes[0].corners()
     frame_axes(ax, np.vstack([pts, corners]) if box else pts, 0.02)
     if colorbar:
@@ -254,7 +316,7 @@ def plot_trajectories(traj, out, kinds=("coordination", "orientation"), values=N
         if kind not in values:
             values[kind] = traj.coordination() if kind == "coordination" else traj.orientation()
     pts = (traj.wrapped if wrap else traj.positions).reshape(-1, 2)
-    pts = np.vstack([pts, traj.boxes[0].corners()])
+    pts = np.vstack([pts[np.all(np.isfinite(pts), axis=1)], traj.boxes[0].corners()])
     span = pts.max(axis=0) - pts.min(axis=0)
     aspect = float(np.clip(span[1] / max(span[0], 1e-300), 0.15, 4.0))
     # wide, flat trajectory sets (streams along x) read better stacked
@@ -272,7 +334,9 @@ def plot_trajectories(traj, out, kinds=("coordination", "orientation"), values=N
     for ax, kind in zip(axes, kinds):
         draw_trajectories(ax, traj, values[kind], kind, cmap=cmap, wrap=wrap, linewidth=linewidth)
         ax.set_title(kind)
-    span = f"timesteps {traj.timesteps[0]}-{traj.timesteps[-1]}, {len(traj)} frames, {len(traj.ids)} cells"
+    cells = (f"{len(traj.ids)} cells" if not traj.changing else
+             f"{int(traj.present[0].sum())}-{int(traj.present[-1].sum())} cells ({len(traj.ids)} IDs)")
+    span = f"timesteps {traj.timesteps[0]}-{traj.timesteps[-1]}, {len(traj)} frames, {cells}"
     fig.suptitle(title if title is not None else span)
     fig.tight_layout()
     fig.savefig(out, dpi=dpi)

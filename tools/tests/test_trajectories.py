@@ -108,14 +108,21 @@ class TrajectoryLoading(unittest.TestCase):
         steps = np.linalg.norm(seg_w[:, 1] - seg_w[:, 0], axis=1)
         np.testing.assert_allclose(steps, 1.5, rtol=1e-9)
 
-    def test_changing_atom_ids_refused(self):
+    def test_changing_atom_ids_followed(self):
+        """IDs 1-9, then 2-10 (cell 1 gone, cell 10 new): the union of IDs, each cell where it is
+        present (division and death; test_changing_ids.py has the full cases)."""
         pts, box = square_lattice(3)
         f0 = frame_from(pts, box, 0)
         f1 = Frame(1, box, dict(f0.columns, id=np.arange(2, 11)), f0.names)
         path = os.path.join(self.tmp.name, "d.dump")
         write_dump(path, [f0, f1])
-        with self.assertRaises(ValueError):
-            load_trajectory(path, quiet=True)
+        traj = load_trajectory(path, quiet=True)
+        np.testing.assert_array_equal(traj.ids, np.arange(1, 11))
+        np.testing.assert_array_equal(traj.present[:, 0], [True, False])
+        np.testing.assert_array_equal(traj.present[:, 9], [False, True])
+        np.testing.assert_allclose(traj.wrapped[1, 1], pts[0])      # ID 2 sits where row 0 is
+        msd, count = traj.msd()
+        np.testing.assert_array_equal(count, [9, 8])
 
 
 if __name__ == "__main__":

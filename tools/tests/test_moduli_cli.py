@@ -1,0 +1,243 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""tessera-tools moduli: units, error bars over seeds, the quasistatic route where the
+Hessian does not exist, the fnorm warning, and where tessera-hessian is looked for.
+Expected values are analytic (hexagon closed form, slopes of synthetic strain steps),
+never the tool's own earlier output."""
+
+import math
+import os
+import re
+import stat
+import tempfile
+import unittest
+from unittest import mock
+
+import numpy as np
+
+from helpers import frame_from, hex_lattice, square_lattice
+from test_cli import run
+from tessera_tools import moduli as moduli_mod
+from tessera_tools.dump import write_dump
+from tessera_tools.moduli import seed_average, young_poisson
+
+PH = math.sqrt(8 * math.sqrt(3))    # shape index of the regular hexagon
+
+
+def have_hessian():
+    try:
+        moduli_mod.find_hessian_exe()
+        return True
+    except FileNotFoundError:
+        return False
+
+
+def write_qs(path, G, B, noise=0.0, fnorm=1e-13, seed=0):
+    """Strain steps with pxy = -G gamma and press = P0 - 2 B eps (+ noise)."""
+    rng = np.random.default_rng(seed)
+    steps = np.arange(-3, 4) * 2e-4
+    with open(path, "w") as f:
+        f.write("# kind strain pxy press pe fnorm\n")
+        for g in steps:
+            f.write(f"shear {g:.12e} {-G * g + noise * rng.standard_normal():.15e} -0.1 -5.0 {fnorm:.3e}\n")
+        for e in steps:
+            f.write(f"dilation {e:.12e} 0.0 {-0.1 - 2 * B * e + noise * rng.standard_normal():.15e} -5.0 "
+                    f"{fnorm:.3e}\n")
+
+
+def numbers_after(text, key):
+    """Every float printed right after 'key = '."""
+    return [float(v) for v in re.findall(re.escape(key) + r" = ([-+0-9.eE]+)", text)]
+
+
+class Propagation(unittest.TestCase):
+
+    def test_young_poisson_values_and_errors(self):
+        """E = 4BG/(B+G), nu = (B-G)/(B+G); errors against central differences."""
+        G, B, dG, dB = 0.7, 3.1, 1e-3, 2e-3
+        r = young_poisson(G, B, dG, dB)
+        self.assertAlmostEqual(r["E"], 4 * B * G / (B + G), places=14)
+        self.assertAlmostEqual(r["nu"], (B - G) / (B + G), places=14)
+        h = 1e-6
+        dEdG = (young_poisson(G + h, B)["E"] - young_poisson(G - h, B)["E"]) / (2 * h)
+        dEdB = (young_poisson(G, B + h)["E"] - young_poisson(G, B - h)["E"]) / (2 * h)
+        self.assertAlmostEqual(r["E_err"], math.hypot(dEdG * dG, dEdB * dB), places=9)
+        dndG = (young_poisson(G + h, B)["nu"] - young_poisson(G - h, B)["nu"]) / (2 * h)
+        dndB = (young_poisson(G, B + h)["nu"] - young_poisson(G, B - h)["nu"]) / (2 * h)
+        self.assertAlmostEqual(r["nu_err"], math.hypot(dndG * dG, dndB * dB), places=9)
+
+    def test_seed_average(self):
+        mean, err = seed_average([1.0, 2.0, 3.0])
+        self.assertEqual(mean, 2.0)
+        self.assertAlmostEqual(err, 1.0 / math.sqrt(3.0), places=14)
+        self.assertTrue(math.isnan(seed_average([4.0])[1]))
+
+
+class FindHessian(unittest.TestCase):
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.addCleanup(self.tmp.cleanup)
+
+    def fake_exe(self, where):
+        os.makedirs(where, exist_ok=True)
+        path = os.path.join(where, "tessera-hessian")
+        with open(path, "w") as f:
+            f.write("#!/bin/sh\nexit 3\n")
+        os.chmod(path, os.stat(path).st_mode | stat.S_IXUSR)
+        return path
+
+    def test_not_found_names_every_place(self):
+        empty = os.path.join(self.tmp.name, "repo")
+        with mock.patch.object(moduli_mod, "ROOT", empty), \
+                mock.patch.dict(os.environ, {"PATH": self.tmp.name}, clear=False):
+            os.environ.pop("TESSERA_HESSIAN", None)
+            os.environ.pop("TESSERA_BUILD", None)
+            with self.assertRaises(FileNotFoundError) as ctx:
+                moduli_mod.find_hessian_exe()
+        msg = str(ctx.exception)
+        for place in ("TESSERA_HESSIAN", os.path.join(empty, "build", "core", "tessera-hessian"), "PATH",
+                      "--exe"):
+            self.assertIn(place, msg)
+
+    def test_order_repository_build_then_path(self):
+        repo = os.path.join(self.tmp.name, "repo")
+        on_path = self.fake_exe(os.path.join(self.tmp.name, "bin"))
+        with mock.patch.object(moduli_mod, "ROOT", repo), \
+                mock.patch.dict(os.environ, {"PATH": os.path.dirname(on_path)}, clear=False):
+            os.environ.pop("TESSERA_HESSIAN", None)
+            os.environ.pop("TESSERA_BUILD", None)
+            self.assertEqual(moduli_mod.find_hessian_exe(), on_path)
+            built = self.fake_exe(os.path.join(repo, "build", "core"))
+            self.assertEqual(moduli_mod.find_hessian_exe(), built)
+            os.environ["TESSERA_HESSIAN"] = on_path
+            self.assertEqual(moduli_mod.find_hessian_exe(), on_path)
+            os.environ["TESSERA_HESSIAN"] = os.path.join(self.tmp.name, "nothing")
+            with self.assertRaisesRegex(FileNotFoundError, "TESSERA_HESSIAN=.*nothing"):
+                moduli_mod.find_hessian_exe()
+            os.environ.pop("TESSERA_HESSIAN", None)
+
+
+class MissingExecutable(unittest.TestCase):
+    """The quasistatic route needs no tessera-hessian: seeds averaged from qs files alone."""
+
+    def test_seeds_from_strain_steps_alone(self):
+        tmp = tempfile.TemporaryDirectory()
+        self.addCleanup(tmp.cleanup)
+        pts, box = hex_lattice(4, 4)
+        Gs, Bs = [0.2, 0.3, 0.4], [2.0, 2.5, 3.0]
+        for s, (G, B) in enumerate(zip(Gs, Bs), start=1):
+            d = os.path.join(tmp.name, f"seed{s}")
+            os.makedirs(d)
+            write_dump(os.path.join(d, "minimised.dump"), [frame_from(pts, box)])
+            write_qs(os.path.join(d, "qs.dat"), G, B)
+        repo = os.path.join(tmp.name, "repo")
+        with mock.patch.object(moduli_mod, "ROOT", repo), \
+                mock.patch.dict(os.environ, {"PATH": tmp.name}, clear=False):
+            os.environ.pop("TESSERA_HESSIAN", None)
+            os.environ.pop("TESSERA_BUILD", None)
+            code, out, err = run("moduli", os.path.join(tmp.name, "seed{seed}", "minimised.dump"),
+                                 "--seeds", "3", "--quadratic", "2", "1", "1", "3.8",
+                                 "--quasistatic", os.path.join(tmp.name, "seed{seed}", "qs.dat"))
+        self.assertEqual(code, 0, err)
+        summary = out.split("over 3 states")[1]
+        g = re.search(r"G = ([-0-9.e+]+) \+- ([-0-9.e+]+) energy/length\^2 = ([-0-9.e+]+) \+- ([-0-9.e+]+) KA A0",
+                      summary)
+        self.assertIsNotNone(g, summary)
+        self.assertAlmostEqual(float(g.group(1)), 0.3, places=6)
+        self.assertAlmostEqual(float(g.group(2)), 0.1 / math.sqrt(3), places=2)    # std 0.1 / sqrt(3)
+        self.assertAlmostEqual(float(g.group(3)), 0.15, places=6)                  # / (KA A0) = 2
+        self.assertIn("units:", out)
+        self.assertIn("tessera-hessian not found", err)
+
+    def test_seeds_needs_a_pattern(self):
+        code, out, err = run("moduli", "minimised.dump", "--seeds", "3", "--quadratic", "1", "1", "1", "3.8")
+        self.assertNotEqual(code, 0)
+        self.assertIn("{seed}", err)
+
+
+@unittest.skipUnless(have_hessian(), "tessera-hessian not built")
+class WithHessian(unittest.TestCase):
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.addCleanup(self.tmp.cleanup)
+
+    def path(self, name):
+        return os.path.join(self.tmp.name, name)
+
+    def test_hexagon_closed_form_in_both_units(self):
+        """G = (3/4) KP Ph (Ph - p0), B = 2 KA + KP Ph p0 / 2 (cells of unit area);
+        printed in the input's units and divided by KA A0."""
+        a = math.sqrt(2 / math.sqrt(3))
+        pts, box = hex_lattice(6, 4, a=a)
+        write_dump(self.path("hex.dump"), [frame_from(pts, box)])
+        KA, KP, p0 = 2.0, 3.0, 3.5
+        code, out, err = run("moduli", self.path("hex.dump"), "--quadratic", str(KA), "1", str(KP), str(p0))
+        self.assertEqual(code, 0, err)
+        G = 0.75 * KP * PH * (PH - p0)
+        B = 2 * KA + KP * PH * p0 / 2
+        self.assertAlmostEqual(numbers_after(out, "G")[0], G, places=6)
+        self.assertAlmostEqual(numbers_after(out, "B")[0], B, places=5)
+        self.assertRegex(out, r"G = [-0-9.e+]+ energy/length\^2 = ([-0-9.e+]+) KA A0")
+        reduced = float(re.search(r"G = [-0-9.e+]+ energy/length\^2 = ([-0-9.e+]+) KA A0", out).group(1))
+        self.assertAlmostEqual(reduced, G / KA, places=6)
+        self.assertNotIn("warning", err)
+
+    def test_table_rows_for_plot_moduli(self):
+        """--table appends p0 and the moduli in KA A0; two hexagon states give zero spread."""
+        import csv
+
+        a = math.sqrt(2 / math.sqrt(3))
+        for s, (nx, ny) in enumerate(((6, 4), (4, 6)), start=1):
+            pts, box = hex_lattice(nx, ny, a=a)
+            write_dump(self.path(f"hex{s}.dump"), [frame_from(pts, box)])
+        table = self.path("moduli.csv")
+        KA, KP = 2.0, 1.0
+        for p0 in (3.5, 3.6):
+            code, out, err = run("moduli", self.path("hex{seed}.dump"), "--seeds", "2", "--quadratic", str(KA), "1",
+                                 str(KP), str(p0), "--table", table)
+            self.assertEqual(code, 0, err)
+        with open(table) as f:
+            rows = list(csv.DictReader(f))
+        self.assertEqual([float(r["p0"]) for r in rows], [3.5, 3.6])
+        for r in rows:
+            p0 = float(r["p0"])
+            self.assertEqual(r["route"], "hessian")
+            self.assertAlmostEqual(float(r["G"]), 0.75 * KP * PH * (PH - p0) / KA, places=6)
+            self.assertAlmostEqual(float(r["B"]), (2 * KA + KP * PH * p0 / 2) / KA, places=5)
+            self.assertLess(float(r["G_err"]), 1e-8)
+        png = self.path("moduli.png")
+        code, out, err = run("plot", "moduli", table, "-o", png)
+        self.assertEqual(code, 0, err)
+
+    def test_fnorm_warning(self):
+        pts, box = hex_lattice(6, 4)
+        pts = pts + np.random.default_rng(1).normal(scale=0.02, size=pts.shape)
+        write_dump(self.path("off.dump"), [frame_from(pts, box)])
+        code, out, err = run("moduli", self.path("off.dump"), "--quadratic", "1", "1", "1", "3.6")
+        self.assertEqual(code, 0, err)
+        fnorm = float(re.search(r"fnorm ([0-9.e+-]+) energy/length", out).group(1))
+        self.assertGreater(fnorm, 1e-3)
+        self.assertRegex(err, r"warning: .*off.dump: fnorm [0-9.e+-]+ > 1e-06.*not an energy minimum")
+
+    def test_multifold_vertex_uses_the_strain_steps(self):
+        """A square lattice has multifold vertices: no Hessian; with --quasistatic the slopes are
+        the moduli (here of synthetic steps, G = 0.25, B = 1.5), without it a clear error."""
+        pts, box = square_lattice(4)
+        write_dump(self.path("sq.dump"), [frame_from(pts, box)])
+        write_qs(self.path("qs.dat"), 0.25, 1.5, noise=1e-9)
+        code, out, err = run("moduli", self.path("sq.dump"), "--quadratic", "1", "1", "1", "3.9")
+        self.assertNotEqual(code, 0)
+        self.assertIn("multifold", err)
+        self.assertIn("--quasistatic", err)
+        code, out, err = run("moduli", self.path("sq.dump"), "--quadratic", "1", "1", "1", "3.9",
+                             "--quasistatic", self.path("qs.dat"))
+        self.assertEqual(code, 0, err)
+        self.assertAlmostEqual(numbers_after(out, "G")[0], 0.25, places=5)
+        self.assertAlmostEqual(numbers_after(out, "B")[0], 1.5, places=5)
+        self.assertIn("multifold", err)
+        self.assertRegex(out, r"G = [0-9.e+-]+ \+- [0-9.e+-]+ energy/length\^2")
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -559,6 +559,22 @@ print "E $(pe:%.17g)"
             for col in ("fx", "fy", "fz", "c_c[1]", "c_c[2]"):
                 np.testing.assert_allclose(f[col], results[0][1][col], rtol=0, atol=1e-10, err_msg=col)
 
+    def check_rosette(self, model):
+        # compute vertex/atom rosette L: clusters of Voronoi vertices joined by
+        # junctions shorter than L, counted as (nearly) multifold vertices;
+        # more with a longer L, and 0 on a jittered tissue for a tiny L.
+        script = model_script(model) + """compute r1 all vertex/atom rosette 1e-9
+compute r2 all vertex/atom rosette 0.15
+compute r3 all vertex/atom rosette 0.5
+thermo_style custom step c_r1[2] c_r2[2] c_r3[2]
+run 0
+print "R $(c_r1[2]) $(c_r2[2]) $(c_r3[2])"
+"""
+        r1, r2, r3 = printed(self.run_lmp(script), "R")[0]
+        self.assertEqual(r1, 0)
+        self.assertLessEqual(r2, r3)
+        self.assertGreater(r3, 0)
+
     def check_deposit(self, model):
         d = dim_of(model)
         region = ("region ins block 1.5 2.5 0.5 1.5 0.5 1.5 units box" if d == 3 else
@@ -577,6 +593,42 @@ print "N1 $(atoms)"
         run = self.run_lmp(script)
         n0, n1 = printed(run, "N0")[0][0], printed(run, "N1")[0][0]
         self.assertTrue(n0 + 1 <= n1 <= n0 + 3, f"{n0} -> {n1}")
+
+
+MODEL_NAMES = {"confluent": "confluent 2d", "confluent_tri": "confluent 2d, triclinic",
+               "finite_open": "finite 2d, open box", "finite_per": "finite 2d, periodic",
+               "3d": "3d", "3d_tri": "3d, triclinic"}
+DOC = os.path.join(os.path.dirname(os.path.dirname(HERE)), "doc", "model.md")
+BEGIN, END = "<!-- feature matrix: begin -->", "<!-- feature matrix: end -->"
+
+
+def markdown_table():
+    """The matrix as the Markdown table doc/model.md shows (between BEGIN and
+    END), generated from feature_matrix.txt: 'yes' or the error's fragment."""
+    cells = read_matrix()
+    models = list(dict.fromkeys(m for m, _, _ in cells))
+    features = list(dict.fromkeys(f for _, f, _ in cells))
+    got = {(m, f): e for m, f, e in cells}
+    lines = ["| feature | " + " | ".join(MODEL_NAMES.get(m, m) for m in models) + " |",
+             "|---" * (len(models) + 1) + "|"]
+    for f in features:
+        row = []
+        for m in models:
+            e = got.get((m, f), "-")
+            row.append("yes" if e == "ok" else ("error: " + e.split(None, 1)[1] if e.startswith("error") else e))
+        lines.append(f"| {f} | " + " | ".join(row) + " |")
+    return "\n".join(lines)
+
+
+class DocTable(LammpsTestCase):
+    def test_doc_shows_the_matrix(self):
+        """doc/model.md's table is the one generated from feature_matrix.txt
+        (regenerate: test_feature_matrix.py --markdown)."""
+        with open(DOC) as f:
+            text = f.read()
+        self.assertIn(BEGIN, text)
+        shown = text.split(BEGIN, 1)[1].split(END, 1)[0].strip()
+        self.assertEqual(shown, markdown_table())
 
 
 def _make(model, feature, expect):
@@ -603,4 +655,8 @@ for _model, _feature, _expect in read_matrix():
 
 
 if __name__ == "__main__":
+    import sys
+    if "--markdown" in sys.argv:
+        print(markdown_table())
+        sys.exit(0)
     lmptest.main()

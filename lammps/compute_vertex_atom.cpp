@@ -152,7 +152,7 @@ void ComputeVertexAtom::set_arrays(int i)
   fix->astore[i][0] = -1.0;
 }
 
-void ComputeVertexAtom::check_tessellation()
+void ComputeVertexAtom::check_cells()
 {
   int stale = pair->cells_current() ? 0 : 1, any;
   MPI_Allreduce(&stale, &any, 1, MPI_INT, MPI_MAX, world);
@@ -228,7 +228,7 @@ void ComputeVertexAtom::unpack_forward_comm(int n, int first, double *buf)
 void ComputeVertexAtom::compute_peratom()
 {
   invoked_peratom = update->ntimestep;
-  check_tessellation();
+  check_cells();
   if (atom->nmax > nmax) {
     memory->destroy(values);
     nmax = atom->nmax;
@@ -288,7 +288,7 @@ void ComputeVertexAtom::compute_peratom()
 void ComputeVertexAtom::compute_vector()
 {
   invoked_vector = update->ntimestep;
-  check_tessellation();
+  check_cells();
   // Asked again for the same cells (LAMMPS may invoke a compute twice on one
   // step, e.g. at a run's setup): every value is a function of those cells,
   // and the neighbour exchanges are those since the previous cells, not 0.

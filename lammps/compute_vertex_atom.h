@@ -44,7 +44,7 @@ class ComputeVertexAtom : public Compute {
   class PairVertexVoronoi *pair;
   int warned_overflow;
 
-  void check_tessellation();
+  void check_cells();
   void communicate_velocities();
   double count_multifold();
   double rosette;  // > 0: count clusters of vertices joined by junctions shorter than this

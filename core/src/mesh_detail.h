@@ -1,0 +1,228 @@
+// Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
+//
+// Shared by the mesh's source files (mesh_build, mesh_update, mesh_cells,
+// mesh_advance): CGAL's types, the input limits, the filtered predicates,
+// the circumcentre, and the search for multifold vertices.  Internal to the
+// core (not installed).
+#pragma once
+
+#include "tessera/mesh.h"
+
+#include "point_name.h"
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <utility>
+
+namespace tessera {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, Kernel>;
+using Fb = CGAL::Triangulation_face_base_with_info_2<int, Kernel>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, Tds>;
+using CPoint = Kernel::Point_2;
+
+// Voronoi edges shorter than this fraction of the adjacent circumradius are
+// the zero-length edges of a multifold vertex whose circumcentres differ only
+// by round-off; they get length exactly 0.
+constexpr double kZeroEdge = 1e-10;
+
+// Input limits (doc/model.md, "Limits of the input").  Two centres closer
+// than kMinSeparation times the largest coordinate magnitude S are refused:
+// a periodic image or ghost is a rounded translate, off by up to ulp(S), so
+// the bisector of two points d apart is only known to an angle ~ eps S / d
+// and the vertices on it to eps S / d of their distance; at the limit that
+// is ~2e-6, and below it the cell boundary between them is round-off.
+// Lengths are kept within [kMinLength, kMaxCoordinate] so that the cubes of
+// lengths in the circumcentre formula neither overflow nor underflow
+// (double's range is 2e-308 .. 2e308; (1e100)^3 keeps a factor 1e8 to spare).
+constexpr double kMinSeparation = 1e-10;
+constexpr double kMinLength = 1e-100;
+constexpr double kMaxCoordinate = 1e100;
+
+// The squared distance below which two points are refused, for points whose
+// largest coordinate magnitude is S.
+inline double min_separation2(double S) {
+  const double d = std::max(kMinSeparation * S, kMinLength);
+  return d * d;
+}
+
+// Orientation of (a, b, c): > 0 counter-clockwise.  Shewchuk's static error
+// bound decides almost every case in double precision; the rest go to CGAL's
+// exact predicate.
+inline int orientation(double ax, double ay, double bx, double by, double cx, double cy) {
+  const double l = (ax - cx) * (by - cy), r = (ay - cy) * (bx - cx);
+  const double det = l - r;
+  const double bound = 3.3306690738754716e-16 * (std::fabs(l) + std::fabs(r));
+  if (det > bound)
+    return 1;
+  if (-det > bound)
+    return -1;
+  return static_cast<int>(CGAL::orientation(CPoint(ax, ay), CPoint(bx, by), CPoint(cx, cy)));
+}
+
+// > 0 when d is strictly inside the circle through the counter-clockwise a, b, c.
+inline int in_circle(double ax, double ay, double bx, double by, double cx, double cy, double dx,
+                     double dy) {
+  const double adx = ax - dx, ady = ay - dy, bdx = bx - dx, bdy = by - dy, cdx = cx - dx,
+               cdy = cy - dy;
+  const double bc = bdx * cdy, cb = cdx * bdy, ca = cdx * ady, ac = adx * cdy, ab = adx * bdy,
+               ba = bdx * ady;
+  const double al = adx * adx + ady * ady, bl = bdx * bdx + bdy * bdy, cl = cdx * cdx + cdy * cdy;
+  const double det = al * (bc - cb) + bl * (ca - ac) + cl * (ab - ba);
+  const double perm = (std::fabs(bc) + std::fabs(cb)) * al + (std::fabs(ca) + std::fabs(ac)) * bl +
+                      (std::fabs(ab) + std::fabs(ba)) * cl;
+  const double bound = 1.1102230246251577e-15 * perm;
+  if (det > bound)
+    return 1;
+  if (-det > bound)
+    return -1;
+  return static_cast<int>(CGAL::side_of_oriented_circle(CPoint(ax, ay), CPoint(bx, by),
+                                                        CPoint(cx, cy), CPoint(dx, dy)));
+}
+
+// The correctly rounded square root (as std::sqrt) without the errno path:
+// with CGAL's -frounding-math GCC turned std::sqrt in advance() into a call
+// into libm, 5 % of a step.
+#if defined(__SSE2__)
+#define TESSERA_ALWAYS_INLINE inline __attribute__((always_inline))
+TESSERA_ALWAYS_INLINE double root(double x) { return _mm_cvtsd_f64(_mm_sqrt_sd(_mm_set_sd(x), _mm_set_sd(x))); }
+// q[0..n) := sqrt(q[0..n)); q has room for n rounded up to even.
+TESSERA_ALWAYS_INLINE void roots(double *q, int n) {
+  for (int k = 0; k < n; k += 2) _mm_storeu_pd(q + k, _mm_sqrt_pd(_mm_loadu_pd(q + k)));
+}
+#else
+#define TESSERA_ALWAYS_INLINE inline
+inline double root(double x) { return std::sqrt(x); }
+inline void roots(double *q, int n) {
+  for (int k = 0; k < n; ++k) q[k] = std::sqrt(q[k]);
+}
+#endif
+
+TESSERA_ALWAYS_INLINE void circumcentre(double ax, double ay, double bx, double by, double cx,
+                                        double cy, Vec2 &h, double &r) {
+  const double bpx = bx - ax, bpy = by - ay, cpx = cx - ax, cpy = cy - ay;
+  const double id = 0.5 / (bpx * cpy - bpy * cpx);
+  const double b2 = bpx * bpx + bpy * bpy, c2 = cpx * cpx + cpy * cpy;
+  const double ux = (cpy * b2 - bpy * c2) * id;
+  const double uy = (bpx * c2 - cpx * b2) * id;
+  h.x = ax + ux;
+  h.y = ay + uy;
+  r = root(ux * ux + uy * uy);
+}
+
+// Whether the triangle (a, b, c) lies entirely outside the region of
+// interest [roi_lo, roi_hi] (false without one): a fold there is frozen.
+inline bool outside_region(double ax, double ay, double bx, double by, double cx, double cy,
+                           const double *roi_lo, const double *roi_hi) {
+  return roi_lo && (std::max({ax, bx, cx}) < roi_lo[0] || std::min({ax, bx, cx}) > roi_hi[0] ||
+                    std::max({ay, by, cy}) < roi_lo[1] || std::min({ay, by, cy}) > roi_hi[1]);
+}
+
+// Whether triangles a and b of t have one circumcentre (a multifold
+// vertex): closer than kZeroEdge times the smaller circumradius.  The
+// tolerance is a fraction of the smaller one: a nearly flat triangle (on the
+// hull of a ghost shell, or a row of collinear images) has a huge or
+// infinite radius, and with the larger one its tolerance would swallow its
+// neighbours into one "vertex" with an infinite centre.  A vertex that is not
+// finite is never the same as another (the comparisons are false for NaN).
+inline bool same_centre(const Tessellation &t, int a, int b) {
+  const double dx = t.vertices[a].x - t.vertices[b].x, dy = t.vertices[a].y - t.vertices[b].y;
+  const double tol = kZeroEdge * std::min(t.radius[a], t.radius[b]);
+  return dx * dx + dy * dy <= tol * tol;
+}
+
+} // namespace
+
+namespace detail {
+// A fresh stamp for each filled Tessellation (see Mesh::stamp_).
+unsigned long next_stamp();
+}  // namespace detail
+
+// Multifold vertices from the seeds (triangles found at a zero-length edge):
+// each seed starts a search over all triangles at that vertex, so that its
+// whole ring of cells is known even where some are not owned here.
+// compact(m) is the finite number of mesh triangle m (or -1), mesh_of(k) the
+// inverse.
+template <class Compact, class MeshOf>
+void Mesh::find_groups(const Points &pts, Tessellation &t, Compact compact, MeshOf mesh_of) const {
+  const int nft = static_cast<int>(t.triangles.size());
+  auto same_vertex = [&](int a, int b) { return same_centre(t, a, b); };
+  t.triangle_group.assign(nft, -1);
+  t.group_offset.assign(1, 0);
+  t.group_point.clear();
+  t.group_centre.clear();
+  if (seeds_.empty())
+    return;
+  std::vector<int> members, ring;
+  for (const int seed : seeds_) {
+    if (t.triangle_group[seed] >= 0)
+      continue;
+    const int ms = mesh_of(seed);
+    const int group = static_cast<int>(t.group_centre.size());
+    members.assign(1, seed);
+    stack_.assign(1, ms);
+    t.triangle_group[seed] = group;
+    while (!stack_.empty()) {
+      const int cur = stack_.back();
+      stack_.pop_back();
+      for (int e = 0; e < 3; ++e) {
+        const int nm = nb_[3 * cur + e];
+        const int g = compact(nm);
+        if (g < 0 || t.triangle_group[g] >= 0 || !same_vertex(seed, g))
+          continue;
+        t.triangle_group[g] = group;
+        members.push_back(g);
+        stack_.push_back(nm);
+      }
+    }
+    if (members.size() < 2) { // a tolerance edge case: no partner after all
+      t.triangle_group[seed] = -1;
+      continue;
+    }
+    Vec2 centre;
+    for (int mm : members) {
+      centre.x += t.vertices[mm].x / members.size();
+      centre.y += t.vertices[mm].y / members.size();
+    }
+    ring.clear();
+    for (int mm : members)
+      for (int p : t.triangles[mm])
+        ring.push_back(p);
+    std::sort(ring.begin(), ring.end());
+    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+    std::vector<std::pair<double, int>> by_angle;
+    by_angle.reserve(ring.size());
+    for (int p : ring)
+      by_angle.emplace_back(std::atan2(pts.y(p) - centre.y, pts.x(p) - centre.x), p);
+    std::sort(by_angle.begin(), by_angle.end());
+    for (const auto &ap : by_angle)
+      t.group_point.push_back(ap.second);
+    t.group_offset.push_back(static_cast<int>(t.group_point.size()));
+    t.group_centre.push_back(centre);
+  }
+}
+
+// One cell's edge lengths (into el), area and perimeter from its polygon
+// (cv: len triangles, H: circumcentres, RAD: circumradii; (cx, cy) its
+// centre), and the seeds of multifold vertices at its zero-length edges.
+// Shared by cells() and advance().  The shoelace is taken relative to the
+// cell centre: absolute coordinates far from the origin would cancel
+// catastrophically.
+
+}  // namespace tessera

@@ -1,0 +1,215 @@
+/* ----------------------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   fix polarity in 'dimension 3': the polarity is a unit vector, turned by
+   rotations (Rodrigues) about n x h and by rotational noise on the sphere.
+------------------------------------------------------------------------- */
+
+#include "fix_polarity.h"
+
+#include "atom.h"
+#include "domain.h"
+#include "error.h"
+#include "math_const.h"
+#include "pair_vertex_voronoi.h"
+#include "update.h"
+
+#include "tessera/counter_rng.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+
+namespace {
+
+using tessera::rng::gaussian;
+using tessera::rng::mix;
+using tessera::rng::uniform01;
+using tessera::sincos_small;
+
+}    // namespace
+
+/* ----------------------------------------------------------------------
+   dimension 3: the polarity is the unit vector n_i = mu_i/|mu_i|, the
+   active force f_a n_i, and forward Euler on the sphere,
+     n_i <- rotate n_i by the angle vector
+            dt/gamma_R n_i x [ J_S sum_j n_j + J_G (n_i.g) g + J_V vhat_i ]
+            + sqrt(2 D_r dt) xi_i                    (xi_i: 3 Gaussians)
+   so that the deterministic part is dn/dt = (1/gamma_R) P_i [...] with P_i
+   the projection perpendicular to n_i (the 2D torques of the same moduli for
+   n in the plane), and the noise is rotational diffusion with
+   <n(t).n(0)> = exp(-2 D_r t).  g = (cos phi, sin phi, 0) is the groove.
+------------------------------------------------------------------------- */
+
+void FixPolarity::init_angles_3d()
+{
+  double **mu = atom->mu;
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    if (mu[i][3] > 0.0) continue;    // keep a given direction
+    uint64_t b[3];
+    for (int d = 0; d < 3; d++) std::memcpy(&b[d], &atom->x[i][d], sizeof b[d]);
+    const uint64_t h = mix(mix(b[0]) ^ b[1]) ^ b[2];
+    const double z = 2.0 * uniform01(seed, h, 0, 3) - 1.0;
+    const double ph = MathConst::MY_2PI * uniform01(seed, h, 0, 4);
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    mu[i][0] = r * std::cos(ph);
+    mu[i][1] = r * std::sin(ph);
+    mu[i][2] = z;
+    mu[i][3] = 1.0;
+  }
+}
+
+void FixPolarity::post_force_3d()
+{
+  double **mu = atom->mu;
+  double **f = atom->f;
+  double **v = atom->v;
+  const int *mask = atom->mask;
+  const int nlocal = atom->nlocal;
+  vhat.resize(3 * nlocal);
+  has_v.resize(nlocal);
+  const bool need_v = params.J_V != 0.0;
+  for (int i = 0; i < nlocal; i++) {
+    if (need_v) {
+      const double s = std::sqrt(v[i][0] * v[i][0] + v[i][1] * v[i][1] + v[i][2] * v[i][2]);
+      has_v[i] = s > 0.0;
+      for (int d = 0; d < 3; d++) vhat[3 * i + d] = has_v[i] ? v[i][d] / s : 0.0;
+    } else {
+      has_v[i] = 0;
+    }
+    if (!(mask[i] & groupbit) || !(mu[i][3] > 0.0)) continue;
+    const double inv = f_active / mu[i][3];
+    for (int d = 0; d < 3; d++) f[i][d] += inv * mu[i][d];
+  }
+}
+
+/* The field h_i = J_S sum_j n_j + J_G (n_i.g) g + J_V vhat_i of every
+   local atom (tau, 3 per atom), from the unit polarities of owned and ghost
+   atoms and the cells of state_step. */
+
+void FixPolarity::field_3d(bigint state_step)
+{
+  const int nlocal = atom->nlocal;
+  double **mu = atom->mu;
+  if (static_cast<int>(has_v.size()) != nlocal)
+    error->one(FLERR, "fix polarity: internal error: velocity directions not recorded");
+  const int nall = nlocal + atom->nghost;
+  unit.resize(3 * nall);
+  for (int i = 0; i < nall; i++) {
+    const double inv = mu[i][3] > 0.0 ? 1.0 / mu[i][3] : 0.0;
+    for (int d = 0; d < 3; d++) unit[3 * i + d] = mu[i][d] * inv;
+  }
+  tau.assign(3 * nlocal, 0.0);
+  if (params.J_S != 0.0) {
+    const tessera::CellView &v = pair->cells();
+    const tessera::Contacts t = v.contacts();
+    if (pair->cells_step() != state_step || t.n_owned != nlocal)
+      error->one(FLERR,
+                 "fix polarity: the tessellation of pair vertex/voronoi is from step {}, the "
+                 "polarities need it for step {}",
+                 pair->cells_step(), state_step);
+    for (int i = 0; i < nlocal; i++)
+      for (int f = t.offset[i]; f < t.offset[i + 1]; f++) {
+        if (!(t.size[f] > 1e-9 * v.boundary(i))) continue;    // Voronoi neighbours only
+        const int j = t.neighbor[f];
+        for (int d = 0; d < 3; d++) tau[3 * i + d] += params.J_S * unit[3 * j + d];
+      }
+  }
+  const double g[3] = {std::cos(params.phi_G), std::sin(params.phi_G), 0.0};
+  for (int i = 0; i < nlocal; i++) {
+    const double *n = &unit[3 * i];
+    if (params.J_G != 0.0) {
+      const double ng = n[0] * g[0] + n[1] * g[1] + n[2] * g[2];
+      for (int d = 0; d < 3; d++) tau[3 * i + d] += params.J_G * ng * g[d];
+    }
+    if (params.J_V != 0.0 && has_v[i])
+      for (int d = 0; d < 3; d++) tau[3 * i + d] += params.J_V * vhat[3 * i + d];
+  }
+}
+
+/* mu of local atom i rotated about the vector w by the angle |w| (Rodrigues),
+   its length kept (1 if it had none). */
+
+void FixPolarity::rotate_3d(int i, const double *w)
+{
+  double **mu = atom->mu;
+  const double m = mu[i][3] > 0.0 ? mu[i][3] : 1.0;
+  const double n[3] = {mu[i][0] / m, mu[i][1] / m, mu[i][2] / m};
+  const double a = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  double r[3] = {n[0], n[1], n[2]};
+  if (a > 0.0) {
+    double s, c;
+    sincos_small(a, s, c);
+    const double k[3] = {w[0] / a, w[1] / a, w[2] / a};
+    const double kn = k[0] * n[0] + k[1] * n[1] + k[2] * n[2];
+    const double kxn[3] = {k[1] * n[2] - k[2] * n[1], k[2] * n[0] - k[0] * n[2],
+                           k[0] * n[1] - k[1] * n[0]};
+    for (int d = 0; d < 3; d++) r[d] = n[d] * c + kxn[d] * s + k[d] * kn * (1.0 - c);
+  }
+  const double inv = 1.0 / std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+  for (int d = 0; d < 3; d++) mu[i][d] = m * r[d] * inv;
+  mu[i][3] = m;
+}
+
+void FixPolarity::initial_integrate_3d()
+{
+  const int nlocal = atom->nlocal;
+  double **mu = atom->mu;
+  const int *mask = atom->mask;
+  const tagint *tag = atom->tag;
+  // Cells that appeared since (fix deposit, create_atoms) get a direction.
+  init_angles_3d();
+  field_3d(update->ntimestep - 1);
+
+  const double dt = update->dt;
+  const double noise = std::sqrt(2.0 * d_rot * dt);
+  const bigint step = update->ntimestep;
+  for (int i = 0; i < nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double *n = &unit[3 * i];
+    const double *h = &tau[3 * i];
+    // angle vector w = dt/gamma_R n x h + noise xi
+    double w[3] = {dt / gamma_r * (n[1] * h[2] - n[2] * h[1]),
+                   dt / gamma_r * (n[2] * h[0] - n[0] * h[2]),
+                   dt / gamma_r * (n[0] * h[1] - n[1] * h[0])};
+    if (d_rot > 0.0)
+      for (int d = 0; d < 3; d++)
+        w[d] += noise * gaussian(seed ^ 0x5bd1e995ULL, 3 * static_cast<uint64_t>(tag[i]) + d, step);
+    rotate_3d(i, w);
+  }
+  (void) mu;
+}
+
+/* 3d: polar order |<n>| and nematic order <P2(n.g)> = <(3 (n.g)^2 - 1)/2>
+   along the groove direction g (1: all along +-g, 0: isotropic). */
+
+void FixPolarity::polar_orders_3d(double &polar, double &nematic)
+{
+  double **mu = atom->mu;
+  const int *mask = atom->mask;
+  const double g[3] = {std::cos(params.phi_G), std::sin(params.phi_G), 0.0};
+  double local[5] = {0.0, 0.0, 0.0, 0.0, 0.0}, all[5];
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit) || !(mu[i][3] > 0.0)) continue;
+    double ng = 0.0;
+    for (int d = 0; d < 3; d++) {
+      local[d] += mu[i][d] / mu[i][3];
+      ng += g[d] * mu[i][d] / mu[i][3];
+    }
+    local[3] += 1.5 * ng * ng - 0.5;
+    local[4] += 1.0;
+  }
+  MPI_Allreduce(local, all, 5, MPI_DOUBLE, MPI_SUM, world);
+  if (all[4] > 0.0) {
+    polar = std::sqrt(all[0] * all[0] + all[1] * all[1] + all[2] * all[2]) / all[4];
+    nematic = all[3] / all[4];
+  } else {
+    polar = nematic = 0.0;
+  }
+}
+

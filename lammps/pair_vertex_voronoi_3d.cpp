@@ -23,6 +23,7 @@
 #include "update.h"
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 using namespace LAMMPS_NS;
@@ -86,6 +87,38 @@ bool Vertex3d::tessellate()
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
   const tessera::Points3 pts{&atom->x[0][0], nall, 3};
+  // Fewer than 4 points, or all in one plane (a few cells in a large box
+  // with a thin ghost shell): the cells are unbounded, so the shell must grow.
+  bool flat = nall < 4;
+  if (!flat && nlocal > 0) {
+    // Coplanar: every point on the plane of the first three non-collinear ones.
+    const double *p0 = pts.p(0);
+    int i1 = -1, i2 = -1;
+    double nrm[3] = {0, 0, 0};
+    for (int i = 1; i < nall && i1 < 0; i++) {
+      const double *p = pts.p(i);
+      if (p[0] != p0[0] || p[1] != p0[1] || p[2] != p0[2]) i1 = i;
+    }
+    for (int i = 1; i1 >= 0 && i < nall && i2 < 0; i++) {
+      const double *a = pts.p(i1), *b = pts.p(i);
+      const double u[3] = {a[0] - p0[0], a[1] - p0[1], a[2] - p0[2]};
+      const double v[3] = {b[0] - p0[0], b[1] - p0[1], b[2] - p0[2]};
+      nrm[0] = u[1] * v[2] - u[2] * v[1];
+      nrm[1] = u[2] * v[0] - u[0] * v[2];
+      nrm[2] = u[0] * v[1] - u[1] * v[0];
+      if (nrm[0] != 0.0 || nrm[1] != 0.0 || nrm[2] != 0.0) i2 = i;
+    }
+    flat = i2 < 0;
+    for (int i = 1; !flat && i < nall; i++) {
+      const double *p = pts.p(i);
+      if ((p[0] - p0[0]) * nrm[0] + (p[1] - p0[1]) * nrm[1] + (p[2] - p0[2]) * nrm[2] != 0.0) break;
+      if (i == nall - 1) flat = true;
+    }
+  }
+  if (flat && nlocal > 0) {
+    tess3 = tessera::Tessellation3();
+    return !pair->ghost_shell_complete(std::numeric_limits<double>::infinity());
+  }
   try {
     tess3 = tessera::tessellate_local_3d(pts, nlocal, nullptr, false);
   } catch (tessera::Error &) {

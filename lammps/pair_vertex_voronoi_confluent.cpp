@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 using namespace LAMMPS_NS;
@@ -95,6 +96,10 @@ bool VertexConfluent::tessellate()
   }
 
   bool fresh = false;
+  // Fewer than 3 points, or all on one line (one cell in a large box, or a
+  // row of cells, with a ghost shell that holds too few of their images):
+  // the cells are unbounded, so the ghost shell must grow, not the run stop.
+  bool too_few = false;
   double *stats = pair->stats;
   auto build = [&]() {
     // The cells are read afresh after a rebuild: their arrays go first, so
@@ -104,6 +109,11 @@ bool VertexConfluent::tessellate()
     try {
       mesh.build(pts);
     } catch (tessera::Error &) {
+      if (nall < 3 || mesh.collinear()) {
+        too_few = true;
+        mesh_ncalls = -1;
+        return;
+      }
       // Redo with atom IDs so that the message names them.
       std::vector<long> ids(nall);
       for (int i = 0; i < nall; i++) ids[i] = atom->tag[i];
@@ -135,6 +145,10 @@ bool VertexConfluent::tessellate()
     have_cells = true;
   } else
     build();
+  if (too_few) {
+    if (pair->ghost_shell_complete(std::numeric_limits<double>::infinity())) return false;
+    return true;
+  }
   if (nlocal > 0 && !have_cells) mesh.cells(pts, nlocal, tess);
 
   tessera::Coverage cov;  // ok unless checked below
@@ -142,6 +156,7 @@ bool VertexConfluent::tessellate()
     // A cell reaches past the region where the updated mesh is certified:
     // triangulate from scratch, then check against the full ghost shell.
     build();
+    if (too_few) return !pair->ghost_shell_complete(std::numeric_limits<double>::infinity());
     mesh.cells(pts, nlocal, tess);
   }
   if (pair->incremental == 2 && !fresh && nlocal > 0) check_against_scratch(pts, sub, w);

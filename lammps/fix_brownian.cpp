@@ -139,6 +139,11 @@ void FixBrownianTessera::reset_dt()
 void FixBrownianTessera::set_step()
 {
   dt = update->dt;
+  if (!(dt > 0.0) || !std::isfinite(dt))
+    error->all(FLERR,
+               "Fix {} (ID {}): the timestep must be > 0 for overdamped dynamics (a displacement "
+               "dt F/gamma_t and noise sqrt(2 D dt)), got {}; set it with 'timestep'",
+               style, id, dt);
   mobility = force->ftm2v / gamma_t;
   const double diffusion = force->boltz * temperature / (force->mvv2e * gamma_t);
   const double sigma = sqrt(2.0 * diffusion * dt);

@@ -150,6 +150,11 @@ void FixPolarity::init()
   else
     init_angles();
   find_driver();
+  if (!(update->dt > 0.0) || !std::isfinite(update->dt))
+    error->all(FLERR,
+               "fix polarity {}: the timestep must be > 0 (rotational noise sqrt(2 D_r dt), "
+               "turn dt/gamma_R torque), got {}; set it with 'timestep'",
+               id, update->dt);
 }
 
 int FixPolarity::coupled_size() const

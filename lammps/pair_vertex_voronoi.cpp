@@ -248,21 +248,35 @@ void PairVertexVoronoi::print_model() const
   if (comm->me != 0) return;
   const int n = atom->ntypes;
   static const char *inc_name[] = {"no", "yes", "check"};
-  std::string msg = fmt::format(
-      "pair_style vertex/voronoi: cutoff {:.6g} tension {} incremental {} grow {} reference {}\n",
-      cut_global, tension == tessera::Tension::Edge ? "edge" : "cell", inc_name[incremental],
-      grow ? "yes" : "no", reference_every);
-  msg += fmt::format(
-      "  junction energy = {} Lambda_IJ * length; reduced units: length sqrt(A0), "
-      "energy K A0^2\n"
-      "  type          K         A0      Gamma     Lambda_II         p0\n",
-      tension == tessera::Tension::Edge ? "1 x" : "2 x");
+  const char *tname = tension == tessera::Tension::Edge ? "edge" : "cell";
+  const bool three = domain->dimension == 3, finite = radius > 0.0;
+  // The settings that apply to this model only.
+  std::string msg;
+  if (finite)
+    msg = fmt::format("pair_style vertex/voronoi: cutoff {:.6g} tension {} radius {:.6g} (finite "
+                      "cells)\n", cut_global, tname, radius);
+  else if (three)
+    msg = fmt::format("pair_style vertex/voronoi: cutoff {:.6g} tension {} grow {} (3d cells)\n",
+                      cut_global, tname, grow ? "yes" : "no");
+  else
+    msg = fmt::format(
+        "pair_style vertex/voronoi: cutoff {:.6g} tension {} incremental {} grow {} reference {}\n",
+        cut_global, tname, inc_name[incremental], grow ? "yes" : "no", reference_every);
+  msg += fmt::format("  {} energy = {} Lambda_IJ * {}; reduced units: length {}, energy {}\n"
+                     "  type          K {}      Gamma     Lambda_II {}{}\n",
+                     three ? "face" : "junction", tension == tessera::Tension::Edge ? "1 x" : "2 x",
+                     three ? "area" : "length", three ? "V0^(1/3)" : "sqrt(A0)",
+                     three ? "K V0^2" : "K A0^2", three ? "        V0" : "        A0",
+                     three ? "        s0" : "        p0", finite ? "     free F" : "");
   const double c = tension == tessera::Tension::Edge ? 2.0 : 1.0;
   for (int i = 1; i <= n; i++) {
     const double lam = model.lambda_of(i - 1, i - 1);
-    const double p0 = gamma[i] != 0.0 ? -lam / (c * gamma[i] * std::sqrt(area0[i])) : 0.0;
-    msg += fmt::format("  {:4d} {:10.4g} {:10.4g} {:10.4g} {:13.4g} {:>10}\n", i, kappa[i],
+    const double size = three ? std::cbrt(area0[i] * area0[i]) : std::sqrt(area0[i]);
+    const double p0 = gamma[i] != 0.0 ? -lam / (c * gamma[i] * size) : 0.0;
+    msg += fmt::format("  {:4d} {:10.4g} {:10.4g} {:10.4g} {:13.4g} {:>10}", i, kappa[i],
                        area0[i], gamma[i], lam, gamma[i] != 0.0 ? fmt::format("{:.4g}", p0) : "-");
+    if (finite) msg += fmt::format(" {:10.4g}", free_tension[i]);
+    msg += "\n";
   }
   msg += "  effective junction tension Lambda_IJ:\n      ";
   for (int j = 1; j <= n; j++) msg += fmt::format(" {:>10d}", j);

@@ -131,6 +131,11 @@ void PairVertexVoronoi::coeff(int narg, char **arg)
   // Voronoi cells.
   bool has_free = false;
   double free_value = 0.0;
+  if (narg >= 3 && strcmp(arg[narg - 1], "free") == 0)
+    error->all(FLERR,
+               "{}: keyword 'free' needs a value F (the tension of the cell-medium boundary of "
+               "finite cells), e.g. 'pair_coeff I I K A0 Gamma Lambda free 0.2'",
+               where);
   if (narg >= 5 && strcmp(arg[narg - 2], "free") == 0) {
     has_free = true;
     free_value = utils::numeric(FLERR, arg[narg - 1], false, lmp);
@@ -221,7 +226,11 @@ void PairVertexVoronoi::coeff(int narg, char **arg)
     lam = utils::numeric(FLERR, arg[5], false, lmp);
     if (!(K > 0.0) || !std::isfinite(K))
       error->all(FLERR, "{}: area modulus K must be > 0, got {}", where, arg[2]);
-    if (!std::isfinite(G)) error->all(FLERR, "{}: Gamma must be finite, got {}", where, arg[4]);
+    if (!(G >= 0.0) || !std::isfinite(G))
+      error->all(FLERR,
+                 "{}: perimeter modulus Gamma must be >= 0, got {} (with Gamma < 0 the energy "
+                 "has no minimum: cells lower it by growing their perimeters without bound)",
+                 where, arg[4]);
     if (!std::isfinite(lam)) error->all(FLERR, "{}: Lambda must be finite, got {}", where, arg[5]);
   }
   if (!(A0 > 0.0) || !std::isfinite(A0))

@@ -305,6 +305,18 @@ void PairVertexVoronoi::reinit()
       error->all(FLERR, "pair_style vertex/voronoi (fix adapt): area0 of type {} must be > 0, got {}",
                  i, adapt_area0[i][i]);
     kappa[i] = adapt_kappa[i][i];
+    if (adapt_area0[i][i] != area0[i] && !warned_area0) {
+      int flag = -1, cols = -1;
+      if (atom->find_custom("area0", flag, cols) >= 0 && comm->me == 0) {
+        error->warning(FLERR,
+                       "pair_style vertex/voronoi (fix adapt): area0 of type {} changed, but each "
+                       "cell's preferred measure comes from its per-atom d_area0, which this does "
+                       "not change; adapt d_area0 instead (e.g. with 'set' or fix cell/divide's "
+                       "growth)",
+                       i);
+        warned_area0 = 1;
+      }
+    }
     area0[i] = adapt_area0[i][i];
     gamma[i] = adapt_gamma[i][i];
   }

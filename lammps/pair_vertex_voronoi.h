@@ -89,6 +89,7 @@ class PairVertexVoronoi : public Pair {
   double **lambda_extra;  // lambda_set == 2: Lambda_IJ = mean + this (pair_coeff I J quadratic)
   double **adapt_kappa, **adapt_area0, **adapt_gamma;  // type-pair views of the per-type values
   double **lambda_built;  // lambda as build_model() left it: what fix adapt changed since
+  int warned_area0 = 0;   // fix adapt changed area0 while d_area0 exists (warned once)
   void build_model();
   int read_restart_settings_version(FILE *);
   void print_model() const;

@@ -39,5 +39,15 @@ run 2
         self.assertNotIn("incremental", line)
         self.assertIn("free F", run.stdout)
 
+    def test_adapt_area0_with_d_area0(self):
+        run = self.run_lmp(BASE + """pair_coeff * * 1 1 0.1 -0.5
+fix a0 all property/atom d_area0
+set group all d_area0 1.0
+variable v equal 1.5
+fix ad all adapt 1 pair vertex/voronoi area0 * * v_v
+run 1
+""")
+        self.assertIn("adapt d_area0 instead", run.output)
+
 
 lmptest.main()

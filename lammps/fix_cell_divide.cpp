@@ -207,7 +207,7 @@ FixCellDivide::~FixCellDivide()
 
 int FixCellDivide::setmask()
 {
-  return END_OF_STEP | PRE_EXCHANGE;
+  return PRE_FORCE | END_OF_STEP | PRE_EXCHANGE;
 }
 
 void FixCellDivide::init()
@@ -240,6 +240,43 @@ void FixCellDivide::fill_base_area0()
   const double *a0 = atom->dvector[area0_index];
   for (int i = 0; i < atom->nlocal; i++)
     if (!(cellstate[i][AREA0_BASE] > 0.0)) cellstate[i][AREA0_BASE] = a0[i];
+}
+
+/* Preferred areas of the current step: A0 grows linearly from its base to
+   twice the base over the cell's cycle, and stays there if the cell does not
+   divide (max N reached, a region it left). */
+
+void FixCellDivide::set_area0()
+{
+  if (!growth || area0_index < 0) return;
+  double *a0 = atom->dvector[area0_index];
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double cyc = trigger == CYCLE ? cellstate[i][CYCLE_TIME] : 1.0 / rate;
+    const double base = cellstate[i][AREA0_BASE];
+    if (base > 0.0) a0[i] = base * (1.0 + MIN(cellstate[i][AGE] / cyc, 1.0));
+  }
+}
+
+/* The ages and preferred areas of a step are set before its forces: in
+   pre_force during a run, in setup_pre_force (without ageing) at the start
+   of a run.  The forces at a step then depend on the state of that step
+   alone, so a run split in two, or continued from a restart file, computes
+   the same forces as an uninterrupted run. */
+
+void FixCellDivide::setup_pre_force(int /*vflag*/)
+{
+  fill_base_area0();
+  set_area0();
+}
+
+void FixCellDivide::pre_force(int /*vflag*/)
+{
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mask[i] & groupbit) cellstate[i][AGE] += update->dt;
+  set_area0();
 }
 
 /* The decisions of the current step are (re)made at the setup of every run:
@@ -346,13 +383,10 @@ static void daughter_polarity(uint64_t seed, tagint t, uint64_t step, double noi
   for (int d = 0; d < 3; d++) n[d] = n[d] * std::cos(th) + axn[d] * std::sin(th);
 }
 
-/* Ages, then preferred-area growth and this step's division decisions. */
+/* This step's division decisions (the ages were advanced in pre_force). */
 
 void FixCellDivide::end_of_step()
 {
-  const int *mask = atom->mask;
-  for (int i = 0; i < atom->nlocal; i++)
-    if (mask[i] & groupbit) cellstate[i][AGE] += update->dt;
   decide();
 }
 
@@ -389,18 +423,6 @@ void FixCellDivide::decide()
     cell_axis(i, u.data());
     pending[tag[i]] = u;
     mine.push_back({uniform01(seed, tag[i], step, PRIORITY), tag[i]});
-  }
-
-  // Preferred areas for the next step: A0 grows linearly from its base to
-  // twice the base over the cell's cycle.
-  if (growth) {
-    double *a0 = atom->dvector[area0_index];
-    for (int i = 0; i < nlocal; i++) {
-      if (!(mask[i] & groupbit)) continue;
-      const double cyc = trigger == CYCLE ? cellstate[i][CYCLE_TIME] : 1.0 / rate;
-      const double base = cellstate[i][AREA0_BASE];
-      if (base > 0.0) a0[i] = base * (1.0 + MIN(cellstate[i][AGE] / cyc, 1.0));
-    }
   }
 
   int nmine = static_cast<int>(mine.size()), nall = 0;

@@ -29,6 +29,8 @@ class FixCellDivide : public Fix {
   int setmask() override;
   void init() override;
   void setup(int) override;
+  void setup_pre_force(int) override;
+  void pre_force(int) override;
   void end_of_step() override;
   void pre_exchange() override;
   double compute_scalar() override;
@@ -70,6 +72,7 @@ class FixCellDivide : public Fix {
   double draw_cycle(tagint, uint64_t) const;
   void cell_axis(int, double *) const;
   void fill_base_area0();
+  void set_area0();
   void decide();
 };
 

@@ -554,6 +554,75 @@ timestep 0.02
         np.testing.assert_allclose(fs["x"], fw["x"], rtol=0, atol=1e-8)
 
 
+class GrowthContinues(LammpsTestCase):
+    """With growth linear the forces of a step depend on that step's state
+    alone: a run split in parts, and a run continued from a restart file on
+    2 ranks, follow the uninterrupted run to round-off (pe at every step,
+    the positions, ages and preferred areas at the end).  The tissue
+    doubles fast and amplifies round-off about tenfold per 3 steps, so the
+    comparison stops 12 steps after the split."""
+
+    START = data_header() + PAIR + """
+fix a0 all property/atom d_area0
+set group all d_area0 1.0
+fix move all brownian 1.0 1 gamma_t 1.0 rng none
+timestep 0.02
+"""
+    FIXES = """
+fix div all cell/divide cycle 1.0 spread 0.3 seed 7 growth linear
+thermo_style custom step atoms pe f_div[2]
+thermo_modify norm no format float %.17g
+thermo 1
+"""
+    DUMP = """
+dump d all custom 4 out.dump id x y f_div[1] f_div[2] d_area0
+dump_modify d sort id format float %.17g
+"""
+
+    def compare(self, whole, parts, first_step):
+        tw = {int(r["Step"]): r for r in thermo_table(whole)}
+        rows = [r for r in thermo_table(parts) if r["Step"] >= first_step]
+        self.assertGreater(len(rows), 4)
+        for r in rows:
+            w = tw[int(r["Step"])]
+            self.assertEqual(r["Atoms"], w["Atoms"])
+            self.assertEqual(r["f_div[2]"], w["f_div[2]"])
+            self.assertAlmostEqual(r["PotEng"], w["PotEng"], delta=1e-9 * abs(w["PotEng"]),
+                                   msg="step %d" % r["Step"])
+        fw, fp = whole.dump("out.dump")[-1], parts.dump("out.dump")[-1]
+        self.assertEqual(fw["step"], fp["step"])
+        np.testing.assert_array_equal(fw["id"], fp["id"])
+        for col in ("f_div[1]", "d_area0"):
+            np.testing.assert_allclose(fp[col], fw[col], rtol=0, atol=1e-12, err_msg=col)
+        np.testing.assert_allclose(fp["x"], fw["x"], rtol=0, atol=1e-8)
+        np.testing.assert_allclose(fp["y"], fw["y"], rtol=0, atol=1e-8)
+        # the preferred areas did grow, and cells divided in the compared steps
+        self.assertGreater(np.ptp(fw["d_area0"]), 0.3)
+
+    def test_split_run(self):
+        data = make_data(self)
+        whole = self.run_lmp(self.START + self.FIXES + self.DUMP + "run 112\n",
+                             files={"cfg.data": data})
+        parts = self.run_lmp(self.START + self.FIXES + self.DUMP + "run 100\nrun 4\nrun 8\n",
+                             files={"cfg.data": data})
+        self.compare(whole, parts, 100)
+        rows = thermo_table(whole)
+        self.assertGreater(rows[-1]["f_div[2]"] - rows[100]["f_div[2]"], 3)
+
+    @nprocs(2)
+    def test_restart_two_ranks(self):
+        data = make_data(self)
+        whole = self.run_lmp(self.START + self.FIXES + self.DUMP + "run 112\n",
+                             nprocs=2, files={"cfg.data": data})
+        first = self.run_lmp(self.START + self.FIXES + "run 100\nwrite_restart r.restart\n",
+                             nprocs=2, files={"cfg.data": data})
+        second = self.run_lmp("read_restart %s\nfix a0 all property/atom d_area0\n"
+                              % first.path("r.restart")
+                              + "fix move all brownian 1.0 1 gamma_t 1.0 rng none\n"
+                              + self.FIXES + self.DUMP + "run 12\n", nprocs=2)
+        self.compare(whole, second, 100)
+
+
 class Errors(LammpsTestCase):
     def check(self, fix, *fragments, extra=""):
         run = self.run_lmp(tissue(3, 2) + PAIR + extra + f"fix ev all {fix}\nrun 1\n", ok=False)

@@ -42,8 +42,12 @@ static const char SYNTAX[] =
     "[noise eta]";
 
 FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), region(nullptr), pair(nullptr), area0_index(-1), cellstate(nullptr)
+    Fix(lmp, narg, arg), decide_time(0.0), region(nullptr), pair(nullptr), area0_index(-1),
+    cellstate(nullptr)
 {
+  // The fix's clock starts at LAMMPS's time now (0 at the first run) and is
+  // advanced by the fix itself: its value is kept in the restart file.
+  clock = update->atime + (double) (update->ntimestep - update->atimestep) * update->dt;
   trigger = -1;
   axis = RANDOM;
   growth = 0;
@@ -273,6 +277,7 @@ void FixCellDivide::setup_pre_force(int /*vflag*/)
 
 void FixCellDivide::pre_force(int /*vflag*/)
 {
+  clock += update->dt;
   const int *mask = atom->mask;
   for (int i = 0; i < atom->nlocal; i++)
     if (mask[i] & groupbit) cellstate[i][AGE] += update->dt;
@@ -408,6 +413,7 @@ void FixCellDivide::decide()
 
   std::vector<std::pair<double, tagint>> mine;
   pending.clear();
+  decide_time = clock;
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     if (region && !region->match(x[i][0], x[i][1], x[i][2])) continue;
@@ -472,6 +478,7 @@ void FixCellDivide::pre_exchange()
     atom->avec->copy(i, j, 0);    // every per-atom value, and every fix's
     atom->nlocal++;
     ncreated++;
+    const tagint mother = atom->tag[i];
     atom->tag[j] = maxtag_all + 1 + rank->second;
     double **x = atom->x;
     const double h = 0.5 * separation;
@@ -482,6 +489,8 @@ void FixCellDivide::pre_exchange()
     for (const int k : {i, j}) {
       cellstate[k][AGE] = 0.0;
       cellstate[k][GENERATION] += 1.0;
+      cellstate[k][MOTHER] = (double) mother;
+      cellstate[k][BIRTH] = decide_time;
       cellstate[k][CYCLE_TIME] = draw_cycle(atom->tag[k], step);
       if (growth && cellstate[k][AREA0_BASE] > 0.0)
         atom->dvector[area0_index][k] = cellstate[k][AREA0_BASE];
@@ -522,14 +531,28 @@ double FixCellDivide::compute_vector(int n)
 
 /* ---------------------------------------------------------------------- */
 
+/* The global record: a marker -1 (older files start with the event count,
+   which is >= 0), the event count, the step of the last event, the clock. */
+
 void FixCellDivide::write_restart(FILE *fp)
 {
-  if (comm->me == 0) events.write_restart(fp);
+  if (comm->me != 0) return;
+  double list[4] = {-1.0, (double) events.total, (double) events.last_step, clock};
+  const int size = sizeof(list);
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(list, sizeof(double), 4, fp);
 }
 
 void FixCellDivide::restart(char *buf)
 {
-  events.restart(buf);
+  const double *list = reinterpret_cast<const double *>(buf);
+  if (list[0] >= 0.0) {    // an older file: no clock, keep LAMMPS's time
+    events.restart(buf);
+    return;
+  }
+  events.total = static_cast<bigint>(list[1]);
+  events.last_step = static_cast<bigint>(list[2]);
+  clock = list[3];
 }
 
 double FixCellDivide::memory_usage()
@@ -549,7 +572,8 @@ void FixCellDivide::copy_arrays(int i, int j, int /*delflag*/)
 }
 
 /* A cell that appears other than by division (create_atoms, read_data after
-   this fix, fix deposit): age 0, generation 0, its own cycle time. */
+   this fix, fix deposit), or exists when the fix is defined: age 0,
+   generation 0, its own cycle time, no mother (ID 0), born now. */
 
 void FixCellDivide::set_arrays(int i)
 {
@@ -557,6 +581,8 @@ void FixCellDivide::set_arrays(int i)
   cellstate[i][GENERATION] = 0.0;
   cellstate[i][CYCLE_TIME] = draw_cycle(atom->tag[i], CREATION);
   cellstate[i][AREA0_BASE] = 0.0;
+  cellstate[i][MOTHER] = 0.0;
+  cellstate[i][BIRTH] = clock;
 }
 
 int FixCellDivide::pack_exchange(int i, double *buf)
@@ -583,8 +609,12 @@ void FixCellDivide::unpack_restart(int nlocal, int nth)
   double **extra = atom->extra;
   int m = 0;
   for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  // A restart file of an older version has fewer (leading) columns: the
+  // others keep their defaults (no mother, birth time 0).
+  const int ncol = MIN(static_cast<int>(extra[nlocal][m]) - 1, (int) NCOL);
   m++;
-  for (int c = 0; c < NCOL; c++) cellstate[nlocal][c] = extra[nlocal][m++];
+  for (int c = 0; c < ncol; c++) cellstate[nlocal][c] = extra[nlocal][m++];
+  for (int c = ncol; c < NCOL; c++) cellstate[nlocal][c] = 0.0;
 }
 
 int FixCellDivide::size_restart(int /*nlocal*/)

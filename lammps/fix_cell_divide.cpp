@@ -42,8 +42,8 @@ static const char SYNTAX[] =
     "[noise eta]";
 
 FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), decide_time(0.0), region(nullptr), pair(nullptr), area0_index(-1),
-    cellstate(nullptr)
+    Fix(lmp, narg, arg), decide_time(0.0), cap_warned(false), region(nullptr), pair(nullptr),
+    area0_index(-1), cellstate(nullptr)
 {
   // The fix's clock starts at LAMMPS's time now (0 at the first run) and is
   // advanced by the fix itself: its value is kept in the restart file.
@@ -62,11 +62,23 @@ FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
       error->all(FLERR, "fix cell/divide: keyword '{}' needs {} value(s); syntax: {}", kw, n,
                  SYNTAX);
   };
+  // One trigger per fix: a second one would silently replace the first.
+  auto one_trigger = [&](int iarg, int n) {
+    std::string text = arg[iarg];
+    for (int k = 1; k <= n; k++) text += std::string(" ") + arg[iarg + k];
+    if (trigger >= 0)
+      error->all(FLERR,
+                 "fix cell/divide: two triggers, '{}' and '{}'; give one (rate R, cycle T spread "
+                 "s or area Ac), or define a second fix cell/divide for another group",
+                 trigger_text, text);
+    trigger_text = text;
+  };
   int iarg = 3;
   while (iarg < narg) {
     const char *kw = arg[iarg];
     if (strcmp(kw, "rate") == 0) {
       need(iarg, 1, kw);
+      one_trigger(iarg, 1);
       trigger = RATE;
       rate = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (!(rate >= 0.0) || !std::isfinite(rate))
@@ -75,6 +87,7 @@ FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
       iarg += 2;
     } else if (strcmp(kw, "cycle") == 0) {
       need(iarg, 3, kw);
+      one_trigger(iarg, 3);
       trigger = CYCLE;
       cycle_mean = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (strcmp(arg[iarg + 2], "spread") != 0)
@@ -91,6 +104,7 @@ FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
       iarg += 4;
     } else if (strcmp(kw, "area") == 0) {
       need(iarg, 1, kw);
+      one_trigger(iarg, 1);
       trigger = AREA;
       area_max = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (!(area_max > 0.0) || !std::isfinite(area_max))
@@ -436,9 +450,10 @@ void FixCellDivide::decide()
   daughter_tag.clear();
   if (nall == 0) return;
   std::vector<std::pair<double, tagint>> all = gather_sorted(mine, world);
-  if (max_cells > 0) {
-    const bigint room = MAX((bigint) 0, max_cells - atom->natoms);
-    if ((bigint) all.size() > room) all.resize(room);
+  const bigint room = cap_room(atom->natoms);
+  if ((bigint) all.size() > room) {
+    warn_cap((bigint) all.size() - room);
+    all.resize(room);
   }
   if (all.empty()) {
     pending.clear();
@@ -447,6 +462,32 @@ void FixCellDivide::decide()
   // Daughter IDs are assigned at the event (after any deaths) from this order.
   for (size_t k = 0; k < all.size(); k++) daughter_tag[all[k].second] = static_cast<tagint>(k);
   next_reneighbor = update->ntimestep + 1;
+}
+
+/* How many more cells max N allows when the tissue has n atoms (no cap:
+   any number).  It is compared with the global atom count, so that several
+   fix cell/divide commands, or deaths in between, share the one cap. */
+
+bigint FixCellDivide::cap_room(bigint n) const
+{
+  if (max_cells <= 0) return MAXBIGINT;
+  return MAX((bigint) 0, max_cells - n);
+}
+
+/* The cap stops m divisions: with growth linear the cells that may not
+   divide keep growing to twice their base preferred area, once, say so. */
+
+void FixCellDivide::warn_cap(bigint m)
+{
+  if (!growth || cap_warned || m <= 0) return;
+  cap_warned = true;
+  if (comm->me == 0)
+    error->warning(FLERR,
+                   "fix {} cell/divide: 'max {}' stops divisions from step {} on, while 'growth "
+                   "linear' goes on: cells that may not divide keep their preferred area d_area0 "
+                   "at twice its base (once their age reaches their cycle time); raise max, or "
+                   "leave out growth linear if the tissue should not swell",
+                   id, max_cells, update->ntimestep);
 }
 
 /* The divisions decided at the end of the previous step. */
@@ -462,6 +503,12 @@ void FixCellDivide::pre_exchange()
   if ((double) maxtag_all + daughter_tag.size() >= (double) MAXTAGINT)
     error->all(FLERR, "fix cell/divide: new atom IDs would exceed the largest atom ID");
 
+  // The cap again, against the atom count now: another fix cell/divide may
+  // have added cells at this step since the decisions (deaths only make
+  // room, and the decisions already kept within the cap of that time).
+  const bigint room = cap_room(atom->natoms);
+  if ((bigint) daughter_tag.size() > room) warn_cap((bigint) daughter_tag.size() - room);
+
   // Ghost atoms are rebuilt by this re-neighboring; their slots take daughters.
   atom->nghost = 0;
   const uint64_t step = update->ntimestep;
@@ -472,6 +519,7 @@ void FixCellDivide::pre_exchange()
     if (found == pending.end()) continue;
     const auto rank = daughter_tag.find(atom->tag[i]);
     if (rank == daughter_tag.end()) continue;    // over the cap
+    if ((bigint) rank->second >= room) continue;    // over the cap, with the other fixes' cells
     const std::array<double, 3> &u = found->second;
     if (atom->nlocal == atom->nmax) atom->avec->grow(0);
     const int j = atom->nlocal;

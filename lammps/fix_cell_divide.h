@@ -59,8 +59,10 @@ class FixCellDivide : public Fix {
   bigint max_cells;
   int seed;
   std::string region_id;
+  std::string trigger_text;    // the trigger as given, for error messages
   double clock;                // the time of the current step (restarts keep it)
   double decide_time;          // time of the step whose end made the pending decisions
+  bool cap_warned;             // the max-with-growth warning was given
   class Region *region;
   class PairVertexVoronoi *pair;
   int area0_index;    // d_area0 in atom->dvector, or -1
@@ -76,6 +78,8 @@ class FixCellDivide : public Fix {
   void cell_axis(int, double *) const;
   void fill_base_area0();
   void set_area0();
+  bigint cap_room(bigint) const;
+  void warn_cap(bigint);
   void decide();
 };
 

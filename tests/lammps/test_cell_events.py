@@ -623,6 +623,73 @@ dump_modify d sort id format float %.17g
         self.compare(whole, second, 100)
 
 
+class Cap(LammpsTestCase):
+    """max N caps the atom count of the whole tissue: with two fix
+    cell/divide commands (two halves of the tissue, each 'max 80') the
+    tissue stops at 80, not at 80 plus what the other fix added.  With
+    growth linear, reaching the cap gives one warning, and the cells that
+    may no longer divide keep d_area0 at twice their base."""
+
+    def test_two_fixes_share_the_cap(self):
+        run = self.run_lmp(tissue(6, 4) + PAIR + """
+group left id <= 24
+group right id > 24
+fix move all brownian 1.0 1 gamma_t 1.0 rng none
+fix d1 left cell/divide rate 1000 seed 3 max 80
+fix d2 right cell/divide rate 1000 seed 5 max 80
+timestep 0.01
+thermo_style custom step atoms f_d1[2] f_d2[2]
+thermo 1
+run 5
+""")
+        rows = thermo_table(run)
+        self.assertEqual(rows[0]["Atoms"], 48)
+        self.assertEqual(max(r["Atoms"] for r in rows), 80)
+        self.assertEqual(rows[-1]["Atoms"], 80)
+        # both fixes divided: every cell wanted to, the first fix came first
+        self.assertEqual(rows[-1]["f_d1[2]"], 24)
+        self.assertEqual(rows[-1]["f_d2[2]"], 8)
+
+    def test_growth_warning_and_plateau(self):
+        R, dt, cap = 5.0, 0.02, 60
+        run = self.run_lmp(tissue(6, 4) + PAIR + f"""
+fix a0 all property/atom d_area0
+set group all d_area0 1.0
+fix move all brownian 1.0 1 gamma_t 1.0 rng none
+fix div all cell/divide rate {R} seed 7 growth linear max {cap}
+timestep {dt}
+thermo_style custom step atoms f_div[2]
+thermo 1
+dump d all custom 60 cfg.dump id f_div[1] f_div[4] d_area0
+dump_modify d sort id format float %.17g
+run 60
+""")
+        warnings = [line for line in run.output.splitlines()
+                    if line.startswith("WARNING") and "cell/divide" in line]
+        self.assertEqual(len(warnings), 1, warnings)
+        w = warnings[0]
+        for fragment in (f"max {cap}", "growth linear", "d_area0", "twice"):
+            self.assertIn(fragment, w)
+        step = int(w.split("from step ")[1].split()[0])
+        rows = thermo_table(run)
+        first_full = min(int(r["Step"]) for r in rows if r["Atoms"] == cap)
+        self.assertGreaterEqual(step, first_full - 1)
+        self.assertTrue(all(r["Atoms"] <= cap for r in rows))
+        # every cell is older than its cycle 1/R now: A0 = 2 x base, no more
+        last = run.dump("cfg.dump")[-1]
+        self.assertTrue(np.all(last["f_div[1]"] >= 1.0 / R))
+        np.testing.assert_allclose(last["d_area0"], 2.0 * last["f_div[4]"], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(last["f_div[4]"], 1.0)
+
+    def test_no_warning_without_growth(self):
+        run = self.run_lmp(tissue(6, 4) + PAIR + """
+fix div all cell/divide rate 5.0 seed 7 max 60
+timestep 0.02
+run 20
+""")
+        self.assertNotIn("WARNING: fix div cell/divide", run.output)
+
+
 class Errors(LammpsTestCase):
     def check(self, fix, *fragments, extra=""):
         run = self.run_lmp(tissue(3, 2) + PAIR + extra + f"fix ev all {fix}\nrun 1\n", ok=False)
@@ -651,6 +718,13 @@ class Errors(LammpsTestCase):
 
     def test_negative_rate(self):
         self.check("cell/death rate -1 seed 3", "rate R must be >= 0", "-1")
+
+    def test_two_triggers(self):
+        self.check("cell/divide rate 0.1 cycle 1.0 spread 0.1 seed 3", "two triggers",
+                   "'rate 0.1'", "'cycle 1.0 spread 0.1'")
+
+    def test_death_two_triggers(self):
+        self.check("cell/death rate 0.1 area 0.5 seed 3", "two triggers", "'rate 0.1'", "'area 0.5'")
 
     def test_death_bad_region(self):
         self.check("cell/death rate 0.1 seed 3 region nowhere", "region 'nowhere'")

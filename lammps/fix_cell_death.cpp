@@ -39,7 +39,8 @@ FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
   trigger = -1;
   seed = -1;
   rate = area_min = 0.0;
-  min_cells = 0;
+  min_cells = 1;
+  std::string trigger_text;
 
   auto need = [&](int iarg, const char *kw) {
     if (iarg + 1 >= narg)
@@ -50,13 +51,20 @@ FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
     const char *kw = arg[iarg];
     need(iarg, kw);
     const char *v = arg[iarg + 1];
+    if ((strcmp(kw, "rate") == 0 || strcmp(kw, "area") == 0) && trigger >= 0)
+      error->all(FLERR,
+                 "fix cell/death: two triggers, '{}' and '{} {}'; give one (rate R or area Amin), "
+                 "or define a second fix cell/death for another rule",
+                 trigger_text, kw, v);
     if (strcmp(kw, "rate") == 0) {
       trigger = RATE;
+      trigger_text = std::string(kw) + " " + v;
       rate = utils::numeric(FLERR, v, false, lmp);
       if (!(rate >= 0.0) || !std::isfinite(rate))
         error->all(FLERR, "fix cell/death: rate R must be >= 0 (deaths per cell per time), got {}", v);
     } else if (strcmp(kw, "area") == 0) {
       trigger = AREA;
+      trigger_text = std::string(kw) + " " + v;
       area_min = utils::numeric(FLERR, v, false, lmp);
       if (!(area_min > 0.0) || !std::isfinite(area_min))
         error->all(FLERR, "fix cell/death: area Amin must be > 0, got {}", v);
@@ -70,7 +78,9 @@ FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
                    region_id);
     } else if (strcmp(kw, "min") == 0) {
       min_cells = utils::bnumeric(FLERR, v, false, lmp);
-      if (min_cells < 0) error->all(FLERR, "fix cell/death: min N must be >= 0 cells, got {}", v);
+      if (min_cells < 0)
+        error->all(FLERR,
+                   "fix cell/death: min N must be >= 0 cells (0: every cell may die), got {}", v);
     } else {
       error->all(FLERR, "fix cell/death: unknown keyword '{}'; syntax: {}", kw, SYNTAX);
     }
@@ -151,11 +161,11 @@ void FixCellDeath::decide()
   int nmine = static_cast<int>(mine.size()), nall = 0;
   MPI_Allreduce(&nmine, &nall, 1, MPI_INT, MPI_SUM, world);
   if (nall == 0) return;
-  if (min_cells > 0 || nall >= atom->natoms) {
-    // Keep at least min N cells (and at least one): the first of the sorted
-    // list die, the same ones on any number of ranks.
+  if (min_cells > 0) {
+    // Keep at least min N cells: the first of the sorted list die, the same
+    // ones on any number of ranks.  (min 0: every cell may die.)
     std::vector<std::pair<double, tagint>> all = gather_sorted(mine, world);
-    const bigint room = MAX((bigint) 0, atom->natoms - MAX(min_cells, (bigint) 1));
+    const bigint room = MAX((bigint) 0, atom->natoms - min_cells);
     if ((bigint) all.size() > room) {
       all.resize(room);
       pending.clear();

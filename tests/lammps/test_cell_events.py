@@ -690,6 +690,95 @@ run 20
         self.assertNotIn("WARNING: fix div cell/divide", run.output)
 
 
+class EveryCellDies(LammpsTestCase):
+    """fix cell/death min 0: every cell may die.  With a death probability
+    of ~1 per step all cells go at step 1; the run goes on with no atoms
+    (pair style, polarity, integrator, fix cell/divide, compute
+    vertex/atom, a sorted dump) in a confluent, a finite and a 3d tissue,
+    on 2 ranks.  Without min the last cell stays."""
+
+    MODELS = {
+        "confluent": """dimension 2
+units lj
+atom_style dipole
+boundary p p p
+lattice hex 1.0
+region box block 0 6 0 4 -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+displace_atoms all random 0.1 0.1 0 4821 units box
+mass * 1.0
+pair_style vertex/voronoi 3.0
+pair_coeff * * 1.0 1.0 0.12 -0.45
+""",
+        "finite": """dimension 2
+units lj
+atom_style dipole
+atom_modify map array
+boundary f f p
+lattice hex 1.0
+region box block -3 10 -3 9 -0.5 0.5
+create_box 1 box
+region tissue block 0 7 0 6 -0.5 0.5
+create_atoms 1 region tissue
+displace_atoms all random 0.08 0.08 0 4821 units box
+mass * 1.0
+pair_style vertex/voronoi 1.54 radius 0.7
+pair_coeff 1 1 quadratic 1.0 1.2 0.1 3.9 free 0.2
+""",
+        "3d": """units lj
+atom_style dipole
+atom_modify map array
+boundary p p p
+lattice bcc 1.0
+region box block 0 3 0 3 0 3
+create_box 1 box
+create_atoms 1 box
+displace_atoms all random 0.05 0.05 0.05 4821 units box
+mass * 1.0
+pair_style vertex/voronoi 3.0
+pair_coeff 1 1 quadratic 1.0 1.0 0.05 5.6
+""",
+    }
+
+    def run_model(self, model, minimum):
+        return self.run_lmp(self.MODELS[model] + f"""
+set group all dipole/random 3313 1.0
+compute c all vertex/atom
+fix move all brownian 1.0 1 gamma_t 1.0 rng none
+fix act all polarity 0.3 1.0 neighbor 0.5 noise 0.5 4821
+fix die all cell/death rate 1e6 seed 9 {minimum}
+fix div all cell/divide rate 1.0 seed 5
+timestep 0.005
+thermo_style custom step atoms pe f_die[2]
+thermo 1
+dump d all custom 1 out.dump id x y c_c[1]
+dump_modify d sort id
+run 4
+""", nprocs=2)
+
+    @nprocs(2)
+    def test_min_zero(self):
+        for model in self.MODELS:
+            with self.subTest(model=model):
+                run = self.run_model(model, "min 0")
+                rows = thermo_table(run)
+                n0 = rows[0]["Atoms"]
+                self.assertGreater(n0, 40)
+                self.assertEqual([r["Atoms"] for r in rows[1:]], [0] * 4)
+                self.assertEqual(rows[-1]["f_die[2]"], n0)
+                self.assertEqual(rows[-1]["PotEng"], 0.0)
+                frames = run.dump("out.dump")
+                self.assertEqual([len(f["id"]) for f in frames], [n0] + [0] * 4)
+
+    @nprocs(2)
+    def test_default_keeps_one(self):
+        for model in ("finite", "3d"):
+            with self.subTest(model=model):
+                rows = thermo_table(self.run_model(model, ""))
+                self.assertEqual(rows[1]["Atoms"], 1)
+
+
 class Errors(LammpsTestCase):
     def check(self, fix, *fragments, extra=""):
         run = self.run_lmp(tissue(3, 2) + PAIR + extra + f"fix ev all {fix}\nrun 1\n", ok=False)

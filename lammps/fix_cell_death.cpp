@@ -25,6 +25,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <unordered_set>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -155,7 +156,7 @@ void FixCellDeath::decide()
     const bool die = trigger == RATE ? uniform01(seed, tag[i], step, DEATH) < rate * update->dt
                                      : pair->cells().measure(i) < area_min;
     if (!die) continue;
-    pending.insert(tag[i]);
+    pending[tag[i]] = 0;
     mine.push_back({uniform01(seed, tag[i], step, DEATH_PRIORITY), tag[i]});
   }
   int nmine = static_cast<int>(mine.size()), nall = 0;
@@ -164,16 +165,15 @@ void FixCellDeath::decide()
   if (min_cells > 0) {
     // Keep at least min N cells: the first of the sorted list die, the same
     // ones on any number of ranks.  (min 0: every cell may die.)
+    // Each keeps its place in the list, for the check at the event.
     std::vector<std::pair<double, tagint>> all = gather_sorted(mine, world);
     const bigint room = MAX((bigint) 0, atom->natoms - min_cells);
-    if ((bigint) all.size() > room) {
-      all.resize(room);
-      pending.clear();
-      std::unordered_set<tagint> chosen;
-      for (const auto &c : all) chosen.insert(c.second);
-      for (const auto &m : mine)
-        if (chosen.count(m.second)) pending.insert(m.second);
-    }
+    if ((bigint) all.size() > room) all.resize(room);
+    std::unordered_set<tagint> local;
+    for (const auto &m : mine) local.insert(m.second);
+    pending.clear();
+    for (size_t k = 0; k < all.size(); k++)
+      if (local.count(all[k].second)) pending[all[k].second] = static_cast<bigint>(k);
     if (all.empty()) return;
   }
   next_reneighbor = update->ntimestep + 1;
@@ -183,10 +183,15 @@ void FixCellDeath::pre_exchange()
 {
   if (next_reneighbor != update->ntimestep) return;
   next_reneighbor = -1;
+  // min N again, against the atom count now: another fix cell/death may have
+  // removed cells at this step since the decisions, so that the floor holds
+  // for the whole system (divisions only add cells).
+  const bigint room = min_cells > 0 ? MAX((bigint) 0, atom->natoms - min_cells) : MAXBIGINT;
   int ndel = 0;
   int i = 0;
   while (i < atom->nlocal) {
-    if (pending.count(atom->tag[i])) {
+    const auto found = pending.find(atom->tag[i]);
+    if (found != pending.end() && found->second < room) {
       atom->avec->copy(atom->nlocal - 1, i, 1);
       atom->nlocal--;
       ndel++;

@@ -650,6 +650,23 @@ run 5
         self.assertEqual(rows[-1]["f_d1[2]"], 24)
         self.assertEqual(rows[-1]["f_d2[2]"], 8)
 
+    def test_two_death_fixes_share_the_floor(self):
+        """The same for min N of fix cell/death: two fixes with 'min 10'
+        and certain death keep 10 cells, not 0."""
+        run = self.run_lmp(tissue(6, 4) + PAIR + """
+group left id <= 24
+group right id > 24
+fix k1 left cell/death rate 1e6 seed 3 min 10
+fix k2 right cell/death rate 1e6 seed 5 min 10
+timestep 0.01
+thermo_style custom step atoms f_k1[2] f_k2[2]
+thermo 1
+run 3
+""")
+        rows = thermo_table(run)
+        self.assertEqual([r["Atoms"] for r in rows], [48, 10, 10, 10])
+        self.assertEqual((rows[-1]["f_k1[2]"], rows[-1]["f_k2[2]"]), (24, 14))
+
     def test_growth_warning_and_plateau(self):
         R, dt, cap = 5.0, 0.02, 60
         run = self.run_lmp(tissue(6, 4) + PAIR + f"""

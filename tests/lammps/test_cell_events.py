@@ -796,6 +796,82 @@ run 4
                 self.assertEqual(rows[1]["Atoms"], 1)
 
 
+class ThreeD(LammpsTestCase):
+    """What the doc says of division in 3d: with axis polarity the daughters
+    lie at +-d/2 along the mother's 3d polarity (the division plane normal
+    to it); daughters get unit 3d polarities turned from the mother's by at
+    most eta, or uniform on the sphere when the mother had none; the volume
+    trigger divides exactly the cells above Ac."""
+
+    HEAD = """units lj
+atom_style dipole
+atom_modify map array
+boundary p p p
+lattice bcc 1.0
+region box block 0 3 0 3 0 3
+create_box 1 box
+create_atoms 1 box
+displace_atoms all random 0.05 0.05 0.05 4821 units box
+mass * 1.0
+pair_style vertex/voronoi 3.0
+pair_coeff 1 1 quadratic 1.0 1.0 0.05 5.6
+compute c all vertex/atom
+"""
+
+    def divide(self, fix, setmu=""):
+        run = self.run_lmp(self.HEAD + setmu + f"""
+fix div all {fix}
+timestep 0.01
+dump d all custom 1 cfg.dump id x y z mux muy muz c_c[1]
+dump_modify d sort id format float %.17g
+run 1
+""")
+        return run.dump("cfg.dump")
+
+    def test_polarity_axis_and_noise(self):
+        eta = 0.3
+        mu0 = np.array([0.0, 0.6, 0.8])
+        before, after = self.divide(f"cell/divide rate 1e6 seed 3 axis polarity separation 0.1 noise {eta}",
+                                    "set group all dipole 0 0.6 0.8\n")
+        n = len(before["id"])
+        self.assertEqual(len(after["id"]), 2 * n)
+        L = before["box"][:, 1] - before["box"][:, 0]
+        for k in range(n, 2 * n):
+            # the sister: the old cell with the same centre +- d/2 along mu0
+            d = np.array([after[c][k] for c in "xyz"]) - np.array([[before[c][m] for c in "xyz"]
+                                                                  for m in range(n)])
+            d -= L * np.round(d / L)
+            m = int(np.argmin(np.linalg.norm(d, axis=1)))
+            np.testing.assert_allclose(d[m], 0.05 * mu0, atol=1e-12)
+        mu = np.column_stack([after["mux"], after["muy"], after["muz"]])
+        np.testing.assert_allclose(np.linalg.norm(mu, axis=1), 1.0, atol=1e-12)
+        angle = np.arccos(np.clip(mu @ mu0, -1, 1))
+        self.assertTrue(np.all(angle <= eta + 1e-9))
+        self.assertGreater(angle.mean(), 0.25 * eta)
+        # the turns go in all directions about mu0
+        perp = mu - np.outer(mu @ mu0, mu0)
+        self.assertLess(np.linalg.norm(perp.mean(axis=0)), 0.5 * np.linalg.norm(perp, axis=1).mean())
+
+    def test_zero_polarity_uniform_on_sphere(self):
+        before, after = self.divide("cell/divide rate 1e6 seed 3")
+        mu = np.column_stack([after["mux"], after["muy"], after["muz"]])
+        np.testing.assert_allclose(np.linalg.norm(mu, axis=1), 1.0, atol=1e-12)
+        # uniform on the sphere: mean 0 (sd 1/sqrt(3 n) per component), <z^2> = 1/3
+        n = len(mu)
+        self.assertLess(np.abs(mu.mean(axis=0)).max(), 4 / math.sqrt(3 * n))
+        self.assertAlmostEqual((mu[:, 2] ** 2).mean(), 1 / 3, delta=4 * math.sqrt(4 / 45 / n))
+
+    def test_volume_trigger(self):
+        before, after = self.divide("cell/divide area 1.0 seed 5")
+        vol = before["c_c[1]"]
+        big = set(before["id"][vol > 1.0])
+        self.assertGreater(len(big), 2)
+        self.assertLess(len(big), len(vol) - 2)
+        self.assertEqual(len(after["id"]), len(vol) + len(big))
+        self.assertAlmostEqual(after["c_c[1]"].sum(), np.prod(before["box"][:, 1] - before["box"][:, 0]),
+                               delta=1e-9)
+
+
 class Errors(LammpsTestCase):
     def check(self, fix, *fragments, extra=""):
         run = self.run_lmp(tissue(3, 2) + PAIR + extra + f"fix ev all {fix}\nrun 1\n", ok=False)

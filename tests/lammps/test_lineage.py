@@ -40,7 +40,7 @@ thermo 10
 """
 
 DUMP = """
-dump d all custom 1 {name} id x y f_div[1] f_div[2] f_div[5] f_div[6]
+dump d all custom 1 {name} id proc x y f_div[1] f_div[2] f_div[5] f_div[6]
 dump_modify d sort id format float %.17g
 """
 
@@ -132,6 +132,13 @@ write_restart r.restart
         np.testing.assert_array_equal(a["id"], b["id"])
         for col in ("f_div[1]", "f_div[2]", "f_div[5]", "f_div[6]"):
             np.testing.assert_array_equal(a[col], b[col], err_msg=col)
+        # some cells moved from one rank to the other during a run
+        moved = 0
+        for run in (first.dump("a.dump"), second.dump("b.dump")):
+            for f, g in zip(run[:-1], run[1:]):
+                common, i, j = np.intersect1d(f["id"], g["id"], return_indices=True)
+                moved += int(np.sum(f["proc"][i] != g["proc"][j]))
+        self.assertGreater(moved, 0)
         counts = [self.check_step(frames[k], frames[k + 1]) for k in range(100)]
         self.assertGreater(sum(counts[:50]), 10)       # divisions before the restart
         self.assertGreater(sum(counts[50:]), 10)       # and after it

@@ -175,9 +175,9 @@ def box_area(frame):
 
 class Ranks(LammpsTestCase):
     """From one data file, the same N(t), the same divisions and deaths
-    (cells' IDs, ages, generations) on 1, 2 and 4 ranks, also when the cap
-    on N picks which cells may divide; the cells' areas sum to the box
-    after the events."""
+    (cells' IDs, ages, generations, mothers, birth times) on 1, 2 and 4
+    ranks, also when the cap on N picks which cells may divide; the cells'
+    areas sum to the box after the events."""
 
     def run_on(self, n, data):
         return self.run_lmp(data_header() + PAIR + AREA0 + LIVING + """
@@ -185,7 +185,7 @@ fix div all cell/divide rate 0.5 seed 7 axis long growth linear max 70
 fix die all cell/death rate 0.3 seed 9 min 45
 thermo_style custom step atoms f_div[1] f_div[2] f_die[1] f_die[2]
 thermo 1
-dump d all custom 150 out.dump id x y c_c[1] f_div[1] f_div[2] d_area0 mux muy
+dump d all custom 150 out.dump id x y c_c[1] f_div[1] f_div[2] f_div[5] f_div[6] d_area0 mux muy
 dump_modify d sort id format float %.17g
 run 150
 """, nprocs=n, files={"cfg.data": data})
@@ -213,6 +213,9 @@ run 150
             np.testing.assert_array_equal(f["id"], frames[0]["id"])
             np.testing.assert_array_equal(f["f_div[2]"], frames[0]["f_div[2]"])
             np.testing.assert_allclose(f["f_div[1]"], frames[0]["f_div[1]"], rtol=0, atol=1e-9)
+            # lineage: mothers and birth times alike on any number of ranks
+            np.testing.assert_array_equal(f["f_div[5]"], frames[0]["f_div[5]"])
+            np.testing.assert_allclose(f["f_div[6]"], frames[0]["f_div[6]"], rtol=0, atol=1e-9)
             np.testing.assert_allclose(f["x"], frames[0]["x"], rtol=0, atol=1e-6)
         for f in frames:
             self.assertAlmostEqual(f["c_c[1]"].sum(), box_area(f), delta=1e-9 * box_area(f))

@@ -25,6 +25,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <unordered_set>
 
 using namespace LAMMPS_NS;
 using namespace FixConst;
@@ -39,7 +40,8 @@ FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
   trigger = -1;
   seed = -1;
   rate = area_min = 0.0;
-  min_cells = 0;
+  min_cells = 1;
+  std::string trigger_text;
 
   auto need = [&](int iarg, const char *kw) {
     if (iarg + 1 >= narg)
@@ -50,13 +52,20 @@ FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
     const char *kw = arg[iarg];
     need(iarg, kw);
     const char *v = arg[iarg + 1];
+    if ((strcmp(kw, "rate") == 0 || strcmp(kw, "area") == 0) && trigger >= 0)
+      error->all(FLERR,
+                 "fix cell/death: two triggers, '{}' and '{} {}'; give one (rate R or area Amin), "
+                 "or define a second fix cell/death for another rule",
+                 trigger_text, kw, v);
     if (strcmp(kw, "rate") == 0) {
       trigger = RATE;
+      trigger_text = std::string(kw) + " " + v;
       rate = utils::numeric(FLERR, v, false, lmp);
       if (!(rate >= 0.0) || !std::isfinite(rate))
         error->all(FLERR, "fix cell/death: rate R must be >= 0 (deaths per cell per time), got {}", v);
     } else if (strcmp(kw, "area") == 0) {
       trigger = AREA;
+      trigger_text = std::string(kw) + " " + v;
       area_min = utils::numeric(FLERR, v, false, lmp);
       if (!(area_min > 0.0) || !std::isfinite(area_min))
         error->all(FLERR, "fix cell/death: area Amin must be > 0, got {}", v);
@@ -70,7 +79,9 @@ FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
                    region_id);
     } else if (strcmp(kw, "min") == 0) {
       min_cells = utils::bnumeric(FLERR, v, false, lmp);
-      if (min_cells < 0) error->all(FLERR, "fix cell/death: min N must be >= 0 cells, got {}", v);
+      if (min_cells < 0)
+        error->all(FLERR,
+                   "fix cell/death: min N must be >= 0 cells (0: every cell may die), got {}", v);
     } else {
       error->all(FLERR, "fix cell/death: unknown keyword '{}'; syntax: {}", kw, SYNTAX);
     }
@@ -145,25 +156,24 @@ void FixCellDeath::decide()
     const bool die = trigger == RATE ? uniform01(seed, tag[i], step, DEATH) < rate * update->dt
                                      : pair->cells().measure(i) < area_min;
     if (!die) continue;
-    pending.insert(tag[i]);
+    pending[tag[i]] = 0;
     mine.push_back({uniform01(seed, tag[i], step, DEATH_PRIORITY), tag[i]});
   }
   int nmine = static_cast<int>(mine.size()), nall = 0;
   MPI_Allreduce(&nmine, &nall, 1, MPI_INT, MPI_SUM, world);
   if (nall == 0) return;
-  if (min_cells > 0 || nall >= atom->natoms) {
-    // Keep at least min N cells (and at least one): the first of the sorted
-    // list die, the same ones on any number of ranks.
+  if (min_cells > 0) {
+    // Keep at least min N cells: the first of the sorted list die, the same
+    // ones on any number of ranks.  (min 0: every cell may die.)
+    // Each keeps its place in the list, for the check at the event.
     std::vector<std::pair<double, tagint>> all = gather_sorted(mine, world);
-    const bigint room = MAX((bigint) 0, atom->natoms - MAX(min_cells, (bigint) 1));
-    if ((bigint) all.size() > room) {
-      all.resize(room);
-      pending.clear();
-      std::unordered_set<tagint> chosen;
-      for (const auto &c : all) chosen.insert(c.second);
-      for (const auto &m : mine)
-        if (chosen.count(m.second)) pending.insert(m.second);
-    }
+    const bigint room = MAX((bigint) 0, atom->natoms - min_cells);
+    if ((bigint) all.size() > room) all.resize(room);
+    std::unordered_set<tagint> local;
+    for (const auto &m : mine) local.insert(m.second);
+    pending.clear();
+    for (size_t k = 0; k < all.size(); k++)
+      if (local.count(all[k].second)) pending[all[k].second] = static_cast<bigint>(k);
     if (all.empty()) return;
   }
   next_reneighbor = update->ntimestep + 1;
@@ -173,10 +183,15 @@ void FixCellDeath::pre_exchange()
 {
   if (next_reneighbor != update->ntimestep) return;
   next_reneighbor = -1;
+  // min N again, against the atom count now: another fix cell/death may have
+  // removed cells at this step since the decisions, so that the floor holds
+  // for the whole system (divisions only add cells).
+  const bigint room = min_cells > 0 ? MAX((bigint) 0, atom->natoms - min_cells) : MAXBIGINT;
   int ndel = 0;
   int i = 0;
   while (i < atom->nlocal) {
-    if (pending.count(atom->tag[i])) {
+    const auto found = pending.find(atom->tag[i]);
+    if (found != pending.end() && found->second < room) {
       atom->avec->copy(atom->nlocal - 1, i, 1);
       atom->nlocal--;
       ndel++;

@@ -16,7 +16,7 @@ FixStyle(cell/death,FixCellDeath);
 #include "fix.h"
 
 #include <string>
-#include <unordered_set>
+#include <unordered_map>
 
 namespace LAMMPS_NS {
 
@@ -41,7 +41,8 @@ class FixCellDeath : public Fix {
   std::string region_id;
   class Region *region;
   class PairVertexVoronoi *pair;
-  std::unordered_set<tagint> pending;    // cells that die at the next step
+  // Cells that die at the next step -> their place in the sorted list (min N).
+  std::unordered_map<tagint, bigint> pending;
   cell_events::EventCount events;
 
   void decide();

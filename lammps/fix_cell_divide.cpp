@@ -42,8 +42,12 @@ static const char SYNTAX[] =
     "[noise eta]";
 
 FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), region(nullptr), pair(nullptr), area0_index(-1), cellstate(nullptr)
+    Fix(lmp, narg, arg), decide_time(0.0), cap_warned(false), region(nullptr), pair(nullptr),
+    area0_index(-1), cellstate(nullptr)
 {
+  // The fix's clock starts at LAMMPS's time now (0 at the first run) and is
+  // advanced by the fix itself: its value is kept in the restart file.
+  clock = update->atime + (double) (update->ntimestep - update->atimestep) * update->dt;
   trigger = -1;
   axis = RANDOM;
   growth = 0;
@@ -58,11 +62,23 @@ FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
       error->all(FLERR, "fix cell/divide: keyword '{}' needs {} value(s); syntax: {}", kw, n,
                  SYNTAX);
   };
+  // One trigger per fix: a second one would silently replace the first.
+  auto one_trigger = [&](int iarg, int n) {
+    std::string text = arg[iarg];
+    for (int k = 1; k <= n; k++) text += std::string(" ") + arg[iarg + k];
+    if (trigger >= 0)
+      error->all(FLERR,
+                 "fix cell/divide: two triggers, '{}' and '{}'; give one (rate R, cycle T spread "
+                 "s or area Ac), or define a second fix cell/divide for another group",
+                 trigger_text, text);
+    trigger_text = text;
+  };
   int iarg = 3;
   while (iarg < narg) {
     const char *kw = arg[iarg];
     if (strcmp(kw, "rate") == 0) {
       need(iarg, 1, kw);
+      one_trigger(iarg, 1);
       trigger = RATE;
       rate = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (!(rate >= 0.0) || !std::isfinite(rate))
@@ -71,6 +87,7 @@ FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
       iarg += 2;
     } else if (strcmp(kw, "cycle") == 0) {
       need(iarg, 3, kw);
+      one_trigger(iarg, 3);
       trigger = CYCLE;
       cycle_mean = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (strcmp(arg[iarg + 2], "spread") != 0)
@@ -87,6 +104,7 @@ FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
       iarg += 4;
     } else if (strcmp(kw, "area") == 0) {
       need(iarg, 1, kw);
+      one_trigger(iarg, 1);
       trigger = AREA;
       area_max = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (!(area_max > 0.0) || !std::isfinite(area_max))
@@ -207,7 +225,7 @@ FixCellDivide::~FixCellDivide()
 
 int FixCellDivide::setmask()
 {
-  return END_OF_STEP | PRE_EXCHANGE;
+  return PRE_FORCE | END_OF_STEP | PRE_EXCHANGE;
 }
 
 void FixCellDivide::init()
@@ -240,6 +258,44 @@ void FixCellDivide::fill_base_area0()
   const double *a0 = atom->dvector[area0_index];
   for (int i = 0; i < atom->nlocal; i++)
     if (!(cellstate[i][AREA0_BASE] > 0.0)) cellstate[i][AREA0_BASE] = a0[i];
+}
+
+/* Preferred areas of the current step: A0 grows linearly from its base to
+   twice the base over the cell's cycle, and stays there if the cell does not
+   divide (max N reached, a region it left). */
+
+void FixCellDivide::set_area0()
+{
+  if (!growth || area0_index < 0) return;
+  double *a0 = atom->dvector[area0_index];
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double cyc = trigger == CYCLE ? cellstate[i][CYCLE_TIME] : 1.0 / rate;
+    const double base = cellstate[i][AREA0_BASE];
+    if (base > 0.0) a0[i] = base * (1.0 + MIN(cellstate[i][AGE] / cyc, 1.0));
+  }
+}
+
+/* The ages and preferred areas of a step are set before its forces: in
+   pre_force during a run, in setup_pre_force (without ageing) at the start
+   of a run.  The forces at a step then depend on the state of that step
+   alone, so a run split in two, or continued from a restart file, computes
+   the same forces as an uninterrupted run. */
+
+void FixCellDivide::setup_pre_force(int /*vflag*/)
+{
+  fill_base_area0();
+  set_area0();
+}
+
+void FixCellDivide::pre_force(int /*vflag*/)
+{
+  clock += update->dt;
+  const int *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mask[i] & groupbit) cellstate[i][AGE] += update->dt;
+  set_area0();
 }
 
 /* The decisions of the current step are (re)made at the setup of every run:
@@ -346,13 +402,10 @@ static void daughter_polarity(uint64_t seed, tagint t, uint64_t step, double noi
   for (int d = 0; d < 3; d++) n[d] = n[d] * std::cos(th) + axn[d] * std::sin(th);
 }
 
-/* Ages, then preferred-area growth and this step's division decisions. */
+/* This step's division decisions (the ages were advanced in pre_force). */
 
 void FixCellDivide::end_of_step()
 {
-  const int *mask = atom->mask;
-  for (int i = 0; i < atom->nlocal; i++)
-    if (mask[i] & groupbit) cellstate[i][AGE] += update->dt;
   decide();
 }
 
@@ -374,6 +427,7 @@ void FixCellDivide::decide()
 
   std::vector<std::pair<double, tagint>> mine;
   pending.clear();
+  decide_time = clock;
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     if (region && !region->match(x[i][0], x[i][1], x[i][2])) continue;
@@ -391,26 +445,15 @@ void FixCellDivide::decide()
     mine.push_back({uniform01(seed, tag[i], step, PRIORITY), tag[i]});
   }
 
-  // Preferred areas for the next step: A0 grows linearly from its base to
-  // twice the base over the cell's cycle.
-  if (growth) {
-    double *a0 = atom->dvector[area0_index];
-    for (int i = 0; i < nlocal; i++) {
-      if (!(mask[i] & groupbit)) continue;
-      const double cyc = trigger == CYCLE ? cellstate[i][CYCLE_TIME] : 1.0 / rate;
-      const double base = cellstate[i][AREA0_BASE];
-      if (base > 0.0) a0[i] = base * (1.0 + MIN(cellstate[i][AGE] / cyc, 1.0));
-    }
-  }
-
   int nmine = static_cast<int>(mine.size()), nall = 0;
   MPI_Allreduce(&nmine, &nall, 1, MPI_INT, MPI_SUM, world);
   daughter_tag.clear();
   if (nall == 0) return;
   std::vector<std::pair<double, tagint>> all = gather_sorted(mine, world);
-  if (max_cells > 0) {
-    const bigint room = MAX((bigint) 0, max_cells - atom->natoms);
-    if ((bigint) all.size() > room) all.resize(room);
+  const bigint room = cap_room(atom->natoms);
+  if ((bigint) all.size() > room) {
+    warn_cap((bigint) all.size() - room);
+    all.resize(room);
   }
   if (all.empty()) {
     pending.clear();
@@ -419,6 +462,32 @@ void FixCellDivide::decide()
   // Daughter IDs are assigned at the event (after any deaths) from this order.
   for (size_t k = 0; k < all.size(); k++) daughter_tag[all[k].second] = static_cast<tagint>(k);
   next_reneighbor = update->ntimestep + 1;
+}
+
+/* How many more cells max N allows when the tissue has n atoms (no cap:
+   any number).  It is compared with the global atom count, so that several
+   fix cell/divide commands, or deaths in between, share the one cap. */
+
+bigint FixCellDivide::cap_room(bigint n) const
+{
+  if (max_cells <= 0) return MAXBIGINT;
+  return MAX((bigint) 0, max_cells - n);
+}
+
+/* The cap stops m divisions: with growth linear the cells that may not
+   divide keep growing to twice their base preferred area, once, say so. */
+
+void FixCellDivide::warn_cap(bigint m)
+{
+  if (!growth || cap_warned || m <= 0) return;
+  cap_warned = true;
+  if (comm->me == 0)
+    error->warning(FLERR,
+                   "fix {} cell/divide: 'max {}' stops divisions from step {} on, while 'growth "
+                   "linear' goes on: cells that may not divide keep their preferred area d_area0 "
+                   "at twice its base (once their age reaches their cycle time); raise max, or "
+                   "leave out growth linear if the tissue should not swell",
+                   id, max_cells, update->ntimestep);
 }
 
 /* The divisions decided at the end of the previous step. */
@@ -434,6 +503,12 @@ void FixCellDivide::pre_exchange()
   if ((double) maxtag_all + daughter_tag.size() >= (double) MAXTAGINT)
     error->all(FLERR, "fix cell/divide: new atom IDs would exceed the largest atom ID");
 
+  // The cap again, against the atom count now: another fix cell/divide may
+  // have added cells at this step since the decisions (deaths only make
+  // room, and the decisions already kept within the cap of that time).
+  const bigint room = cap_room(atom->natoms);
+  if ((bigint) daughter_tag.size() > room) warn_cap((bigint) daughter_tag.size() - room);
+
   // Ghost atoms are rebuilt by this re-neighboring; their slots take daughters.
   atom->nghost = 0;
   const uint64_t step = update->ntimestep;
@@ -444,12 +519,14 @@ void FixCellDivide::pre_exchange()
     if (found == pending.end()) continue;
     const auto rank = daughter_tag.find(atom->tag[i]);
     if (rank == daughter_tag.end()) continue;    // over the cap
+    if ((bigint) rank->second >= room) continue;    // over the cap, with the other fixes' cells
     const std::array<double, 3> &u = found->second;
     if (atom->nlocal == atom->nmax) atom->avec->grow(0);
     const int j = atom->nlocal;
     atom->avec->copy(i, j, 0);    // every per-atom value, and every fix's
     atom->nlocal++;
     ncreated++;
+    const tagint mother = atom->tag[i];
     atom->tag[j] = maxtag_all + 1 + rank->second;
     double **x = atom->x;
     const double h = 0.5 * separation;
@@ -460,6 +537,8 @@ void FixCellDivide::pre_exchange()
     for (const int k : {i, j}) {
       cellstate[k][AGE] = 0.0;
       cellstate[k][GENERATION] += 1.0;
+      cellstate[k][MOTHER] = (double) mother;
+      cellstate[k][BIRTH] = decide_time;
       cellstate[k][CYCLE_TIME] = draw_cycle(atom->tag[k], step);
       if (growth && cellstate[k][AREA0_BASE] > 0.0)
         atom->dvector[area0_index][k] = cellstate[k][AREA0_BASE];
@@ -500,14 +579,28 @@ double FixCellDivide::compute_vector(int n)
 
 /* ---------------------------------------------------------------------- */
 
+/* The global record: a marker -1 (older files start with the event count,
+   which is >= 0), the event count, the step of the last event, the clock. */
+
 void FixCellDivide::write_restart(FILE *fp)
 {
-  if (comm->me == 0) events.write_restart(fp);
+  if (comm->me != 0) return;
+  double list[4] = {-1.0, (double) events.total, (double) events.last_step, clock};
+  const int size = sizeof(list);
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(list, sizeof(double), 4, fp);
 }
 
 void FixCellDivide::restart(char *buf)
 {
-  events.restart(buf);
+  const double *list = reinterpret_cast<const double *>(buf);
+  if (list[0] >= 0.0) {    // an older file: no clock, keep LAMMPS's time
+    events.restart(buf);
+    return;
+  }
+  events.total = static_cast<bigint>(list[1]);
+  events.last_step = static_cast<bigint>(list[2]);
+  clock = list[3];
 }
 
 double FixCellDivide::memory_usage()
@@ -527,7 +620,8 @@ void FixCellDivide::copy_arrays(int i, int j, int /*delflag*/)
 }
 
 /* A cell that appears other than by division (create_atoms, read_data after
-   this fix, fix deposit): age 0, generation 0, its own cycle time. */
+   this fix, fix deposit), or exists when the fix is defined: age 0,
+   generation 0, its own cycle time, no mother (ID 0), born now. */
 
 void FixCellDivide::set_arrays(int i)
 {
@@ -535,6 +629,8 @@ void FixCellDivide::set_arrays(int i)
   cellstate[i][GENERATION] = 0.0;
   cellstate[i][CYCLE_TIME] = draw_cycle(atom->tag[i], CREATION);
   cellstate[i][AREA0_BASE] = 0.0;
+  cellstate[i][MOTHER] = 0.0;
+  cellstate[i][BIRTH] = clock;
 }
 
 int FixCellDivide::pack_exchange(int i, double *buf)
@@ -561,8 +657,12 @@ void FixCellDivide::unpack_restart(int nlocal, int nth)
   double **extra = atom->extra;
   int m = 0;
   for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  // A restart file of an older version has fewer (leading) columns: the
+  // others keep their defaults (no mother, birth time 0).
+  const int ncol = MIN(static_cast<int>(extra[nlocal][m]) - 1, (int) NCOL);
   m++;
-  for (int c = 0; c < NCOL; c++) cellstate[nlocal][c] = extra[nlocal][m++];
+  for (int c = 0; c < ncol; c++) cellstate[nlocal][c] = extra[nlocal][m++];
+  for (int c = ncol; c < NCOL; c++) cellstate[nlocal][c] = 0.0;
 }
 
 int FixCellDivide::size_restart(int /*nlocal*/)

@@ -29,6 +29,8 @@ class FixCellDivide : public Fix {
   int setmask() override;
   void init() override;
   void setup(int) override;
+  void setup_pre_force(int) override;
+  void pre_force(int) override;
   void end_of_step() override;
   void pre_exchange() override;
   double compute_scalar() override;
@@ -50,17 +52,22 @@ class FixCellDivide : public Fix {
  protected:
   enum Trigger { RATE, CYCLE, AREA };
   enum Axis { RANDOM, LONG, SHORT, POLARITY };
-  enum Col { AGE, GENERATION, CYCLE_TIME, AREA0_BASE, NCOL };
+  // Per-atom columns (dump f_ID[c] is column c + 1): new ones are appended.
+  enum Col { AGE, GENERATION, CYCLE_TIME, AREA0_BASE, MOTHER, BIRTH, NCOL };
   int trigger, axis, growth;
   double rate, cycle_mean, cycle_spread, area_max, separation, noise;
   bigint max_cells;
   int seed;
   std::string region_id;
+  std::string trigger_text;    // the trigger as given, for error messages
+  double clock;                // the time of the current step (restarts keep it)
+  double decide_time;          // time of the step whose end made the pending decisions
+  bool cap_warned;             // the max-with-growth warning was given
   class Region *region;
   class PairVertexVoronoi *pair;
   int area0_index;    // d_area0 in atom->dvector, or -1
 
-  double **cellstate;    // per atom: age, generation, cycle time, base A0
+  double **cellstate;    // per atom: age, generation, cycle time, base A0, mother ID, birth time
   // Mothers of the next event step: atom ID -> division axis (ux, uy), and
   // the daughters' atom IDs assigned from the global sorted list.
   std::unordered_map<tagint, std::array<double, 3>> pending;    // division axis
@@ -70,6 +77,9 @@ class FixCellDivide : public Fix {
   double draw_cycle(tagint, uint64_t) const;
   void cell_axis(int, double *) const;
   void fill_base_area0();
+  void set_area0();
+  bigint cap_room(bigint) const;
+  void warn_cap(bigint);
   void decide();
 };
 

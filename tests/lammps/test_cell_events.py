@@ -175,9 +175,9 @@ def box_area(frame):
 
 class Ranks(LammpsTestCase):
     """From one data file, the same N(t), the same divisions and deaths
-    (cells' IDs, ages, generations) on 1, 2 and 4 ranks, also when the cap
-    on N picks which cells may divide; the cells' areas sum to the box
-    after the events."""
+    (cells' IDs, ages, generations, mothers, birth times) on 1, 2 and 4
+    ranks, also when the cap on N picks which cells may divide; the cells'
+    areas sum to the box after the events."""
 
     def run_on(self, n, data):
         return self.run_lmp(data_header() + PAIR + AREA0 + LIVING + """
@@ -185,7 +185,7 @@ fix div all cell/divide rate 0.5 seed 7 axis long growth linear max 70
 fix die all cell/death rate 0.3 seed 9 min 45
 thermo_style custom step atoms f_div[1] f_div[2] f_die[1] f_die[2]
 thermo 1
-dump d all custom 150 out.dump id x y c_c[1] f_div[1] f_div[2] d_area0 mux muy
+dump d all custom 150 out.dump id x y c_c[1] f_div[1] f_div[2] f_div[5] f_div[6] d_area0 mux muy
 dump_modify d sort id format float %.17g
 run 150
 """, nprocs=n, files={"cfg.data": data})
@@ -213,6 +213,9 @@ run 150
             np.testing.assert_array_equal(f["id"], frames[0]["id"])
             np.testing.assert_array_equal(f["f_div[2]"], frames[0]["f_div[2]"])
             np.testing.assert_allclose(f["f_div[1]"], frames[0]["f_div[1]"], rtol=0, atol=1e-9)
+            # lineage: mothers and birth times alike on any number of ranks
+            np.testing.assert_array_equal(f["f_div[5]"], frames[0]["f_div[5]"])
+            np.testing.assert_allclose(f["f_div[6]"], frames[0]["f_div[6]"], rtol=0, atol=1e-9)
             np.testing.assert_allclose(f["x"], frames[0]["x"], rtol=0, atol=1e-6)
         for f in frames:
             self.assertAlmostEqual(f["c_c[1]"].sum(), box_area(f), delta=1e-9 * box_area(f))
@@ -554,6 +557,324 @@ timestep 0.02
         np.testing.assert_allclose(fs["x"], fw["x"], rtol=0, atol=1e-8)
 
 
+class GrowthContinues(LammpsTestCase):
+    """With growth linear the forces of a step depend on that step's state
+    alone: a run split in parts, and a run continued from a restart file on
+    2 ranks, follow the uninterrupted run to round-off (pe at every step,
+    the positions, ages and preferred areas at the end).  The tissue
+    doubles fast and amplifies round-off about tenfold per 3 steps, so the
+    comparison stops 12 steps after the split."""
+
+    START = data_header() + PAIR + """
+fix a0 all property/atom d_area0
+set group all d_area0 1.0
+fix move all brownian 1.0 1 gamma_t 1.0 rng none
+timestep 0.02
+"""
+    FIXES = """
+fix div all cell/divide cycle 1.0 spread 0.3 seed 7 growth linear
+thermo_style custom step atoms pe f_div[2]
+thermo_modify norm no format float %.17g
+thermo 1
+"""
+    DUMP = """
+dump d all custom 4 out.dump id x y f_div[1] f_div[2] d_area0
+dump_modify d sort id format float %.17g
+"""
+
+    def compare(self, whole, parts, first_step):
+        tw = {int(r["Step"]): r for r in thermo_table(whole)}
+        rows = [r for r in thermo_table(parts) if r["Step"] >= first_step]
+        self.assertGreater(len(rows), 4)
+        for r in rows:
+            w = tw[int(r["Step"])]
+            self.assertEqual(r["Atoms"], w["Atoms"])
+            self.assertEqual(r["f_div[2]"], w["f_div[2]"])
+            self.assertAlmostEqual(r["PotEng"], w["PotEng"], delta=1e-9 * abs(w["PotEng"]),
+                                   msg="step %d" % r["Step"])
+        fw, fp = whole.dump("out.dump")[-1], parts.dump("out.dump")[-1]
+        self.assertEqual(fw["step"], fp["step"])
+        np.testing.assert_array_equal(fw["id"], fp["id"])
+        for col in ("f_div[1]", "d_area0"):
+            np.testing.assert_allclose(fp[col], fw[col], rtol=0, atol=1e-12, err_msg=col)
+        np.testing.assert_allclose(fp["x"], fw["x"], rtol=0, atol=1e-8)
+        np.testing.assert_allclose(fp["y"], fw["y"], rtol=0, atol=1e-8)
+        # the preferred areas did grow, and cells divided in the compared steps
+        self.assertGreater(np.ptp(fw["d_area0"]), 0.3)
+
+    def test_split_run(self):
+        data = make_data(self)
+        whole = self.run_lmp(self.START + self.FIXES + self.DUMP + "run 112\n",
+                             files={"cfg.data": data})
+        parts = self.run_lmp(self.START + self.FIXES + self.DUMP + "run 100\nrun 4\nrun 8\n",
+                             files={"cfg.data": data})
+        self.compare(whole, parts, 100)
+        rows = thermo_table(whole)
+        self.assertGreater(rows[-1]["f_div[2]"] - rows[100]["f_div[2]"], 3)
+
+    @nprocs(2)
+    def test_restart_two_ranks(self):
+        data = make_data(self)
+        whole = self.run_lmp(self.START + self.FIXES + self.DUMP + "run 112\n",
+                             nprocs=2, files={"cfg.data": data})
+        first = self.run_lmp(self.START + self.FIXES + "run 100\nwrite_restart r.restart\n",
+                             nprocs=2, files={"cfg.data": data})
+        second = self.run_lmp("read_restart %s\nfix a0 all property/atom d_area0\n"
+                              % first.path("r.restart")
+                              + "fix move all brownian 1.0 1 gamma_t 1.0 rng none\n"
+                              + self.FIXES + self.DUMP + "run 12\n", nprocs=2)
+        self.compare(whole, second, 100)
+
+
+class Cap(LammpsTestCase):
+    """max N caps the atom count of the whole tissue: with two fix
+    cell/divide commands (two halves of the tissue, each 'max 80') the
+    tissue stops at 80, not at 80 plus what the other fix added.  With
+    growth linear, reaching the cap gives one warning, and the cells that
+    may no longer divide keep d_area0 at twice their base."""
+
+    def test_two_fixes_share_the_cap(self):
+        run = self.run_lmp(tissue(6, 4) + PAIR + """
+group left id <= 24
+group right id > 24
+fix move all brownian 1.0 1 gamma_t 1.0 rng none
+fix d1 left cell/divide rate 1000 seed 3 max 80
+fix d2 right cell/divide rate 1000 seed 5 max 80
+timestep 0.01
+thermo_style custom step atoms f_d1[2] f_d2[2]
+thermo 1
+run 5
+""")
+        rows = thermo_table(run)
+        self.assertEqual(rows[0]["Atoms"], 48)
+        self.assertEqual(max(r["Atoms"] for r in rows), 80)
+        self.assertEqual(rows[-1]["Atoms"], 80)
+        # both fixes divided: every cell wanted to, the first fix came first
+        self.assertEqual(rows[-1]["f_d1[2]"], 24)
+        self.assertEqual(rows[-1]["f_d2[2]"], 8)
+
+    def test_two_death_fixes_share_the_floor(self):
+        """The same for min N of fix cell/death: two fixes with 'min 10'
+        and certain death keep 10 cells, not 0."""
+        run = self.run_lmp(tissue(6, 4) + PAIR + """
+group left id <= 24
+group right id > 24
+fix k1 left cell/death rate 1e6 seed 3 min 10
+fix k2 right cell/death rate 1e6 seed 5 min 10
+timestep 0.01
+thermo_style custom step atoms f_k1[2] f_k2[2]
+thermo 1
+run 3
+""")
+        rows = thermo_table(run)
+        self.assertEqual([r["Atoms"] for r in rows], [48, 10, 10, 10])
+        self.assertEqual((rows[-1]["f_k1[2]"], rows[-1]["f_k2[2]"]), (24, 14))
+
+    def test_growth_warning_and_plateau(self):
+        R, dt, cap = 5.0, 0.02, 60
+        run = self.run_lmp(tissue(6, 4) + PAIR + f"""
+fix a0 all property/atom d_area0
+set group all d_area0 1.0
+fix move all brownian 1.0 1 gamma_t 1.0 rng none
+fix div all cell/divide rate {R} seed 7 growth linear max {cap}
+timestep {dt}
+thermo_style custom step atoms f_div[2]
+thermo 1
+dump d all custom 60 cfg.dump id f_div[1] f_div[4] d_area0
+dump_modify d sort id format float %.17g
+run 60
+""")
+        warnings = [line for line in run.output.splitlines()
+                    if line.startswith("WARNING") and "cell/divide" in line]
+        self.assertEqual(len(warnings), 1, warnings)
+        w = warnings[0]
+        for fragment in (f"max {cap}", "growth linear", "d_area0", "twice"):
+            self.assertIn(fragment, w)
+        step = int(w.split("from step ")[1].split()[0])
+        rows = thermo_table(run)
+        first_full = min(int(r["Step"]) for r in rows if r["Atoms"] == cap)
+        self.assertGreaterEqual(step, first_full - 1)
+        self.assertTrue(all(r["Atoms"] <= cap for r in rows))
+        # every cell is older than its cycle 1/R now: A0 = 2 x base, no more
+        last = run.dump("cfg.dump")[-1]
+        self.assertTrue(np.all(last["f_div[1]"] >= 1.0 / R))
+        np.testing.assert_allclose(last["d_area0"], 2.0 * last["f_div[4]"], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(last["f_div[4]"], 1.0)
+
+    def test_no_warning_without_growth(self):
+        run = self.run_lmp(tissue(6, 4) + PAIR + """
+fix div all cell/divide rate 5.0 seed 7 max 60
+timestep 0.02
+run 20
+""")
+        self.assertNotIn("WARNING: fix div cell/divide", run.output)
+
+
+class EveryCellDies(LammpsTestCase):
+    """fix cell/death min 0: every cell may die.  With a death probability
+    of ~1 per step all cells go at step 1; the run goes on with no atoms
+    (pair style, polarity, integrator, fix cell/divide, compute
+    vertex/atom, a sorted dump) in a confluent, a finite and a 3d tissue,
+    on 2 ranks.  Without min the last cell stays."""
+
+    MODELS = {
+        "confluent": """dimension 2
+units lj
+atom_style dipole
+boundary p p p
+lattice hex 1.0
+region box block 0 6 0 4 -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+displace_atoms all random 0.1 0.1 0 4821 units box
+mass * 1.0
+pair_style vertex/voronoi 3.0
+pair_coeff * * 1.0 1.0 0.12 -0.45
+""",
+        "finite": """dimension 2
+units lj
+atom_style dipole
+atom_modify map array
+boundary f f p
+lattice hex 1.0
+region box block -3 10 -3 9 -0.5 0.5
+create_box 1 box
+region tissue block 0 7 0 6 -0.5 0.5
+create_atoms 1 region tissue
+displace_atoms all random 0.08 0.08 0 4821 units box
+mass * 1.0
+pair_style vertex/voronoi 1.54 radius 0.7
+pair_coeff 1 1 quadratic 1.0 1.2 0.1 3.9 free 0.2
+""",
+        "3d": """units lj
+atom_style dipole
+atom_modify map array
+boundary p p p
+lattice bcc 1.0
+region box block 0 3 0 3 0 3
+create_box 1 box
+create_atoms 1 box
+displace_atoms all random 0.05 0.05 0.05 4821 units box
+mass * 1.0
+pair_style vertex/voronoi 3.0
+pair_coeff 1 1 quadratic 1.0 1.0 0.05 5.6
+""",
+    }
+
+    def run_model(self, model, minimum):
+        return self.run_lmp(self.MODELS[model] + f"""
+set group all dipole/random 3313 1.0
+compute c all vertex/atom
+fix move all brownian 1.0 1 gamma_t 1.0 rng none
+fix act all polarity 0.3 1.0 neighbor 0.5 noise 0.5 4821
+fix die all cell/death rate 1e6 seed 9 {minimum}
+fix div all cell/divide rate 1.0 seed 5
+timestep 0.005
+thermo_style custom step atoms pe f_die[2]
+thermo 1
+dump d all custom 1 out.dump id x y c_c[1]
+dump_modify d sort id
+run 4
+""", nprocs=2)
+
+    @nprocs(2)
+    def test_min_zero(self):
+        for model in self.MODELS:
+            with self.subTest(model=model):
+                run = self.run_model(model, "min 0")
+                rows = thermo_table(run)
+                n0 = rows[0]["Atoms"]
+                self.assertGreater(n0, 40)
+                self.assertEqual([r["Atoms"] for r in rows[1:]], [0] * 4)
+                self.assertEqual(rows[-1]["f_die[2]"], n0)
+                self.assertEqual(rows[-1]["PotEng"], 0.0)
+                frames = run.dump("out.dump")
+                self.assertEqual([len(f["id"]) for f in frames], [n0] + [0] * 4)
+
+    @nprocs(2)
+    def test_default_keeps_one(self):
+        for model in ("finite", "3d"):
+            with self.subTest(model=model):
+                rows = thermo_table(self.run_model(model, ""))
+                self.assertEqual(rows[1]["Atoms"], 1)
+
+
+class ThreeD(LammpsTestCase):
+    """What the doc says of division in 3d: with axis polarity the daughters
+    lie at +-d/2 along the mother's 3d polarity (the division plane normal
+    to it); daughters get unit 3d polarities turned from the mother's by at
+    most eta, or uniform on the sphere when the mother had none; the volume
+    trigger divides exactly the cells above Ac."""
+
+    HEAD = """units lj
+atom_style dipole
+atom_modify map array
+boundary p p p
+lattice bcc 1.0
+region box block 0 3 0 3 0 3
+create_box 1 box
+create_atoms 1 box
+displace_atoms all random 0.05 0.05 0.05 4821 units box
+mass * 1.0
+pair_style vertex/voronoi 3.0
+pair_coeff 1 1 quadratic 1.0 1.0 0.05 5.6
+compute c all vertex/atom
+"""
+
+    def divide(self, fix, setmu=""):
+        run = self.run_lmp(self.HEAD + setmu + f"""
+fix div all {fix}
+timestep 0.01
+dump d all custom 1 cfg.dump id x y z mux muy muz c_c[1]
+dump_modify d sort id format float %.17g
+run 1
+""")
+        return run.dump("cfg.dump")
+
+    def test_polarity_axis_and_noise(self):
+        eta = 0.3
+        mu0 = np.array([0.0, 0.6, 0.8])
+        before, after = self.divide(f"cell/divide rate 1e6 seed 3 axis polarity separation 0.1 noise {eta}",
+                                    "set group all dipole 0 0.6 0.8\n")
+        n = len(before["id"])
+        self.assertEqual(len(after["id"]), 2 * n)
+        L = before["box"][:, 1] - before["box"][:, 0]
+        for k in range(n, 2 * n):
+            # the sister: the old cell with the same centre +- d/2 along mu0
+            d = np.array([after[c][k] for c in "xyz"]) - np.array([[before[c][m] for c in "xyz"]
+                                                                  for m in range(n)])
+            d -= L * np.round(d / L)
+            m = int(np.argmin(np.linalg.norm(d, axis=1)))
+            np.testing.assert_allclose(d[m], 0.05 * mu0, atol=1e-12)
+        mu = np.column_stack([after["mux"], after["muy"], after["muz"]])
+        np.testing.assert_allclose(np.linalg.norm(mu, axis=1), 1.0, atol=1e-12)
+        angle = np.arccos(np.clip(mu @ mu0, -1, 1))
+        self.assertTrue(np.all(angle <= eta + 1e-9))
+        self.assertGreater(angle.mean(), 0.25 * eta)
+        # the turns go in all directions about mu0
+        perp = mu - np.outer(mu @ mu0, mu0)
+        self.assertLess(np.linalg.norm(perp.mean(axis=0)), 0.5 * np.linalg.norm(perp, axis=1).mean())
+
+    def test_zero_polarity_uniform_on_sphere(self):
+        before, after = self.divide("cell/divide rate 1e6 seed 3")
+        mu = np.column_stack([after["mux"], after["muy"], after["muz"]])
+        np.testing.assert_allclose(np.linalg.norm(mu, axis=1), 1.0, atol=1e-12)
+        # uniform on the sphere: mean 0 (sd 1/sqrt(3 n) per component), <z^2> = 1/3
+        n = len(mu)
+        self.assertLess(np.abs(mu.mean(axis=0)).max(), 4 / math.sqrt(3 * n))
+        self.assertAlmostEqual((mu[:, 2] ** 2).mean(), 1 / 3, delta=4 * math.sqrt(4 / 45 / n))
+
+    def test_volume_trigger(self):
+        before, after = self.divide("cell/divide area 1.0 seed 5")
+        vol = before["c_c[1]"]
+        big = set(before["id"][vol > 1.0])
+        self.assertGreater(len(big), 2)
+        self.assertLess(len(big), len(vol) - 2)
+        self.assertEqual(len(after["id"]), len(vol) + len(big))
+        self.assertAlmostEqual(after["c_c[1]"].sum(), np.prod(before["box"][:, 1] - before["box"][:, 0]),
+                               delta=1e-9)
+
+
 class Errors(LammpsTestCase):
     def check(self, fix, *fragments, extra=""):
         run = self.run_lmp(tissue(3, 2) + PAIR + extra + f"fix ev all {fix}\nrun 1\n", ok=False)
@@ -582,6 +903,13 @@ class Errors(LammpsTestCase):
 
     def test_negative_rate(self):
         self.check("cell/death rate -1 seed 3", "rate R must be >= 0", "-1")
+
+    def test_two_triggers(self):
+        self.check("cell/divide rate 0.1 cycle 1.0 spread 0.1 seed 3", "two triggers",
+                   "'rate 0.1'", "'cycle 1.0 spread 0.1'")
+
+    def test_death_two_triggers(self):
+        self.check("cell/death rate 0.1 area 0.5 seed 3", "two triggers", "'rate 0.1'", "'area 0.5'")
 
     def test_death_bad_region(self):
         self.check("cell/death rate 0.1 seed 3 region nowhere", "region 'nowhere'")

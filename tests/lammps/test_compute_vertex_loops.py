@@ -8,7 +8,11 @@ polygon of the discs' uncovered intersection points less the circular
 segments between them, on 1 and 2 ranks (the hole split between the ranks);
 an isolated disc; the outer loop, which encloses the cells and the holes;
 a strip spanning a periodic box (two edges that wrap around the box); a
-periodic tissue with a hole; and the errors."""
+periodic tissue with a hole; identities that hold for any configuration,
+checked along Brownian runs of jittered tissues on 1 and 2 ranks (a
+colony's outer loop encloses its cells and its holes; the cells and holes of
+a tissue filling a periodic box tile the box, also with a wound across the
+box's edge); and the errors."""
 
 import math
 
@@ -213,6 +217,84 @@ class VertexLoops(LammpsTestCase):
         self.assertAlmostEqual(g[1], area, delta=1e-10)
         self.assertAlmostEqual(rows[0, 2], length, delta=1e-10)
         self.assertEqual(rows[0, 6], 0)
+
+    def moving(self, data, boundary, nprocs, steps=20):
+        """A Brownian run of the tissue in `data`, loops and cell areas every 5 steps."""
+        extra = "processors 2 1 1" if nprocs == 2 else ""
+        body = script(boundary, extra).split("run 0\n")[0]
+        body = body.replace("dump l all local 1", "dump l all local 5")
+        body += f"""fix b all brownian 1.0 1 gamma_t 1.0 rng none
+timestep 0.01
+thermo 5
+thermo_modify norm no format float %.17g
+run {steps}
+"""
+        run = self.run_lmp(body, nprocs=nprocs, files={"cells.data": data})
+        frames = []
+        lines = run.text("loops.dump").split("\n")
+        for k, line in enumerate(lines):
+            if line.startswith("ITEM: TIMESTEP"):
+                step = int(lines[k + 1])
+            if line.startswith("ITEM: NUMBER OF ENTRIES"):
+                n = int(lines[k + 1])
+            if line.startswith("ITEM: ENTRIES"):
+                rows = np.array([[float(w) for w in lines[k + 1 + q].split()] for q in range(n)]).reshape(n, 7)
+                frames.append((step, rows))
+        thermo = {}
+        header = None
+        for line in run.stdout.splitlines():
+            w = line.split()
+            if w and w[0] == "Step":
+                header = w
+                continue
+            if header and len(w) == len(header):
+                try:
+                    thermo[int(w[0])] = dict(zip(header, map(float, w)))
+                except ValueError:
+                    header = None
+        self.assertEqual(len(frames), steps // 5 + 1)
+        return frames, thermo
+
+    def test_colony_encloses_its_cells_and_holes_while_moving(self):
+        rng = np.random.default_rng(11)
+        sites = hex_sites(12, 10) + rng.uniform(-0.08, 0.08, (120, 2))
+        removed = [site(3, 3), site(8, 6), site(9, 6)]
+        kept = np.delete(sites, removed, axis=0)
+        data = data_file(kept, (-3.0, 12 * A + 3.0, -3.0, 10 * H + 3.0))
+        results = []
+        for n in (1, 2):
+            frames, thermo = self.moving(data, "f f p", n)
+            for step, rows in frames:
+                # one colony; the removed cells' holes and any small gap that opens
+                # where three jittered cells' discs no longer meet
+                self.assertEqual((rows[:, 6] == 1).sum(), 1, f"step {step}")
+                self.assertEqual((rows[:, 6] == -1).sum(), 0, f"step {step}")
+                outer = rows[rows[:, 6] == 1][0]
+                holes = rows[rows[:, 6] == 0]
+                self.assertGreaterEqual(len(holes), 2)
+                t = thermo[step]
+                self.assertEqual((t["c_loops[1]"], t["c_loops[3]"], t["c_loops[4]"]), (len(holes), len(rows), 0))
+                self.assertAlmostEqual(t["c_loops[2]"], holes[:, 1].sum(), delta=1e-6)
+                self.assertAlmostEqual(outer[1] - holes[:, 1].sum(), t["c_asum"],
+                                       delta=1e-5 * outer[1], msg=f"step {step}")
+            results.append(frames[-1][1])
+        np.testing.assert_allclose(results[1][:, 1:], results[0][:, 1:], rtol=1e-8, atol=1e-8)
+
+    def test_periodic_cells_and_holes_tile_the_box(self):
+        # a wound across the box's corner: its loop crosses both periodic edges
+        rng = np.random.default_rng(12)
+        nx, ny = 8, 8
+        sites = hex_sites(nx, ny) + rng.uniform(-0.08, 0.08, (nx * ny, 2))
+        kept = np.delete(sites, [0, 1, nx], axis=0)
+        area_box = nx * A * ny * H
+        data = data_file(kept, (-0.3, nx * A - 0.3, -0.3, ny * H - 0.3))
+        for n in (1, 2):
+            frames, thermo = self.moving(data, "p p p", n)
+            for step, rows in frames:
+                self.assertEqual(rows[:, 6].tolist(), [0], f"step {step}")
+                t = thermo[step]
+                self.assertAlmostEqual(t["c_asum"] + rows[0, 1], area_box, delta=1e-6 * area_box)
+                self.assertTrue(-0.3 <= rows[0, 4] < nx * A - 0.3 and -0.3 <= rows[0, 5] < ny * H - 0.3)
 
     def test_errors(self):
         data = data_file([(0.3, -0.2)], (-2.0, 2.0, -2.0, 2.0))

@@ -28,6 +28,7 @@
 #include "tessera/cells.h"
 #include "tessera/loops.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -165,6 +166,10 @@ void ComputeVertexLoops::find_loops()
         if (px) x[0] -= std::round(x[0] / lx) * lx;
       };
     }
+    // The same order on any number of ranks: by cell ID, then angle.
+    std::sort(every.begin(), every.end(), [](const tessera::FreeArc &a, const tessera::FreeArc &b) {
+      return a.cell != b.cell ? a.cell < b.cell : a.phi < b.phi;
+    });
     const auto loops =
         tessera::free_loops(every, image, 1e-6 * pair->finite_radius(), &unmatched);
     nloops = static_cast<int>(loops.size());

@@ -146,6 +146,8 @@ class VertexLoops(LammpsTestCase):
         self.assertEqual((holes, nloops, wrapping), (1, 2, 0))
         self.assertEqual(len(rows), 2)
         np.testing.assert_array_equal(rows[:, 0], [1, 2])
+        # numbered by their lowest atom ID: atom 1 (a corner cell) is on the outer loop
+        np.testing.assert_array_equal(rows[:, 6], [1, 0])
         hole = rows[rows[:, 6] == 0][0]
         outer = rows[rows[:, 6] == 1][0]
         self.assertAlmostEqual(hole[1], area, delta=1e-10)
@@ -278,7 +280,8 @@ run {steps}
                 self.assertAlmostEqual(outer[1] - holes[:, 1].sum(), t["c_asum"],
                                        delta=1e-5 * outer[1], msg=f"step {step}")
             results.append(frames[-1][1])
-        np.testing.assert_allclose(results[1][:, 1:], results[0][:, 1:], rtol=1e-8, atol=1e-8)
+        # the same loops in the same order (by their lowest atom ID) on both rank counts
+        np.testing.assert_allclose(results[1], results[0], rtol=1e-8, atol=1e-8)
 
     def test_periodic_cells_and_holes_tile_the_box(self):
         # a wound across the box's corner: its loop crosses both periodic edges

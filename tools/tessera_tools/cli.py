@@ -60,13 +60,14 @@ def cmd_info(args):
     print(f"columns: {' '.join(first.names)}")
     print(f"unwrapped positions: {'yes' if first.has_unwrapped() else 'no'}")
     if args.local:
-        from .junctions import contact_lengths, paired_frames
+        from .junctions import contact_lengths, junction_columns, paired_frames
         from .measure import demix_series
 
         atoms, local = paired_frames(args.dump, args.local)[-1]
         contacts = contact_lengths(atoms, local)
         print(f"timestep {atoms.timestep}: junction length by type pair "
-              + ", ".join(f"{a}-{b} {v:.6g}" for (a, b), v in sorted(contacts.items())) + " (length units)")
+              + ", ".join(f"{a}-{b} {v:.6g}" for (a, b), v in sorted(contacts.items()))
+              + (" (face area, area units)" if len(junction_columns(local)) == 9 else " (length units)"))
         steps, times, frac, het, tot = demix_series(args.dump, args.local)
         print(f"heterotypic junction fraction, {len(steps)} frame(s) both dumps hold:")
         print("# timestep " + ("time " if times is not None else "") + "fraction heterotypic_length total_length")

@@ -5,14 +5,14 @@ cells against geometry computed here from the centres and the radius alone
 (the union of finite cells is the union of their discs): holes made by
 removing one, two or three cells from a hexagonal tissue, whose area is the
 polygon of the discs' uncovered intersection points less the circular
-segments between them, on 1 and 2 ranks (the hole split between the ranks);
+segments between them, on 1, 2 and 4 ranks (the hole split between them);
 an isolated disc; the outer loop, which encloses the cells and the holes;
 a strip spanning a periodic box (two edges that wrap around the box); a
 periodic tissue with a hole; identities that hold for any configuration,
 checked along Brownian runs of jittered tissues on 1 and 2 ranks (a
 colony's outer loop encloses its cells and its holes; the cells and holes of
-a tissue filling a periodic box tile the box, also with a wound across the
-box's edge); and the errors."""
+a tissue filling a periodic box, orthogonal or triclinic, tile the box,
+also with a wound across the box's edges); and the errors."""
 
 import math
 
@@ -31,9 +31,12 @@ def hex_sites(nx, ny):
     return np.array([((i + 0.5 * (j % 2)) * A, j * H) for j in range(ny) for i in range(nx)])
 
 
-def data_file(xy, box, types=None):
+def data_file(xy, box, types=None, tilt=None):
     lines = ["loops test", "", "%d atoms" % len(xy), "2 atom types", "",
-             "%r %r xlo xhi" % box[:2], "%r %r ylo yhi" % box[2:], "-0.5 0.5 zlo zhi", "",
+             "%r %r xlo xhi" % box[:2], "%r %r ylo yhi" % box[2:], "-0.5 0.5 zlo zhi"]
+    if tilt is not None:
+        lines.append("%r 0.0 0.0 xy xz yz" % tilt)
+    lines += ["",
              "Masses", "", "1 1.0", "2 1.0", "", "Atoms # atomic", ""]
     for k, (x, y) in enumerate(xy):
         lines.append("%d %d %r %r 0.0" % (k + 1, 1 if types is None else types[k], x, y))
@@ -136,12 +139,12 @@ class VertexLoops(LammpsTestCase):
         return g, local_rows(run.text("loops.dump"))
 
     def check_holes(self, removed, nprocs):
+        grid = {2: "processors 2 1 1", 4: "processors 2 2 1"}
         data, kept, gone = holes_case(removed)
         near = gone.mean(axis=0)
         area, length, corners = hole_geometry(kept, R, near, within=2 * A)
         self.assertGreaterEqual(corners, 6)
-        extra = "processors 2 1 1" if nprocs == 2 else ""
-        g, rows = self.run_case(data, nprocs=nprocs, extra=extra)
+        g, rows = self.run_case(data, nprocs=nprocs, extra=grid.get(nprocs, ""))
         holes, hole_area, nloops, wrapping, cell_area = g
         self.assertEqual((holes, nloops, wrapping), (1, 2, 0))
         self.assertEqual(len(rows), 2)
@@ -175,6 +178,16 @@ class VertexLoops(LammpsTestCase):
                 one = self.check_holes(removed, 1)
                 two = self.check_holes(removed, 2)
                 np.testing.assert_allclose(two[1:6], one[1:6], rtol=0, atol=1e-12)
+
+    @nprocs(4)
+    def test_holes_split_between_four_ranks(self):
+        # The box's middle lines (x = 6 A, y = 5 H) cross at the hole's centre.
+        removed = [site(5, 5), site(6, 5)]
+        _, _, gone = holes_case(removed)
+        np.testing.assert_allclose(gone.mean(axis=0), [6 * A, 5 * H], atol=1e-12)
+        one = self.check_holes(removed, 1)
+        four = self.check_holes(removed, 4)
+        np.testing.assert_allclose(four[1:6], one[1:6], rtol=0, atol=1e-12)
 
     def test_isolated_disc(self):
         data = data_file([(0.3, -0.2)], (-2.0, 2.0, -2.0, 2.0))
@@ -298,6 +311,26 @@ run {steps}
                 t = thermo[step]
                 self.assertAlmostEqual(t["c_asum"] + rows[0, 1], area_box, delta=1e-6 * area_box)
                 self.assertTrue(-0.3 <= rows[0, 4] < nx * A - 0.3 and -0.3 <= rows[0, 5] < ny * H - 0.3)
+
+    def test_triclinic_cells_and_holes_tile_the_box(self):
+        # a hexagonal lattice is periodic in a box tilted by whole spacings
+        rng = np.random.default_rng(13)
+        nx, ny, tilt = 8, 8, 2 * A
+        sites = hex_sites(nx, ny) + rng.uniform(-0.05, 0.05, (nx * ny, 2))
+        # into the tilted box [0, nx A) + s (tilt, ny H)
+        s = np.floor(sites[:, 1] / (ny * H))
+        sites = sites - np.outer(s, [tilt, ny * H])
+        sites[:, 0] -= nx * A * np.floor((sites[:, 0] - sites[:, 1] / (ny * H) * tilt) / (nx * A))
+        kept = np.delete(sites, [0, nx - 1, nx * (ny - 1)], axis=0)    # a wound at the box's edges
+        data = data_file(kept, (0.0, nx * A, 0.0, ny * H), tilt=tilt)
+        area_box = nx * A * ny * H
+        for n in (1, 2):
+            frames, thermo = self.moving(data, "p p p", n, steps=10)
+            for step, rows in frames:
+                self.assertEqual((rows[:, 6] == 1).sum() + (rows[:, 6] == -1).sum(), 0)
+                self.assertGreaterEqual(len(rows), 1)
+                t = thermo[step]
+                self.assertAlmostEqual(t["c_asum"] + rows[:, 1].sum(), area_box, delta=1e-6 * area_box)
 
     def test_errors(self):
         data = data_file([(0.3, -0.2)], (-2.0, 2.0, -2.0, 2.0))

@@ -600,7 +600,8 @@ print "N1 $(atoms)"
         areas (shoelace of the read-back points) equal compute vertex/atom's
         (finite cells: below them by no more than the arc-sampling bound
         r^2 theta step^2 / 12 summed over the cell's free arcs), 3d polyhedron
-        volumes (divergence theorem over the read-back faces) equal them to 1e-9."""
+        volumes (divergence theorem over the read-back faces) equal them to 1e-9;
+        the area / volume cell data equal them to 1e-9 in every model."""
         import subprocess
         import sys
         try:
@@ -639,7 +640,11 @@ run 4
             measure = dict(zip(f["id"].astype(int).tolist(), f["c_c[1]"].tolist()))
             free = dict(zip(f["id"].astype(int).tolist(), f["c_c[8]"].tolist()))
             got = {}
-            for block, ids in zip(mesh.cells, mesh.cell_data["id"]):
+            stored = mesh.cell_data["volume" if d == 3 else "area"]
+            for block, ids, cell_measure in zip(mesh.cells, mesh.cell_data["id"], stored):
+                # the cell data holds the exact measure (finite cells: arcs, not samples)
+                for i, m in zip(ids, cell_measure):
+                    self.assertAlmostEqual(m, measure[int(i)], delta=1e-9 * measure[int(i)], msg=f"cell {i}")
                 for conn, i in zip(block.data, ids):
                     if d == 3:
                         self.assertTrue(block.type.startswith("polyhedron"))

@@ -180,10 +180,13 @@ def cmd_vtk(args):
 
     try:
         written = write_vtk(args.dump, args.output, local_path=args.local, frames=args.frames or slice(None),
-                            dt=args.dt, compute=args.junction_compute, progress=_progress(not args.quiet))
+                            dt=args.dt, compute=args.junction_compute, progress=_progress(not args.quiet),
+                            radius=args.radius)
     except (RuntimeError, ValueError, KeyError) as err:
         raise SystemExit(f"tessera-tools vtk: {err.args[0] if err.args else err}") from None
-    source = "the cells of " + args.local if args.local else "the Voronoi tessellation of the centres"
+    source = ("the cells of " + args.local if args.local else
+              f"the finite Voronoi cells (radius {args.radius:g}) of the centres" if args.radius else
+              "the Voronoi tessellation of the centres")
     print(f"wrote {len(written)} frame(s) from {source}: {written[0]}" +
           (f" .. {written[-1]}" if len(written) > 1 else "") +
           f"; time series {args.output}.pvd and {args.output}.vtu.series")
@@ -720,6 +723,9 @@ def build_parser():
     v.add_argument("--local", metavar="DUMP", help="dump local of compute vertex/local (the cell polygons)")
     v.add_argument("--junction-compute", metavar="ID",
                    help="which compute's columns c_ID[1..7] of the local dump to use (if it has several)")
+    v.add_argument("--radius", type=float, metavar="R",
+                   help="without --local: finite Voronoi cells of radius R (pair_style vertex/voronoi ... "
+                        "radius R) of the dumped centres; open boxes work")
     v.add_argument("--frames", type=_slice, help="slice of frames, e.g. '::10' (default: all)")
     v.add_argument("--dt", type=float,
                    help="timestep, for the time of each frame (default: the dump's TIME item, else the step)")

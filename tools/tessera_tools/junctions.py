@@ -85,8 +85,9 @@ def junction_tessellation(atoms, local, compute=None):
     """A :class:`Tessellation` of the atom frame ``atoms`` from the rows of the local frame ``local``
     (same timestep, 2d).  Polygons are shifted with their cells into the box (by whole box
     vectors), counter-clockwise; free arcs (neighbour ID 0, finite cells) are sampled around the
-    cell's position (:data:`ARC_STEP`); ``sides`` and ``neighbours`` come from the junction rows
-    (non-zero length, arcs left out)."""
+    cell's position (:data:`ARC_STEP`), while ``area``, ``perimeter`` and ``shape_index`` of
+    such cells are exact (corners' polygon plus the arcs' circular segments, the rows' lengths);
+    ``sides`` and ``neighbours`` come from the junction rows (non-zero length, arcs left out)."""
     if atoms.timestep != local.timestep:
         raise ValueError(f"atom frame at timestep {atoms.timestep} paired with a local frame at {local.timestep}")
     names = junction_columns(local, compute)
@@ -118,6 +119,7 @@ def junction_tessellation(atoms, local, compute=None):
                                               end[order], length[order])
     bounds = np.searchsorted(owner, np.arange(len(ids) + 1))
     polygons, edge_cell, edge_other, edge_length = [], [], [], []
+    exact_area, exact_perimeter = np.zeros(len(ids)), np.zeros(len(ids))
     for i in range(len(ids)):
         lo, hi = bounds[i], bounds[i + 1]
         verts, ends = start[lo:hi], end[lo:hi]
@@ -132,13 +134,22 @@ def junction_tessellation(atoms, local, compute=None):
             # the cell's position in the image of its rows: the arcs' centre
             centre = centres[i] - shift
             pieces = []
+            # exact area: the polygon of the corners plus each arc's circular segment
+            x, y = verts[:, 0], verts[:, 1]
+            area = 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
             for k in range(len(verts)):
                 pieces.append(verts[k][None, :])
                 if nb[k] == 0:
                     pieces.append(_arc_points(centre, verts[k], ends[k], full=len(verts) == 1))
+                    r = float(np.hypot(*(verts[k] - centre)))
+                    theta = length[lo:hi][ccw][k] / r
+                    area += 0.5 * r * r * (theta - math.sin(theta))
             poly = np.vstack(pieces)
+            exact_area[i] = area
+            exact_perimeter[i] = float(length[lo:hi].sum())
         else:
             poly = verts
+            exact_area[i] = np.nan
         polygons.append(poly + shift)
         junction = nb != 0
         edge_cell.append(np.full(int(junction.sum()), i))
@@ -148,6 +159,12 @@ def junction_tessellation(atoms, local, compute=None):
                         np.concatenate(edge_cell) if edge_cell else np.zeros(0, dtype=int),
                         np.concatenate(edge_other) if edge_other else np.zeros(0, dtype=int),
                         np.concatenate(edge_length) if edge_length else np.zeros(0), 0.0)
+    # cells with free arcs: the exact area and perimeter, not the sampled polygon's
+    arcs = ~np.isnan(exact_area)
+    if arcs.any():
+        tess.area[arcs] = exact_area[arcs]
+        tess.perimeter[arcs] = exact_perimeter[arcs]
+        tess.shape_index = tess.perimeter / np.sqrt(tess.area)
     return tess
 
 

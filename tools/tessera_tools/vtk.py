@@ -16,7 +16,10 @@ given (the tessellation LAMMPS computed, to the dump's printed precision);
 otherwise the periodic Voronoi tessellation of the dumped centres
 (:mod:`tessera_tools.voronoi`), which needs a box periodic in x and y.  Finite
 cells (free arcs: rows with neighbour ID 0) are polygons with their arcs
-sampled (:data:`tessera_tools.junctions.ARC_STEP`), in open boxes too.
+sampled (:data:`tessera_tools.junctions.ARC_STEP`), in open boxes too; their
+``area``, ``perimeter`` and ``shape_index`` are the exact ones (arcs, not
+the samples' chords).  Without a local dump, ``radius`` gives the finite
+Voronoi cells of the dumped centres (:mod:`tessera_tools.finite`).
 
 In 3d (a local dump with the 9 columns of 3d rows) every cell is one
 ``VTK_POLYHEDRON`` made of its face polygons (the rows with the same cell and
@@ -221,13 +224,16 @@ def _frame_time(frame, dt):
     return frame.timestep * dt if dt is not None else float(frame.timestep)
 
 
-def write_vtk(atoms_path, out_prefix, local_path=None, frames=None, dt=None, compute=None, progress=None):
+def write_vtk(atoms_path, out_prefix, local_path=None, frames=None, dt=None, compute=None, progress=None,
+              radius=None):
     """Write ``{out_prefix}_{timestep}.vtu`` for the selected frames, ``{out_prefix}.pvd`` and
     ``{out_prefix}.vtu.series``; returns the list of .vtu paths.
 
     ``frames``: slice over the frames (over the timesteps common to both dumps with a local dump);
     ``dt``: time per step for the time values (default: the dump's TIME item, else the timestep);
-    ``progress``: a callable wrapping an iterable (e.g. tqdm) or None."""
+    ``progress``: a callable wrapping an iterable (e.g. tqdm) or None; ``radius``: without a
+    local dump, the finite Voronoi cells of that radius (any box) instead of the periodic
+    Voronoi tessellation."""
     if local_path:
         pairs = paired_frames(atoms_path, local_path, frames)
         if len(junction_columns(pairs[0][1], compute)) == 9:
@@ -239,12 +245,21 @@ def write_vtk(atoms_path, out_prefix, local_path=None, frames=None, dt=None, com
         chosen = chosen[frames] if frames is not None else chosen
         if not chosen:
             raise ValueError(f"{atoms_path}: no frames selected")
-        if not (chosen[0].box.periodic[0] and chosen[0].box.periodic[1]):
+        if "z" in chosen[0] and np.ptp(np.asarray(chosen[0]["z"], dtype=float)) > 0:
+            raise ValueError(f"{atoms_path}: the cells' z differ (a 3d tissue?); 3d cells are written only "
+                             "from a dump local of compute vertex/local: give it with --local")
+        if radius:
+            from .finite import finite_voronoi
+
+            work = [(a, lambda a=a: finite_voronoi(a.positions(), a.box, radius, a.ids)) for a in chosen]
+        elif not (chosen[0].box.periodic[0] and chosen[0].box.periodic[1]):
             raise ValueError(f"{atoms_path}: the box is not periodic in x and y, so the cells cannot be "
                              "re-tessellated from the centres; give the cells LAMMPS computed with "
                              "--local (a dump local of compute vertex/local, e.g. 'compute l all "
-                             "vertex/local' and 'dump 2 all local N cells.local c_l[*]')")
-        work = [(a, lambda a=a: tessellate_frame(a)) for a in chosen]
+                             "vertex/local' and 'dump 2 all local N cells.local c_l[*]'), or for finite "
+                             "cells their radius with --radius")
+        else:
+            work = [(a, lambda a=a: tessellate_frame(a)) for a in chosen]
     directory = os.path.dirname(out_prefix)
     if directory:
         os.makedirs(directory, exist_ok=True)

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """VTK files of every model from the dumps LAMMPS writes, on analytic cells: finite cells in an
-open box (two overlapping discs and an isolated disc: the polygons' areas are the discs' less
-the lens, within the arc-sampling bound), 3d cubes of a simple cubic lattice in a periodic box
+open box (two overlapping discs and an isolated disc: the cells' areas are the discs' less
+the lens, exactly, and the polygons' within the arc-sampling bound; also from the centres and
+the radius alone), 3d cubes of a simple cubic lattice in a periodic box
 (rows shuffled, cells in other images: polyhedra that meshio reads back with volume a^3), the
 type contacts of finite and 3d rows, and the error for an open box without a local dump."""
 
@@ -94,10 +95,16 @@ class FiniteCells(unittest.TestCase):
         local = Frame(0, box, {n: rows[:, k] for k, n in enumerate(COLS2)}, COLS2)
         tess = junction_tessellation(atoms, local)
         r = 0.8
+        # the cells' own measures are exact; the polygons sample the arcs
+        np.testing.assert_allclose(tess.area, area, rtol=1e-12)
+        p12 = rows[0, 6] + rows[1, 6]
+        np.testing.assert_allclose(tess.perimeter, [p12, p12, 2 * math.pi * r], rtol=1e-12)
+        polygon = np.array([0.5 * np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1])
+                            for p in tess.polygons])
         bound = r * r * theta * ARC_STEP ** 2 / 12
-        self.assertTrue(np.all(tess.area <= area + 1e-12))
-        self.assertTrue(np.all(tess.area >= area - bound))
-        self.assertTrue(np.all(area - tess.area > 0.0))
+        self.assertTrue(np.all(polygon <= area + 1e-12))
+        self.assertTrue(np.all(polygon >= area - bound))
+        self.assertTrue(np.all(area - polygon > 0.0))
         # the arcs are no junctions: 1 and 2 are neighbours, 3 has none
         np.testing.assert_array_equal(tess.sides, [1, 1, 0])
         self.assertEqual([list(nb) for nb in tess.neighbours], [[1], [0], []])
@@ -112,15 +119,23 @@ class FiniteCells(unittest.TestCase):
             write_local(local, box, rows, COLS2)
             self.assertEqual(main(["vtk", cells, "--local", local, "-o", os.path.join(d, "v"), "-q"]), 0)
             mesh = meshio.read(os.path.join(d, "v_0.vtu"))
-            got = {}
-            for block, ids in zip(mesh.cells, mesh.cell_data["id"]):
-                for conn, i in zip(block.data, ids):
+            got, stored = {}, {}
+            for block, ids, cell_area in zip(mesh.cells, mesh.cell_data["id"], mesh.cell_data["area"]):
+                for conn, i, a in zip(block.data, ids, cell_area):
                     p = mesh.points[conn]
                     got[int(i)] = 0.5 * np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1])
+                    stored[int(i)] = a
             bound = 0.8 ** 2 * theta * ARC_STEP ** 2 / 12
             for k in range(3):
                 self.assertLessEqual(got[k + 1], area[k] + 1e-12)
                 self.assertGreaterEqual(got[k + 1], area[k] - bound[k])
+                self.assertAlmostEqual(stored[k + 1], area[k], places=12)    # the exact area as cell data
+            # without the local dump, the finite cells of the centres (--radius): the same areas
+            self.assertEqual(main(["vtk", cells, "--radius", "0.8", "-o", os.path.join(d, "f"), "-q"]), 0)
+            mesh = meshio.read(os.path.join(d, "f_0.vtu"))
+            for block, ids, cell_area in zip(mesh.cells, mesh.cell_data["id"], mesh.cell_data["area"]):
+                for i, a in zip(ids, cell_area):
+                    self.assertAlmostEqual(a, area[int(i) - 1], places=12)
             # without the local dump an open box cannot be re-tessellated: say what to do
             with self.assertRaises(SystemExit) as caught:
                 main(["vtk", cells, "-o", os.path.join(d, "w"), "-q"])
@@ -187,6 +202,11 @@ class Polyhedra(unittest.TestCase):
                     ids.append(int(i))
             self.assertEqual(sorted(ids), list(range(1, 9)))
             self.assertEqual(main(["info", cells, "--stats", "--local", local]), 0)
+            # a 3d dump without the local dump: not re-tessellated in the plane
+            with self.assertRaises(SystemExit) as caught:
+                main(["vtk", cells, "-o", os.path.join(d, "w"), "-q"])
+            self.assertIn("3d", str(caught.exception))
+            self.assertIn("--local", str(caught.exception))
 
 
 if __name__ == "__main__":

@@ -6,7 +6,8 @@
    pair_style vertex/voronoi computed (area, perimeter, shape index, number of
    neighbours, cell energy, velocity coordination and orientation), and
    global ones for thermo (mean shape index, multifold vertices, neighbour
-   exchanges since the previous call).
+   exchanges since the previous call, cells at an edge, free perimeter, and
+   the heterotypic junctions: their fraction, length and the total).
 ------------------------------------------------------------------------- */
 
 #include "compute_vertex_atom.h"
@@ -89,7 +90,7 @@ ComputeVertexAtom::ComputeVertexAtom(LAMMPS *lmp, int narg, char **arg) :
   peratom_flag = 1;
   size_peratom_cols = NCOLS;
   vector_flag = 1;
-  size_vector = 5;
+  size_vector = 8;
   extvector = 0;
   comm_forward = 3;
   create_attribute = 1;
@@ -314,6 +315,40 @@ void ComputeVertexAtom::compute_vector()
   vector[2] = count_new_neighbors();
   vector[3] = all[2];    // cells at an edge (free arcs)
   vector[4] = all[3];    // free perimeter of the tissue
+  double het = 0.0, total = 0.0;
+  junction_lengths(het, total);
+  vector[5] = total > 0.0 ? het / total : 0.0;
+  vector[6] = het;
+  vector[7] = total;
+}
+
+/* Junctions between two group cells (2d: edges, 3d: faces, of non-zero
+   size): the total length (area) and that between cells of different
+   types.  Every junction is seen from both of its cells (owned by this rank
+   or another, or a periodic image of the same cell), so each sighting adds
+   half of it: each junction counts once over all ranks, without an ID rule
+   that a cell touching its own periodic image would break. */
+
+void ComputeVertexAtom::junction_lengths(double &het, double &total)
+{
+  const tessera::CellView &v = pair->cells();
+  const int *mask = atom->mask;
+  const int *type = atom->type;
+  double local[2] = {0.0, 0.0}, all[2];
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double floor = piece_floor(v, i);
+    for (int k = v.piece_begin(i); k < v.piece_end(i); k++) {
+      const int j = v.piece_neighbor(k);
+      const double size = v.piece_size(k);
+      if (j < 0 || !(size > floor) || !(mask[j] & groupbit)) continue;
+      local[1] += 0.5 * size;
+      if (type[j] != type[i]) local[0] += 0.5 * size;
+    }
+  }
+  MPI_Allreduce(local, all, 2, MPI_DOUBLE, MPI_SUM, world);
+  het = all[0];
+  total = all[1];
 }
 
 /* 2d: Voronoi vertices where four or more cells of the group meet, each

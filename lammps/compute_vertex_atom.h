@@ -50,6 +50,7 @@ class ComputeVertexAtom : public Compute {
   double rosette;  // > 0: count clusters of vertices joined by junctions shorter than this
   std::vector<int> cluster_offset, cluster_members;
   double count_new_neighbors();
+  void junction_lengths(double &het, double &total);
   bigint vector_of = -1;    // pair's compute_count() of the last global vector
   void neighbor_tags(int, std::vector<tagint> &);
 

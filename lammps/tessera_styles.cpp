@@ -16,6 +16,7 @@
 // One include per style in the table below.
 #include "compute_vertex_atom.h"
 #include "compute_vertex_local.h"
+#include "compute_vertex_loops.h"
 #include "fix_cell_death.h"
 #include "fix_cell_divide.h"
 #include "fix_brownian.h"
@@ -92,6 +93,7 @@ const std::vector<Entry> &style_table()
       fix_style<FixBrownianHeun>("brownian/heun"),
       compute_style<ComputeVertexAtom>("vertex/atom"),
       compute_style<ComputeVertexLocal>("vertex/local"),
+      compute_style<ComputeVertexLoops>("vertex/loops"),
       fix_style<FixCellDivide>("cell/divide"),
       fix_style<FixCellDeath>("cell/death"),
   };

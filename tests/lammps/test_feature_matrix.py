@@ -594,6 +594,80 @@ print "N1 $(atoms)"
         n0, n1 = printed(run, "N0")[0][0], printed(run, "N1")[0][0]
         self.assertTrue(n0 + 1 <= n1 <= n0 + 3, f"{n0} -> {n1}")
 
+    def check_vtk(self, model):
+        """tessera-tools vtk on a short run's dumps (per-atom + dump local of
+        compute vertex/local), the .vtu files read back with meshio: 2d polygon
+        areas (shoelace of the read-back points) equal compute vertex/atom's
+        (finite cells: below them by no more than the arc-sampling bound
+        r^2 theta step^2 / 12 summed over the cell's free arcs), 3d polyhedron
+        volumes (divergence theorem over the read-back faces) equal them to 1e-9;
+        the area / volume cell data equal them to 1e-9 in every model."""
+        import subprocess
+        import sys
+        try:
+            import meshio
+        except ImportError:
+            self.skipTest("needs meshio (Debian: python3-meshio)")
+        d = dim_of(model)
+        cols = " ".join("c_l[%d]" % k for k in range(1, 10 if d == 3 else 8))
+        script = model_script(model) + f"""compute c all vertex/atom
+compute l all vertex/local
+fix b all brownian 1.0 1 gamma_t 1.0 rng none
+timestep 0.005
+dump a all custom 2 cells.dump id type x y z c_c[1] c_c[8]
+dump_modify a format float %.17g
+dump f all local 2 cells.local {cols}
+dump_modify f format float %.17g
+thermo_style custom step pe
+run 4
+"""
+        run = self.run_lmp(script)
+        tool = os.path.join(lmptest.TOOLS, "tessera-tools")
+        out = subprocess.run([sys.executable, tool, "vtk", run.path("cells.dump"), "--local",
+                              run.path("cells.local"), "-o", run.path("vtk/cells"), "-q"],
+                             capture_output=True, text=True, timeout=240)
+        self.assertEqual(out.returncode, 0, out.stdout + out.stderr)
+        frames = run.dump("cells.dump")
+        self.assertEqual(len(frames), 3)
+        step = 2 * math.pi / 256
+        radius = {"finite_open": 0.7, "finite_per": 0.58}.get(model)
+        checked = 0
+        for f in frames:
+            names = sorted(n for n in os.listdir(run.path("vtk")) if n.endswith(".vtu"))
+            match = [n for n in names if int(n.rsplit("_", 1)[1][:-4]) == f["step"]]
+            self.assertEqual(len(match), 1, names)
+            mesh = meshio.read(run.path(os.path.join("vtk", match[0])))
+            measure = dict(zip(f["id"].astype(int).tolist(), f["c_c[1]"].tolist()))
+            free = dict(zip(f["id"].astype(int).tolist(), f["c_c[8]"].tolist()))
+            got = {}
+            stored = mesh.cell_data["volume" if d == 3 else "area"]
+            for block, ids, cell_measure in zip(mesh.cells, mesh.cell_data["id"], stored):
+                # the cell data holds the exact measure (finite cells: arcs, not samples)
+                for i, m in zip(ids, cell_measure):
+                    self.assertAlmostEqual(m, measure[int(i)], delta=1e-9 * measure[int(i)], msg=f"cell {i}")
+                for conn, i in zip(block.data, ids):
+                    if d == 3:
+                        self.assertTrue(block.type.startswith("polyhedron"))
+                        vol = 0.0
+                        for face in conn:
+                            p = mesh.points[np.asarray(face)]
+                            for q in range(1, len(p) - 1):
+                                vol += np.dot(p[0], np.cross(p[q], p[q + 1])) / 6
+                        got[int(i)] = vol
+                    else:
+                        p = mesh.points[conn]
+                        got[int(i)] = 0.5 * np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1])
+            self.assertEqual(sorted(got), sorted(measure))
+            for i, want in measure.items():
+                if radius is None:
+                    self.assertAlmostEqual(got[i], want, delta=1e-9 * want, msg=f"cell {i}")
+                else:
+                    bound = radius * free[i] * step ** 2 / 12    # r^2 theta step^2 / 12, theta = free / r
+                    self.assertLessEqual(got[i], want + 1e-9, msg=f"cell {i}")
+                    self.assertGreaterEqual(got[i], want - bound - 1e-9, msg=f"cell {i}")
+                checked += 1
+        self.assertGreater(checked, 0)
+
 
 MODEL_NAMES = {"confluent": "confluent 2d", "confluent_tri": "confluent 2d, triclinic",
                "finite_open": "finite 2d, open box", "finite_per": "finite 2d, periodic",

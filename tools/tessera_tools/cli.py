@@ -60,13 +60,14 @@ def cmd_info(args):
     print(f"columns: {' '.join(first.names)}")
     print(f"unwrapped positions: {'yes' if first.has_unwrapped() else 'no'}")
     if args.local:
-        from .junctions import contact_lengths, paired_frames
+        from .junctions import contact_lengths, junction_columns, paired_frames
         from .measure import demix_series
 
         atoms, local = paired_frames(args.dump, args.local)[-1]
         contacts = contact_lengths(atoms, local)
         print(f"timestep {atoms.timestep}: junction length by type pair "
-              + ", ".join(f"{a}-{b} {v:.6g}" for (a, b), v in sorted(contacts.items())) + " (length units)")
+              + ", ".join(f"{a}-{b} {v:.6g}" for (a, b), v in sorted(contacts.items()))
+              + (" (face area, area units)" if len(junction_columns(local)) == 9 else " (length units)"))
         steps, times, frac, het, tot = demix_series(args.dump, args.local)
         print(f"heterotypic junction fraction, {len(steps)} frame(s) both dumps hold:")
         print("# timestep " + ("time " if times is not None else "") + "fraction heterotypic_length total_length")
@@ -74,6 +75,26 @@ def cmd_info(args):
             t = f"{times[k]:.10g} " if times is not None else ""
             print(f"{steps[k]} {t}{frac[k]:.6f} {het[k]:.8g} {tot[k]:.8g}")
     if args.stats:
+        if args.local:
+            from .junctions import junction_columns, junction_tessellation, paired_frames
+            from .vtk import frame_cells3d
+
+            atoms, local = paired_frames(args.dump, args.local)[-1]
+            if len(junction_columns(local)) == 9:
+                cells = frame_cells3d(atoms, local)
+                print(f"timestep {atoms.timestep} (cells of {args.local}): mean volume "
+                      f"{cells.volume.mean():.6g}, total {cells.volume.sum():.6g}, mean surface "
+                      f"{cells.surface.mean():.6g}, faces {np.bincount(cells.nfaces).tolist()}")
+                return
+            tess = junction_tessellation(atoms, local)
+            print(f"timestep {atoms.timestep} (cells of {args.local}): mean area {tess.area.mean():.6g}, "
+                  f"total {tess.area.sum():.6g}, mean shape index {tess.shape_index.mean():.6g}, "
+                  f"neighbours {np.bincount(tess.sides).tolist()}")
+            return
+        if not (last.box.periodic[0] and last.box.periodic[1]):
+            raise SystemExit(f"tessera-tools info: {args.dump}: --stats re-tessellates the centres, which "
+                             "needs a box periodic in x and y; for this box give the cells LAMMPS "
+                             "computed with --local (a dump local of compute vertex/local)")
         from .voronoi import tessellate_frame
 
         tess = tessellate_frame(last)
@@ -159,10 +180,13 @@ def cmd_vtk(args):
 
     try:
         written = write_vtk(args.dump, args.output, local_path=args.local, frames=args.frames or slice(None),
-                            dt=args.dt, compute=args.junction_compute, progress=_progress(not args.quiet))
-    except RuntimeError as err:
-        raise SystemExit(f"tessera-tools vtk: {err}") from None
-    source = "the polygons of " + args.local if args.local else "the Voronoi tessellation of the centres"
+                            dt=args.dt, compute=args.junction_compute, progress=_progress(not args.quiet),
+                            radius=args.radius)
+    except (RuntimeError, ValueError, KeyError) as err:
+        raise SystemExit(f"tessera-tools vtk: {err.args[0] if err.args else err}") from None
+    source = ("the cells of " + args.local if args.local else
+              f"the finite Voronoi cells (radius {args.radius:g}) of the centres" if args.radius else
+              "the Voronoi tessellation of the centres")
     print(f"wrote {len(written)} frame(s) from {source}: {written[0]}" +
           (f" .. {written[-1]}" if len(written) > 1 else "") +
           f"; time series {args.output}.pvd and {args.output}.vtu.series")
@@ -630,7 +654,9 @@ def build_parser():
     q = sub.add_parser("info", help="summary of a dump file",
                        description="Print frames, atoms, box and columns of a LAMMPS dump file.")
     q.add_argument("dump")
-    q.add_argument("--stats", action="store_true", help="also tessellate the last frame and print cell statistics")
+    q.add_argument("--stats", action="store_true",
+                   help="also print cell statistics of the last frame (with --local: of the cells of the local "
+                        "dump, any model and box; without: the periodic Voronoi tessellation of the centres)")
     q.add_argument("--local", metavar="DUMP",
                    help="dump local of compute vertex/local: also print the junction length between each pair "
                         "of cell types at the last common timestep, and the heterotypic junction fraction of "
@@ -681,20 +707,25 @@ def build_parser():
     r.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     r.set_defaults(func=cmd_render)
 
-    v = sub.add_parser("vtk", help="VTK polygon files (.vtu per frame, .pvd time series) for ParaView/OVITO",
-                       description="Write one .vtu file per frame: each cell a polygon, every numeric per-atom "
+    v = sub.add_parser("vtk", help="VTK cell files (.vtu per frame, .pvd time series) for ParaView/OVITO",
+                       description="Write one .vtu file per frame: each cell a polygon (2d; finite cells with "
+                                   "their free arcs sampled) or a polyhedron (3d), every numeric per-atom "
                                    "column as cell data (plus area, perimeter, shape_index, sides, and the "
                                    "vectors velocity and polarity when vx vy / mux muy are dumped), and a "
                                    "ParaView time series (PREFIX.pvd, PREFIX.vtu.series).",
-                       epilog="With --local (a dump local of compute vertex/local) the polygons are LAMMPS's "
-                              "own; without it they are the periodic Voronoi tessellation of the dumped "
-                              "centres. Needs meshio (Debian: python3-meshio).")
+                       epilog="With --local (a dump local of compute vertex/local) the cells are LAMMPS's "
+                              "own, for every model and box (open, periodic, 2d, 3d); without it they are "
+                              "the periodic Voronoi tessellation of the dumped centres (2d, periodic in x "
+                              "and y). Needs meshio (Debian: python3-meshio).")
     v.add_argument("dump", help="LAMMPS dump custom file of the cells (id, x y, any per-cell columns)")
     v.add_argument("-o", "--output", required=True, metavar="PREFIX",
                    help="output prefix: writes PREFIX_<timestep>.vtu, PREFIX.pvd, PREFIX.vtu.series")
     v.add_argument("--local", metavar="DUMP", help="dump local of compute vertex/local (the cell polygons)")
     v.add_argument("--junction-compute", metavar="ID",
                    help="which compute's columns c_ID[1..7] of the local dump to use (if it has several)")
+    v.add_argument("--radius", type=float, metavar="R",
+                   help="without --local: finite Voronoi cells of radius R (pair_style vertex/voronoi ... "
+                        "radius R) of the dumped centres; open boxes work")
     v.add_argument("--frames", type=_slice, help="slice of frames, e.g. '::10' (default: all)")
     v.add_argument("--dt", type=float,
                    help="timestep, for the time of each frame (default: the dump's TIME item, else the step)")

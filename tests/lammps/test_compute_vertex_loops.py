@@ -1,0 +1,369 @@
+#!/usr/bin/python3
+# Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
+"""compute vertex/loops through tessera-lmp: the free-boundary loops of finite
+cells against geometry computed here from the centres and the radius alone
+(the union of finite cells is the union of their discs): holes made by
+removing one, two or three cells from a hexagonal tissue, whose area is the
+polygon of the discs' uncovered intersection points less the circular
+segments between them, on 1, 2 and 4 ranks (the hole split between them);
+an isolated disc; the outer loop, which encloses the cells and the holes;
+a strip spanning a periodic box (two edges that wrap around the box); a
+periodic tissue with a hole; identities that hold for any configuration,
+checked along Brownian runs of jittered tissues on 1 and 2 ranks (a
+colony's outer loop encloses its cells and its holes; the cells and holes of
+a tissue filling a periodic box, orthogonal or triclinic, tile the box,
+also with a wound across the box's edges); and the errors."""
+
+import math
+
+import numpy as np
+
+import lmptest
+from lmptest import LammpsTestCase, nprocs
+
+R = 0.7
+A = math.sqrt(2.0 / math.sqrt(3.0))    # hexagonal spacing of unit area per site
+H = A * math.sqrt(3.0) / 2.0           # row spacing
+
+
+def hex_sites(nx, ny):
+    """Sites (i + j/2 mod 1) A, j H of an nx x ny hexagonal patch."""
+    return np.array([((i + 0.5 * (j % 2)) * A, j * H) for j in range(ny) for i in range(nx)])
+
+
+def data_file(xy, box, types=None, tilt=None):
+    lines = ["loops test", "", "%d atoms" % len(xy), "2 atom types", "",
+             "%r %r xlo xhi" % box[:2], "%r %r ylo yhi" % box[2:], "-0.5 0.5 zlo zhi"]
+    if tilt is not None:
+        lines.append("%r 0.0 0.0 xy xz yz" % tilt)
+    lines += ["",
+             "Masses", "", "1 1.0", "2 1.0", "", "Atoms # atomic", ""]
+    for k, (x, y) in enumerate(xy):
+        lines.append("%d %d %r %r 0.0" % (k + 1, 1 if types is None else types[k], x, y))
+    return "\n".join(lines) + "\n"
+
+
+def script(boundary, extra=""):
+    return f"""
+dimension 2
+units lj
+atom_style atomic
+boundary {boundary}
+{extra}
+read_data cells.data
+pair_style vertex/voronoi {2 * R + 0.1} radius {R}
+pair_coeff * * quadratic 1.0 1.2 0.1 3.9 free 0.2
+compute loops all vertex/loops
+compute va all vertex/atom
+compute asum all reduce sum c_va[1]
+dump l all local 1 loops.dump c_loops[1] c_loops[2] c_loops[3] c_loops[4] c_loops[5] c_loops[6] c_loops[7]
+dump_modify l format float %.17g
+thermo_style custom step pe c_loops[1] c_loops[2] c_loops[3] c_loops[4] c_asum
+run 0
+print "G $(c_loops[1]:%.17g) $(c_loops[2]:%.17g) $(c_loops[3]:%.17g) $(c_loops[4]:%.17g) $(c_asum:%.17g)"
+"""
+
+
+def local_rows(text):
+    lines = text.split("\n")
+    for k, line in enumerate(lines):
+        if line.startswith("ITEM: NUMBER OF ENTRIES"):
+            n = int(lines[k + 1])
+        if line.startswith("ITEM: ENTRIES"):
+            return np.array([[float(w) for w in lines[k + 1 + q].split()] for q in range(n)]).reshape(n, 7)
+    raise AssertionError("no entries in the local dump")
+
+
+def hole_geometry(centres, r, near, within):
+    """Area and length of the hole around the point `near`, from the discs
+    alone: the intersection points of pairs of circles that no other disc
+    covers and that lie within `within` of `near` are the hole's corners;
+    sorted by angle around `near` (the holes here are star-shaped from it),
+    consecutive corners share one circle, whose arc between them bulges into
+    the hole.  Area = polygon of the corners less the circular segments."""
+    c = np.asarray(centres)
+    close = c[np.linalg.norm(c - near, axis=1) < within + 2 * r]
+    corners = []
+    for i in range(len(close)):
+        for j in range(i + 1, len(close)):
+            d = np.linalg.norm(close[j] - close[i])
+            if d >= 2 * r:
+                continue
+            mid = 0.5 * (close[i] + close[j])
+            u = (close[j] - close[i]) / d
+            perp = np.array([-u[1], u[0]])
+            half = math.sqrt(r * r - d * d / 4)
+            for s in (1, -1):
+                p = mid + s * half * perp
+                if np.linalg.norm(p - near) > within:
+                    continue
+                dist = np.linalg.norm(close - p, axis=1)
+                dist[[i, j]] = np.inf
+                if np.all(dist > r + 1e-12):
+                    corners.append((p, {i, j}))
+    ang = [math.atan2(p[1] - near[1], p[0] - near[0]) for p, _ in corners]
+    corners = [corners[k] for k in np.argsort(ang)]
+    pts = np.array([p for p, _ in corners])
+    x, y = pts[:, 0], pts[:, 1]
+    area = 0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+    length = 0.0
+    for k in range(len(corners)):
+        (p, a), (q, b) = corners[k], corners[(k + 1) % len(corners)]
+        assert len(a & b) == 1, "consecutive corners must share one circle"
+        theta = 2 * math.asin(min(1.0, np.linalg.norm(q - p) / (2 * r)))
+        area -= 0.5 * r * r * (theta - math.sin(theta))
+        length += r * theta
+    return area, length, len(corners)
+
+
+def holes_case(removed):
+    """A 12 x 10 hexagonal tissue in an open box with the given sites
+    (indices into the patch) removed; returns (data, removed positions)."""
+    sites = hex_sites(12, 10)
+    keep = np.ones(len(sites), bool)
+    keep[removed] = False
+    box = (-3.0, 12 * A + 3.0, -3.0, 10 * H + 3.0)
+    return data_file(sites[keep], box), sites[keep], sites[removed]
+
+
+def site(i, j):
+    return j * 12 + i
+
+
+class VertexLoops(LammpsTestCase):
+
+    def run_case(self, data, boundary="f f p", nprocs=1, extra=""):
+        run = self.run_lmp(script(boundary, extra), nprocs=nprocs, files={"cells.data": data})
+        g = [[float(w) for w in line.split()[1:]] for line in run.stdout.splitlines()
+             if line.startswith("G ")][0]
+        return g, local_rows(run.text("loops.dump"))
+
+    def check_holes(self, removed, nprocs):
+        grid = {2: "processors 2 1 1", 4: "processors 2 2 1"}
+        data, kept, gone = holes_case(removed)
+        near = gone.mean(axis=0)
+        area, length, corners = hole_geometry(kept, R, near, within=2 * A)
+        self.assertGreaterEqual(corners, 6)
+        g, rows = self.run_case(data, nprocs=nprocs, extra=grid.get(nprocs, ""))
+        holes, hole_area, nloops, wrapping, cell_area = g
+        self.assertEqual((holes, nloops, wrapping), (1, 2, 0))
+        self.assertEqual(len(rows), 2)
+        np.testing.assert_array_equal(rows[:, 0], [1, 2])
+        # numbered by their lowest atom ID: atom 1 (a corner cell) is on the outer loop
+        np.testing.assert_array_equal(rows[:, 6], [1, 0])
+        hole = rows[rows[:, 6] == 0][0]
+        outer = rows[rows[:, 6] == 1][0]
+        self.assertAlmostEqual(hole[1], area, delta=1e-10)
+        self.assertAlmostEqual(hole_area, area, delta=1e-10)
+        self.assertAlmostEqual(hole[2], length, delta=1e-10)
+        self.assertEqual(hole[3], corners)    # one arc per cell around these holes
+        # symmetric holes: the centroid is the mean of the removed sites
+        self.assertAlmostEqual(hole[4], near[0], delta=1e-9)
+        self.assertAlmostEqual(hole[5], near[1], delta=1e-9)
+        # the outer loop encloses the cells and the hole
+        self.assertAlmostEqual(outer[1], cell_area + area, delta=1e-9 * outer[1])
+        self.assertEqual(outer[3], 2 * 12 + 2 * 10 - 4)
+        return hole
+
+    def test_one_two_three_removed_cells(self):
+        for removed in ([site(6, 4)], [site(6, 4), site(7, 4)], [site(6, 4), site(7, 4), site(6, 5)]):
+            with self.subTest(removed=removed):
+                self.check_holes(removed, 1)
+
+    @nprocs(2)
+    def test_holes_split_between_two_ranks(self):
+        # The box's middle (x = 6 A) runs through each hole.
+        for removed in ([site(6, 4)], [site(5, 4), site(6, 4)], [site(5, 4), site(6, 4), site(5, 5)]):
+            with self.subTest(removed=removed):
+                one = self.check_holes(removed, 1)
+                two = self.check_holes(removed, 2)
+                np.testing.assert_allclose(two[1:6], one[1:6], rtol=0, atol=1e-12)
+
+    @nprocs(4)
+    def test_holes_split_between_four_ranks(self):
+        # The box's middle lines (x = 6 A, y = 5 H) cross at the hole's centre.
+        removed = [site(5, 5), site(6, 5)]
+        _, _, gone = holes_case(removed)
+        np.testing.assert_allclose(gone.mean(axis=0), [6 * A, 5 * H], atol=1e-12)
+        one = self.check_holes(removed, 1)
+        four = self.check_holes(removed, 4)
+        np.testing.assert_allclose(four[1:6], one[1:6], rtol=0, atol=1e-12)
+
+    def test_isolated_disc(self):
+        data = data_file([(0.3, -0.2)], (-2.0, 2.0, -2.0, 2.0))
+        g, rows = self.run_case(data)
+        self.assertEqual(g[:4], [0, 0, 1, 0])
+        self.assertEqual(len(rows), 1)
+        self.assertAlmostEqual(rows[0, 1], math.pi * R * R, delta=1e-12)
+        self.assertAlmostEqual(rows[0, 2], 2 * math.pi * R, delta=1e-12)
+        self.assertEqual(rows[0, 3], 1)
+        self.assertAlmostEqual(rows[0, 4], 0.3, delta=1e-12)
+        self.assertAlmostEqual(rows[0, 5], -0.2, delta=1e-12)
+        self.assertEqual(rows[0, 6], 1)
+
+    def test_strip_edges_wrap_around_the_box(self):
+        # 12 x 6 sites filling x of a box periodic in x: the top and bottom
+        # rows' arcs make two loops that close only across the box.
+        nx, ny = 12, 6
+        sites = hex_sites(nx, ny) + np.array([0.25 * A, 2.0])
+        data = data_file(sites, (0.0, nx * A, 0.0, ny * H + 4.0))
+        theta = math.pi - 2 * math.acos(A / (2 * R))    # a row cell's arc between its row neighbours
+        for n in (1, 2):
+            with self.subTest(nprocs=n):
+                g, rows = self.run_case(data, boundary="p f p", nprocs=n,
+                                        extra="processors 2 1 1" if n == 2 else "")
+                self.assertEqual(g[:4], [0, 0, 2, 2])
+                np.testing.assert_array_equal(rows[:, 6], [-1, -1])
+                np.testing.assert_array_equal(rows[:, 1], [0, 0])
+                np.testing.assert_array_equal(rows[:, 3], [nx, nx])
+                np.testing.assert_allclose(rows[:, 2], nx * R * theta, rtol=1e-12)
+
+    def test_periodic_tissue_with_a_hole(self):
+        # A tissue filling a periodic box has no outer boundary: one loop.
+        nx, ny = 8, 8
+        sites = hex_sites(nx, ny) + np.array([0.1, 0.2])
+        removed = 3 * nx + 4
+        kept = np.delete(sites, removed, axis=0)
+        data = data_file(kept, (0.0, nx * A, 0.0, ny * H))
+        # images of the sites around the hole are not needed: it is inside the box
+        area, length, corners = hole_geometry(kept, R, sites[removed], within=2 * A)
+        g, rows = self.run_case(data, boundary="p p p")
+        self.assertEqual(g[:4], [1, g[1], 1, 0])
+        self.assertAlmostEqual(g[1], area, delta=1e-10)
+        self.assertAlmostEqual(rows[0, 2], length, delta=1e-10)
+        self.assertEqual(rows[0, 6], 0)
+
+    def moving(self, data, boundary, nprocs, steps=20):
+        """A Brownian run of the tissue in `data`, loops and cell areas every 5 steps."""
+        extra = "processors 2 1 1" if nprocs == 2 else ""
+        body = script(boundary, extra).split("run 0\n")[0]
+        body = body.replace("dump l all local 1", "dump l all local 5")
+        body += f"""fix b all brownian 1.0 1 gamma_t 1.0 rng none
+timestep 0.01
+thermo 5
+thermo_modify norm no format float %.17g
+run {steps}
+"""
+        run = self.run_lmp(body, nprocs=nprocs, files={"cells.data": data})
+        frames = []
+        lines = run.text("loops.dump").split("\n")
+        for k, line in enumerate(lines):
+            if line.startswith("ITEM: TIMESTEP"):
+                step = int(lines[k + 1])
+            if line.startswith("ITEM: NUMBER OF ENTRIES"):
+                n = int(lines[k + 1])
+            if line.startswith("ITEM: ENTRIES"):
+                rows = np.array([[float(w) for w in lines[k + 1 + q].split()] for q in range(n)]).reshape(n, 7)
+                frames.append((step, rows))
+        thermo = {}
+        header = None
+        for line in run.stdout.splitlines():
+            w = line.split()
+            if w and w[0] == "Step":
+                header = w
+                continue
+            if header and len(w) == len(header):
+                try:
+                    thermo[int(w[0])] = dict(zip(header, map(float, w)))
+                except ValueError:
+                    header = None
+        self.assertEqual(len(frames), steps // 5 + 1)
+        return frames, thermo
+
+    def test_colony_encloses_its_cells_and_holes_while_moving(self):
+        rng = np.random.default_rng(11)
+        sites = hex_sites(12, 10) + rng.uniform(-0.08, 0.08, (120, 2))
+        removed = [site(3, 3), site(8, 6), site(9, 6)]
+        kept = np.delete(sites, removed, axis=0)
+        data = data_file(kept, (-3.0, 12 * A + 3.0, -3.0, 10 * H + 3.0))
+        results = []
+        for n in (1, 2):
+            frames, thermo = self.moving(data, "f f p", n)
+            for step, rows in frames:
+                # one colony; the removed cells' holes and any small gap that opens
+                # where three jittered cells' discs no longer meet
+                self.assertEqual((rows[:, 6] == 1).sum(), 1, f"step {step}")
+                self.assertEqual((rows[:, 6] == -1).sum(), 0, f"step {step}")
+                outer = rows[rows[:, 6] == 1][0]
+                holes = rows[rows[:, 6] == 0]
+                self.assertGreaterEqual(len(holes), 2)
+                t = thermo[step]
+                self.assertEqual((t["c_loops[1]"], t["c_loops[3]"], t["c_loops[4]"]), (len(holes), len(rows), 0))
+                self.assertAlmostEqual(t["c_loops[2]"], holes[:, 1].sum(), delta=1e-6)
+                self.assertAlmostEqual(outer[1] - holes[:, 1].sum(), t["c_asum"],
+                                       delta=1e-5 * outer[1], msg=f"step {step}")
+            results.append(frames[-1][1])
+        # the same loops in the same order (by their lowest atom ID) on both rank counts
+        np.testing.assert_allclose(results[1], results[0], rtol=1e-8, atol=1e-8)
+
+    def test_periodic_cells_and_holes_tile_the_box(self):
+        # a wound across the box's corner: its loop crosses both periodic edges
+        rng = np.random.default_rng(12)
+        nx, ny = 8, 8
+        sites = hex_sites(nx, ny) + rng.uniform(-0.08, 0.08, (nx * ny, 2))
+        kept = np.delete(sites, [0, 1, nx], axis=0)
+        area_box = nx * A * ny * H
+        data = data_file(kept, (-0.3, nx * A - 0.3, -0.3, ny * H - 0.3))
+        for n in (1, 2):
+            frames, thermo = self.moving(data, "p p p", n)
+            for step, rows in frames:
+                self.assertEqual(rows[:, 6].tolist(), [0], f"step {step}")
+                t = thermo[step]
+                self.assertAlmostEqual(t["c_asum"] + rows[0, 1], area_box, delta=1e-6 * area_box)
+                self.assertTrue(-0.3 <= rows[0, 4] < nx * A - 0.3 and -0.3 <= rows[0, 5] < ny * H - 0.3)
+
+    def test_triclinic_cells_and_holes_tile_the_box(self):
+        # a hexagonal lattice is periodic in a box tilted by whole spacings
+        rng = np.random.default_rng(13)
+        nx, ny, tilt = 8, 8, 2 * A
+        sites = hex_sites(nx, ny) + rng.uniform(-0.05, 0.05, (nx * ny, 2))
+        # into the tilted box [0, nx A) + s (tilt, ny H)
+        s = np.floor(sites[:, 1] / (ny * H))
+        sites = sites - np.outer(s, [tilt, ny * H])
+        sites[:, 0] -= nx * A * np.floor((sites[:, 0] - sites[:, 1] / (ny * H) * tilt) / (nx * A))
+        kept = np.delete(sites, [0, nx - 1, nx * (ny - 1)], axis=0)    # a wound at the box's edges
+        data = data_file(kept, (0.0, nx * A, 0.0, ny * H), tilt=tilt)
+        area_box = nx * A * ny * H
+        for n in (1, 2):
+            frames, thermo = self.moving(data, "p p p", n, steps=10)
+            for step, rows in frames:
+                self.assertEqual((rows[:, 6] == 1).sum() + (rows[:, 6] == -1).sum(), 0)
+                self.assertGreaterEqual(len(rows), 1)
+                t = thermo[step]
+                self.assertAlmostEqual(t["c_asum"] + rows[:, 1].sum(), area_box, delta=1e-6 * area_box)
+
+    def test_errors(self):
+        data = data_file([(0.3, -0.2)], (-2.0, 2.0, -2.0, 2.0))
+        confluent = """
+dimension 2
+units lj
+atom_style atomic
+boundary p p p
+read_data cells.data
+pair_style vertex/voronoi 2.0
+pair_coeff * * 1.0 1.0 0.1 -0.5
+compute loops all vertex/loops
+thermo_style custom step c_loops[1]
+run 0
+"""
+        run = self.run_lmp(confluent, files={"cells.data": data}, ok=False)
+        self.assertLammpsError(run, "vertex/loops", "needs finite cells")
+        for extra, fragment in (("compute bad all vertex/loops 3", "unexpected argument"),
+                                ("group one id 1\ncompute bad one vertex/loops", "use group 'all'")):
+            run = self.run_lmp(script("f f p").replace("compute va", extra + "\ncompute va"),
+                               files={"cells.data": data}, ok=False)
+            self.assertLammpsError(run, fragment)
+        three = """
+units lj
+atom_style atomic
+boundary p p p
+region b block 0 2 0 2 0 2
+create_box 1 b
+compute loops all vertex/loops
+"""
+        run = self.run_lmp(three, ok=False)
+        self.assertLammpsError(run, "is for 2d")
+
+
+if __name__ == "__main__":
+    lmptest.main()

@@ -3,8 +3,8 @@
 // Mesh3: a 3D Delaunay tetrahedralisation repaired by flips (see mesh3d.h).
 //
 // Predicates.  orient(a, b, c, d) is the sign of det[b-a; c-a; d-a] (CGAL's
-// orientation: positive when d sees a, b, c counter-clockwise... i.e. the
-// tetrahedron a b c d is positively oriented).  The in-sphere test of a
+// orientation: positive when the tetrahedron a b c d is positively
+// oriented).  The in-sphere test of a
 // positively oriented tetrahedron against e is positive when e lies inside
 // its circumsphere (CGAL's side_of_oriented_sphere).  Both are evaluated in
 // floating point with a static error bound (a multiple of the permanent, the
@@ -21,10 +21,14 @@
 // fails the in-sphere test is flipped 2-3 when the segment p d crosses the
 // triangle's interior (new tetrahedra a b d p, b c d p, c a d p), 3-2 when it
 // passes beyond an edge a b of degree 3 (the edge disappears: a c p d and
-// b c p d), 4-4 when it meets the edge a b itself (p, d, a, b coplanar) and
-// the edge has degree 4.  Otherwise the triangle waits until other flips have
-// changed its surroundings; if a whole round over the waiting triangles flips
-// nothing, update() fails.  Every triangle of the new tetrahedra is tested
+// b c p d), 4-4 when it meets or passes beyond an edge a b of degree 4 (the
+// octahedron around a b gets p d as its axis; when p, d, a, b are not
+// coplanar only if its four inner triangles then pass the in-sphere test, so
+// that no 4-4 flip is undone by the next).  Otherwise the triangle waits
+// until other flips have changed its surroundings; if a whole round over the
+// waiting triangles flips nothing, the repair fails.  A flip of the five or
+// six points of its cavity preserves the signed volume covered, so a flip
+// whose new tetrahedra are all positive also repairs an inverted one.  Every triangle of the new tetrahedra is tested
 // again, so at the end every interior triangle is locally Delaunay (for the
 // perturbed predicate), hence the triangulation is Delaunay.
 
@@ -627,14 +631,14 @@ bool Mesh3::update(const Points3 &pts, const double *roi_lo, const double *roi_h
   roi_hi_ = roi_lo_ ? roi_hi : nullptr;
   // First in one go; if the flips get stuck (several events of a continuous
   // motion merged into one step can leave no flippable triangle), back to
-  // the mesh as it was and again in 2, 4, 8, 16 substeps from the previous
+  // the mesh as it was and again in 2, 4, 8 substeps from the previous
   // positions, each one repaired before the next.
   bk_tv_ = tv_;
   bk_tn_ = tn_;
   bk_vt_ = vt_;
   bk_free_ = free_;
   bool ok = false;
-  for (int nsub = 1; nsub <= 16 && !ok; nsub *= 2) {
+  for (int nsub = 1; nsub <= 8 && !ok; nsub *= 2) {
     if (nsub > 1) {
       tv_ = bk_tv_;
       tn_ = bk_tn_;
@@ -808,8 +812,10 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
 
 bool Mesh3::advance(const Points3 &pts, int n_owned, const double *roi_lo, const double *roi_hi,
                     Tessellation3 &t) {
+  incremental_ = false;
   if (!update(pts, roi_lo, roi_hi)) return false;
   cells(pts, n_owned, t);
+  incremental_ = true;
   return true;
 }
 

@@ -20,11 +20,32 @@
 // callers check anyway, check_coverage_3d); an owned cell touching one is
 // reported unbounded, as tessellate_local_3d reports cells on the hull.
 //
-// update() returns false (the caller calls build() again) when a tetrahedron
-// inverted or went flat (a point crossed a triangle), a point left the far
-// box, the input is bad, or the flips did not restore the Delaunay property
-// quickly (a non-flippable configuration, or more flips than the mesh has
-// tetrahedra).  CGAL stays inside the .cpp files.
+// Tetrahedra that invert or go flat during a step (slivers: four nearly
+// co-spherical, nearly coplanar points) are first repaired by a flip with a
+// neighbour that leaves only positive tetrahedra; if the Delaunay flips then
+// get stuck (several events of the continuous motion merged into one step),
+// update() starts again from the mesh as it was and moves the points there in
+// 2, 4, 8 substeps (straight lines from the last positions), repairing after
+// each.
+//
+// Region of interest.  Without one, every tetrahedron is kept valid and
+// Delaunay, the flat hull of a ghost shell included (its slivers invert and
+// get stuck often: update() fails more).  With a box [roi_lo, roi_hi] (the
+// owned points' domain grown by at least the largest circumradius of their
+// tetrahedra), only tetrahedra and triangles not separated from the box grown
+// by about one point spacing are checked and flipped, and failures are
+// tolerated if they are separated from the box itself.  The mesh is then
+// exact for every tetrahedron whose circumsphere lies inside the box (a
+// Delaunay tetrahedron is certified by the locally Delaunay triangles its
+// circumsphere meets); callers check their cells' circumspheres against the
+// box, as check_coverage_3d(t, roi_lo, roi_hi) does.  Tetrahedra outside are
+// left as the points carry them (they may invert; that is never looked at).
+//
+// update() returns false (the caller calls build() again) when an inverted
+// tetrahedron or a non-Delaunay triangle that matters has no repairing flip,
+// the flips do not end (more flips than tetrahedra), or the input is bad
+// (point count changed, non-finite coordinates).  CGAL stays inside the .cpp
+// files.
 #pragma once
 
 #include "tessera/voronoi3d.h"
@@ -46,8 +67,8 @@ public:
   // The same points (same number, same order) at new positions: restores the
   // Delaunay property by flips.  Returns false when the mesh cannot follow
   // (see the top of the file); the mesh is then invalid and build() must be
-  // called, which names bad points.  roi_lo, roi_hi: accepted for the
-  // signature of Mesh::update and ignored (every tetrahedron is kept exact).
+  // called, which names bad points.  roi_lo, roi_hi (both or neither): the
+  // region of interest (see the top of the file).
   bool update(const Points3 &pts, const double *roi_lo = nullptr, const double *roi_hi = nullptr);
 
   // Fills t with the cells of points 0..n_owned-1, as tessellate_local_3d
@@ -63,6 +84,9 @@ public:
   // update() does (t is then not filled; call build() and cells()).
   bool advance(const Points3 &pts, int n_owned, const double *roi_lo, const double *roi_hi,
                Tessellation3 &t);
+  // Whether the last advance() filled t from the repaired mesh (false after
+  // a failed one, and before any).
+  bool incremental() const { return incremental_; }
 
   bool valid() const { return valid_; }
   int n_points() const { return n_points_; }
@@ -91,6 +115,7 @@ private:
   long flips_ = 0, f23_ = 0, f32_ = 0, f44_ = 0, untangled_ = 0;
   mutable long exact_ = 0;
   const char *failure_ = nullptr;
+  bool incremental_ = false;
   double far_[8][3] = {};
   std::vector<int> tv_;    // 4 per tetrahedron: points, positively oriented; -1: free slot
   std::vector<int> tn_;    // 4 per tetrahedron: neighbour across the face opposite vertex k, -1: none

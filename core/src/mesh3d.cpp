@@ -248,9 +248,24 @@ void Mesh3::build(const Points3 &pts, const long *ids, const int *report) {
     }
     throw Error("tessera: points were lost by the 3D triangulation");
   }
+  // Tetrahedra numbered by their smallest point index (a counting sort):
+  // callers keep points in spatial order (LAMMPS sorts atoms), so a point's
+  // star lies in a few cache lines; the owned points' tetrahedra come first.
+  std::vector<int> first(n + 9, 0);
   int nt = 0;
-  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c)
-    c->info() = dt.is_infinite(c) ? -1 : nt++;
+  auto smallest = [](DT::Cell_handle c) {
+    return std::min(std::min(c->vertex(0)->info(), c->vertex(1)->info()),
+                    std::min(c->vertex(2)->info(), c->vertex(3)->info()));
+  };
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
+    c->info() = -1;
+    if (!dt.is_infinite(c)) {
+      ++first[smallest(c) + 1];
+      ++nt;
+    }
+  }
+  for (int i = 0; i < n + 8; ++i) first[i + 1] += first[i];
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) c->info() = first[smallest(c)]++;
   tv_.assign(4 * static_cast<size_t>(nt), -1);
   tn_.assign(4 * static_cast<size_t>(nt), -1);
   vt_.assign(n + 8, -1);
@@ -281,7 +296,7 @@ std::size_t Mesh3::memory_bytes() const {
                            tused_.capacity() + bfs_.capacity() + ring_.capacity() +
                            bk_tv_.capacity() + bk_tn_.capacity() + bk_vt_.capacity() +
                            bk_free_.capacity();
-  return ints * sizeof(int) + skip_.capacity() +
+  return ints * sizeof(int) + skip_.capacity() + code_.capacity() * sizeof(unsigned short) +
          (prev_.capacity() + mid_.capacity()) * sizeof(double) +
          (tmark_.capacity() + pmark_.capacity()) * sizeof(unsigned);
 }
@@ -487,32 +502,46 @@ bool Mesh3::untangle(const Points3 &pts, int t) {
   return false;
 }
 
-// Whether the points v[0..m) are separated from the region of interest,
-// grown by grow, by one of its faces' planes (then their convex hull lies
-// outside it).
-bool Mesh3::outside(const Points3 &pts, const int *v, int m, double grow) const {
-  if (!roi_lo_) return false;
-  for (int d = 0; d < 3; ++d) {
-    bool below = true, above = true;
-    for (int s = 0; s < m; ++s) {
-      const double x = pos(pts, v[s])[d];
-      below = below && x < roi_lo_[d] - grow;
-      above = above && x > roi_hi_[d] + grow;
+// Outcodes of the points against the region of interest: bit 2d (2d+1) set
+// when coordinate d lies below (above) the region grown by the buffer, bits
+// 6 + 2d (7 + 2d) the same for the region itself.  Points whose outcodes
+// share a bit are separated from the (grown) region by one of its faces'
+// planes, and so is their convex hull.
+void Mesh3::outcodes(const Points3 &pts) {
+  const int n = n_points_;
+  code_.resize(n + 8);
+  for (int i = 0; i < n + 8; ++i) {
+    const double *p = pos(pts, i);
+    unsigned c = 0;
+    for (int d = 0; d < 3; ++d) {
+      c |= (p[d] < roi_lo_[d] - buffer_) << (2 * d);
+      c |= (p[d] > roi_hi_[d] + buffer_) << (2 * d + 1);
+      c |= (p[d] < roi_lo_[d]) << (6 + 2 * d);
+      c |= (p[d] > roi_hi_[d]) << (7 + 2 * d);
     }
-    if (below || above) return true;
+    code_[i] = static_cast<unsigned short>(c);
   }
-  return false;
+}
+
+// Whether the points v[0..m) are separated from the region of interest
+// (grown by the buffer if grown).
+bool Mesh3::outside(const int *v, int m, bool grown) const {
+  if (!roi_lo_) return false;
+  unsigned c = code_[v[0]];
+  for (int s = 1; s < m; ++s) c &= code_[v[s]];
+  return (grown ? c & 0x3f : c >> 6) != 0;
 }
 
 // Marks the tetrahedra to leave alone (free slots, outside the region) and
 // lists the others that are inverted or flat in pending_; returns how many.
 int Mesh3::scan(const Points3 &pts) {
   const int nt = static_cast<int>(tv_.size() / 4);
+  if (roi_lo_) outcodes(pts);
   pending_.clear();
   if (skip_.size() < static_cast<size_t>(nt)) skip_.resize(nt);
   for (int t = 0; t < nt; ++t) {
     const int *q = &tv_[4 * t];
-    skip_[t] = q[0] < 0 || outside(pts, q, 4, buffer_);
+    skip_[t] = q[0] < 0 || outside(q, 4, true);
     if (skip_[t]) continue;
     if (orient(pts, q[0], q[1], q[2], q[3]) <= 0) pending_.push_back(t);
   }
@@ -552,7 +581,7 @@ bool Mesh3::repair(const Points3 &pts) {
     if (progress) continue;
     // Left as they are outside the region itself (in the buffer around it).
     for (const int t : pending_) {
-      if (!outside(pts, &tv_[4 * t], 4, 0.0)) {
+      if (!outside(&tv_[4 * t], 4, false)) {
         failure_ = "an inverted or flat tetrahedron no flip repairs";
         return false;
       }
@@ -572,7 +601,7 @@ bool Mesh3::repair(const Points3 &pts) {
       if (u < 0 || skip_[t] || skip_[u]) continue;
       if (roi_lo_) {
         const int f[3] = {tv_[4 * t + kFace[k][0]], tv_[4 * t + kFace[k][1]], tv_[4 * t + kFace[k][2]]};
-        if (outside(pts, f, 3, buffer_)) continue;
+        if (outside(f, 3, true)) continue;
       }
       if (insphere(pts, &tv_[4 * t], tv_[4 * u + slot_of_nb(u, t)]) <= 0) continue;
       if (!flip_face(pts, t, k)) {
@@ -595,7 +624,7 @@ bool Mesh3::repair(const Points3 &pts) {
         const int u = tn_[4 * t + k];
         if (u < 0) continue;
         const int f[3] = {tv_[4 * t + kFace[k][0]], tv_[4 * t + kFace[k][1]], tv_[4 * t + kFace[k][2]]};
-        if (insphere(pts, &tv_[4 * t], tv_[4 * u + slot_of_nb(u, t)]) > 0 && !outside(pts, f, 3, 0.0)) {
+        if (insphere(pts, &tv_[4 * t], tv_[4 * u + slot_of_nb(u, t)]) > 0 && !outside(f, 3, false)) {
           failure_ = "a non-Delaunay triangle no flip repairs";
           return false;
         }

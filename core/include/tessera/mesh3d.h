@@ -128,7 +128,8 @@ private:
   const double *roi_lo_ = nullptr, *roi_hi_ = nullptr;
   long substeps_ = 0;
   double buffer_ = 0.0;
-  std::vector<char> skip_;  // per tetrahedron: free, or outside the region of interest
+  std::vector<char> skip_;
+  std::vector<unsigned short> code_;  // per point: outcodes against the region of interest  // per tetrahedron: free, or outside the region of interest
   mutable std::vector<unsigned> tmark_;  // per tetrahedron: stamp of the last cell that visited it
   mutable std::vector<unsigned> pmark_;  // per point: stamp of the last cell that met it
   mutable std::vector<int> tmap_;        // mesh tetrahedron -> Tessellation3 index, -1
@@ -149,7 +150,8 @@ private:
   bool flip44(const Points3 &pts, int t, int k, int edge, bool delaunay);
   bool flip_face(const Points3 &pts, int t, int k);
   bool untangle(const Points3 &pts, int t);
-  bool outside(const Points3 &pts, const int *v, int m, double grow) const;
+  void outcodes(const Points3 &pts);
+  bool outside(const int *v, int m, bool grown) const;
   int scan(const Points3 &pts);
   bool repair(const Points3 &pts);
   Points3 interpolate(const Points3 &pts, double s);

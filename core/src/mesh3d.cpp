@@ -279,6 +279,7 @@ void Mesh3::build(const Points3 &pts, const long *ids, const int *report) {
     }
   }
   free_.clear();
+  skip_.assign(nt, 0);
   prev_.resize(3 * static_cast<size_t>(n));
   for (int i = 0; i < n; ++i)
     for (int d = 0; d < 3; ++d) prev_[3 * i + d] = pts.p(i)[d];
@@ -761,6 +762,9 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
     bool unbounded = false;
     for (size_t h = 0; h < bfs_.size(); ++h) {
       const int m = bfs_[h];
+      if (skip_[m])
+        throw Error("tessera: Mesh3::cells(): owned " + point_name(i, ids) +
+                    " lies outside the region of interest of the last update()");
       for (int s = 0; s < 4; ++s) {
         const int v = tv_[4 * m + s];
         if (v >= n) unbounded = true;

@@ -408,6 +408,13 @@ TEST(Mesh3, BuildErrorsAndUnboundedCells) {
   const Tessellation3 ref = tessera::tessellate_local_3d(owned, tis.n, nullptr, false);
   EXPECT_GE(t.unbounded_cell, 0);
   EXPECT_GE(ref.unbounded_cell, 0);
+  // Owned points outside the region of interest: their tetrahedra were not
+  // kept, cells() says so.
+  Tissue full = lattice(Lattice::BCC, 3, 0.05, 8);
+  mesh.build(full.all());
+  const double lo[3] = {100, 100, 100}, hi[3] = {101, 101, 101};
+  ASSERT_TRUE(mesh.update(full.all(), lo, hi));
+  EXPECT_THROW(mesh.cells(full.all(), full.n, t), tessera::Error);
 }
 
 // The per-step path reuses the tessellation's storage.

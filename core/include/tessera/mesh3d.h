@@ -76,7 +76,9 @@ public:
   // order of the faces of a cell, of a polygon's starting vertex, and of the
   // tetrahedra may differ).  Reuses t's storage.  An owned cell on the hull:
   // throws Error if throw_if_unbounded, else sets t.unbounded_cell (and the
-  // cell has no faces), as tessellate_local_3d.
+  // cell has no faces), as tessellate_local_3d.  Throws Error if an owned
+  // point lay outside the last update()'s region of interest (grown by the
+  // buffer): its tetrahedra were not kept.
   void cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long *ids = nullptr,
              bool throw_if_unbounded = true) const;
 

@@ -280,6 +280,9 @@ void Mesh3::build(const Points3 &pts, const long *ids, const int *report) {
   }
   free_.clear();
   skip_.assign(nt, 0);
+  dirty_.assign(n + 8, 0);
+  dirty_list_.clear();
+  cache_ok_ = false;
   prev_.resize(3 * static_cast<size_t>(n));
   for (int i = 0; i < n; ++i)
     for (int d = 0; d < 3; ++d) prev_[3 * i + d] = pts.p(i)[d];
@@ -296,8 +299,11 @@ std::size_t Mesh3::memory_bytes() const {
                            stack_.capacity() + pending_.capacity() + tmap_.capacity() +
                            tused_.capacity() + bfs_.capacity() + ring_.capacity() +
                            bk_tv_.capacity() + bk_tn_.capacity() + bk_vt_.capacity() +
-                           bk_free_.capacity();
-  return ints * sizeof(int) + skip_.capacity() + code_.capacity() * sizeof(unsigned short) +
+                           bk_free_.capacity() + dirty_list_.capacity() + c_off_.capacity() +
+                           c_nb_.capacity() + c_foff_.capacity() + c_tet_.capacity() +
+                           nx_off_.capacity() + nx_nb_.capacity() + nx_foff_.capacity() +
+                           nx_tet_.capacity();
+  return ints * sizeof(int) + skip_.capacity() + dirty_.capacity() + code_.capacity() * sizeof(unsigned short) +
          (prev_.capacity() + mid_.capacity()) * sizeof(double) +
          (tmark_.capacity() + pmark_.capacity()) * sizeof(unsigned);
 }
@@ -377,7 +383,12 @@ bool Mesh3::replace(const Points3 &pts, const int *old_tets, int n_old, int (*nv
   }
   for (int i = 0; i < n_new; ++i)
     for (int s = 0; s < 4; ++s) {
-      vt_[nv[i][s]] = id[i];
+      const int v = nv[i][s];
+      if (!dirty_[v]) {
+        dirty_[v] = 1;
+        dirty_list_.push_back(v);
+      }
+      vt_[v] = id[i];
       if (tn_[4 * id[i] + s] >= 0) stack_.push_back(4 * id[i] + s);
     }
   return true;
@@ -713,6 +724,68 @@ void Mesh3::next_stamp() const {
   }
 }
 
+// The faces of owned cell i (neighbour, ring of mesh tetrahedra) appended to
+// the next cache; false if the cell is unbounded.
+bool Mesh3::walk_cell(int i, const long *ids) const {
+  const int n = n_points_;
+  next_stamp();
+  const unsigned st = stamp_;
+  // The star of i: every tetrahedron containing it.
+  bfs_.clear();
+  bfs_.push_back(vt_[i]);
+  tmark_[vt_[i]] = st;
+  for (size_t h = 0; h < bfs_.size(); ++h) {
+    const int m = bfs_[h];
+    if (skip_[m])
+      throw Error("tessera: Mesh3::cells(): owned " + point_name(i, ids) +
+                  " lies outside the region of interest of the last update()");
+    for (int s = 0; s < 4; ++s) {
+      const int v = tv_[4 * m + s];
+      if (v >= n) return false;
+      if (v == i) continue;
+      const int nb = tn_[4 * m + s];
+      if (nb >= 0 && tmark_[nb] != st) {
+        tmark_[nb] = st;
+        bfs_.push_back(nb);
+      }
+    }
+  }
+  for (const int m : bfs_) {
+    int li = 0;
+    while (tv_[4 * m + li] != i) ++li;
+    for (int lj = 0; lj < 4; ++lj) {
+      const int j = tv_[4 * m + lj];
+      if (lj == li || pmark_[j] == st) continue;
+      pmark_[j] = st;
+      int la = -1, lb = -1;
+      for (int q = 0; q < 4; ++q)
+        if (q != li && q != lj) (la < 0 ? la : lb) = q;
+      if (parity(li, lj, la, lb) < 0) std::swap(la, lb);
+      // Walk around the edge i j: from a tetrahedron (i j a b), positively
+      // oriented, cross the triangle (i j b); the ring is then
+      // counter-clockwise about x_j - x_i.
+      int cur = m, va = tv_[4 * m + la], vb = tv_[4 * m + lb];
+      do {
+        nx_tet_.push_back(cur);
+        int sa = 0;
+        while (tv_[4 * cur + sa] != va) ++sa;
+        const int nx = tn_[4 * cur + sa];
+        int vc = -1;
+        for (int q = 0; q < 4; ++q) {
+          const int v = tv_[4 * nx + q];
+          if (v != i && v != j && v != vb) vc = v;
+        }
+        va = vb;
+        vb = vc;
+        cur = nx;
+      } while (cur != m);
+      nx_nb_.push_back(j);
+      nx_foff_.push_back(static_cast<int>(nx_tet_.size()));
+    }
+  }
+  return true;
+}
+
 void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long *ids,
                   bool throw_if_unbounded) const {
   if (!valid_) throw Error("tessera: Mesh3::cells() on an invalid mesh; call build() first");
@@ -736,8 +809,18 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
   t.position.clear();
   tused_.clear();
   next_stamp();
+  // tmap_ is all -1 between calls, also when an Error leaves early.
+  struct Reset {
+    const Mesh3 &m;
+    ~Reset() {
+      for (const int k : m.tused_) m.tmap_[k] = -1;
+    }
+  } reset{*this};
 
   auto tet_of = [&](int m) {
+    if (skip_[m])
+      throw Error("tessera: Mesh3::cells(): a tetrahedron of an owned cell lies outside the "
+                  "region of interest of the last update()");
     if (tmap_[m] >= 0) return tmap_[m];
     const int id = static_cast<int>(t.tets.size());
     tmap_[m] = id;
@@ -752,95 +835,78 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
     return id;
   };
 
+  // A cell whose star no flip touched since the last cells() keeps its
+  // faces and rings (in mesh numbering); the others walk their star again.
+  const bool reuse = cache_ok_ && cache_owned_ == n_owned;
+  nx_off_.assign(1, 0);
+  nx_nb_.clear();
+  nx_foff_.assign(1, 0);
+  nx_tet_.clear();
   for (int i = 0; i < n_owned; ++i) {
-    next_stamp();
-    const unsigned st = stamp_;
-    // The star of i: every tetrahedron containing it.
-    bfs_.clear();
-    bfs_.push_back(vt_[i]);
-    tmark_[vt_[i]] = st;
-    bool unbounded = false;
-    for (size_t h = 0; h < bfs_.size(); ++h) {
-      const int m = bfs_[h];
-      if (skip_[m])
-        throw Error("tessera: Mesh3::cells(): owned " + point_name(i, ids) +
-                    " lies outside the region of interest of the last update()");
-      for (int s = 0; s < 4; ++s) {
-        const int v = tv_[4 * m + s];
-        if (v >= n) unbounded = true;
-        if (v == i) continue;
-        const int nb = tn_[4 * m + s];
-        if (nb >= 0 && tmark_[nb] != st) {
-          tmark_[nb] = st;
-          bfs_.push_back(nb);
-        }
+    bool bounded = true;
+    if (reuse && !dirty_[i] && c_off_[i + 1] > c_off_[i]) {
+      const int base = static_cast<int>(nx_tet_.size()) - c_foff_[c_off_[i]];
+      for (int f = c_off_[i]; f < c_off_[i + 1]; ++f) {
+        nx_nb_.push_back(c_nb_[f]);
+        nx_foff_.push_back(c_foff_[f + 1] + base);
+      }
+      nx_tet_.insert(nx_tet_.end(), c_tet_.begin() + c_foff_[c_off_[i]],
+                     c_tet_.begin() + c_foff_[c_off_[i + 1]]);
+    } else {
+      const size_t nf = nx_nb_.size(), nr = nx_tet_.size();
+      bounded = walk_cell(i, ids);
+      if (!bounded) {
+        nx_nb_.resize(nf);
+        nx_foff_.resize(nf + 1);
+        nx_tet_.resize(nr);
       }
     }
-    if (unbounded) {
-      if (throw_if_unbounded)
+    nx_off_.push_back(static_cast<int>(nx_nb_.size()));
+    if (!bounded) {
+      if (throw_if_unbounded) {
         throw Error("tessera: the cell of " + point_name(i, ids) +
                     " is unbounded (on the convex hull): the ghost shell is missing");
+      }
       t.unbounded_cell = i;
       t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
       continue;
     }
+    // Geometry of the cell's faces.
     const V3 xi = load(pts, i);
     double vol = 0.0, sur = 0.0;
-    for (const int m : bfs_) {
-      int li = 0;
-      while (tv_[4 * m + li] != i) ++li;
-      for (int lj = 0; lj < 4; ++lj) {
-        const int j = tv_[4 * m + lj];
-        if (lj == li || pmark_[j] == st) continue;
-        pmark_[j] = st;
-        int la = -1, lb = -1;
-        for (int q = 0; q < 4; ++q)
-          if (q != li && q != lj) (la < 0 ? la : lb) = q;
-        if (parity(li, lj, la, lb) < 0) std::swap(la, lb);
-        // Walk around the edge i j: from a tetrahedron (i j a b), positively
-        // oriented, cross the triangle (i j b); the ring is then
-        // counter-clockwise about x_j - x_i.
-        ring_.clear();
-        int cur = m, va = tv_[4 * m + la], vb = tv_[4 * m + lb];
-        do {
-          ring_.push_back(cur);
-          int sa = 0;
-          while (tv_[4 * cur + sa] != va) ++sa;
-          const int nx = tn_[4 * cur + sa];
-          int vc = -1;
-          for (int q = 0; q < 4; ++q) {
-            const int v = tv_[4 * nx + q];
-            if (v != i && v != j && v != vb) vc = v;
-          }
-          va = vb;
-          vb = vc;
-          cur = nx;
-        } while (cur != m);
-        const int o = static_cast<int>(t.face_vertex.size());
-        for (const int r : ring_) t.face_vertex.push_back(tet_of(r));
-        t.face_offset.push_back(static_cast<int>(t.face_vertex.size()));
-        t.face_neighbor.push_back(j);
-        const int len = static_cast<int>(ring_.size());
-        V3 av{0, 0, 0}, qs{0, 0, 0};
-        for (int k = 0; k < len; ++k) {
-          const V3 uu = vv(t.vertices[t.face_vertex[o + k]]) - xi;
-          const V3 ww = vv(t.vertices[t.face_vertex[o + (k + 1) % len]]) - xi;
-          av = av + 0.5 * cross(uu, ww);
-          qs = qs + uu;
-        }
-        qs = (1.0 / len) * qs;
-        const V3 dj = load(pts, j) - xi;
-        const double area = dot(av, dj) / std::sqrt(dot(dj, dj));
-        t.face_area.push_back(area);
-        sur += area;
-        vol += dot(av, qs) / 3.0;
+    for (int f = nx_off_[i]; f < nx_off_[i + 1]; ++f) {
+      const int j = nx_nb_[f];
+      const int o = static_cast<int>(t.face_vertex.size());
+      for (int r = nx_foff_[f]; r < nx_foff_[f + 1]; ++r) t.face_vertex.push_back(tet_of(nx_tet_[r]));
+      t.face_offset.push_back(static_cast<int>(t.face_vertex.size()));
+      t.face_neighbor.push_back(j);
+      const int len = nx_foff_[f + 1] - nx_foff_[f];
+      V3 av{0, 0, 0}, qs{0, 0, 0};
+      for (int k = 0; k < len; ++k) {
+        const V3 uu = vv(t.vertices[t.face_vertex[o + k]]) - xi;
+        const V3 ww = vv(t.vertices[t.face_vertex[o + (k + 1) % len]]) - xi;
+        av = av + 0.5 * cross(uu, ww);
+        qs = qs + uu;
       }
+      qs = (1.0 / len) * qs;
+      const V3 dj = load(pts, j) - xi;
+      const double area = dot(av, dj) / std::sqrt(dot(dj, dj));
+      t.face_area.push_back(area);
+      sur += area;
+      vol += dot(av, qs) / 3.0;
     }
     t.volume[i] = vol;
     t.surface[i] = sur;
     t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
   }
-  for (const int m : tused_) tmap_[m] = -1;
+  c_off_.swap(nx_off_);
+  c_nb_.swap(nx_nb_);
+  c_foff_.swap(nx_foff_);
+  c_tet_.swap(nx_tet_);
+  for (const int v : dirty_list_) dirty_[v] = 0;
+  dirty_list_.clear();
+  cache_ok_ = true;
+  cache_owned_ = n_owned;
 }
 
 bool Mesh3::advance(const Points3 &pts, int n_owned, const double *roi_lo, const double *roi_hi,

@@ -298,8 +298,7 @@ std::size_t Mesh3::memory_bytes() const {
   const std::size_t ints = tv_.capacity() + tn_.capacity() + free_.capacity() + vt_.capacity() +
                            stack_.capacity() + pending_.capacity() + tmap_.capacity() +
                            tused_.capacity() + bfs_.capacity() + ring_.capacity() +
-                           bk_tv_.capacity() + bk_tn_.capacity() + bk_vt_.capacity() +
-                           bk_free_.capacity() + dirty_list_.capacity() + c_off_.capacity() +
+                           3 * undo_.capacity() + dirty_list_.capacity() + c_off_.capacity() +
                            c_nb_.capacity() + c_foff_.capacity() + c_tet_.capacity() +
                            nx_off_.capacity() + nx_nb_.capacity() + nx_foff_.capacity() +
                            nx_tet_.capacity();
@@ -312,14 +311,35 @@ int Mesh3::new_tet() {
   if (!free_.empty()) {
     const int t = free_.back();
     free_.pop_back();
+    undo_.push_back({kUndoFreePop, 0, t});
     return t;
   }
   const int t = static_cast<int>(tv_.size() / 4);
+  undo_.push_back({kUndoGrow, 0, static_cast<int>(tv_.size())});
   for (int k = 0; k < 4; ++k) {
     tv_.push_back(-1);
     tn_.push_back(-1);
   }
   return t;
+}
+
+// Undoes the flips since undo_ was last cleared (in reverse order).
+void Mesh3::rollback() {
+  for (size_t k = undo_.size(); k-- > 0;) {
+    const auto &u = undo_[k];
+    switch (u[0]) {
+      case kUndoTv: tv_[u[1]] = u[2]; break;
+      case kUndoTn: tn_[u[1]] = u[2]; break;
+      case kUndoVt: vt_[u[1]] = u[2]; break;
+      case kUndoFreePop: free_.push_back(u[2]); break;
+      case kUndoFreePush: free_.pop_back(); break;
+      case kUndoGrow:
+        tv_.resize(u[2]);
+        tn_.resize(u[2]);
+        break;
+    }
+  }
+  undo_.clear();
 }
 
 // Replaces the tetrahedra old_tets (a flip's cavity) by the n_new
@@ -346,13 +366,22 @@ bool Mesh3::replace(const Points3 &pts, const int *old_tets, int n_old, int (*nv
   for (int i = 0; i < n_new; ++i) id[i] = i < n_old ? old_tets[i] : new_tet();
   if (skip_.size() < tv_.size() / 4) skip_.resize(tv_.size() / 4, 0);
   for (int i = 0; i < n_new; ++i) skip_[id[i]] = 0;
+  auto set_tv = [&](int k, int v) {
+    undo_.push_back({kUndoTv, k, tv_[k]});
+    tv_[k] = v;
+  };
+  auto set_tn = [&](int k, int v) {
+    undo_.push_back({kUndoTn, k, tn_[k]});
+    tn_[k] = v;
+  };
   for (int i = n_new; i < n_old; ++i) {
-    tv_[4 * old_tets[i]] = -1;
+    set_tv(4 * old_tets[i], -1);
     free_.push_back(old_tets[i]);
+    undo_.push_back({kUndoFreePush, 0, 0});
   }
   for (int i = 0; i < n_new; ++i) {
     const int t = id[i];
-    for (int s = 0; s < 4; ++s) tv_[4 * t + s] = nv[i][s];
+    for (int s = 0; s < 4; ++s) set_tv(4 * t + s, nv[i][s]);
     for (int s = 0; s < 4; ++s) {
       int f[3], m = 0;
       for (int q = 0; q < 4; ++q)
@@ -372,13 +401,13 @@ bool Mesh3::replace(const Points3 &pts, const int *old_tets, int n_old, int (*nv
             if (nb >= 0)
               for (int q = 0; q < 4; ++q) {
                 const int v = tv_[4 * nb + q];
-                if (v != f[0] && v != f[1] && v != f[2]) tn_[4 * nb + q] = t;
+                if (v != f[0] && v != f[1] && v != f[2]) set_tn(4 * nb + q, t);
               }
             break;
           }
       }
       if (nb == -2) throw Error("tessera: internal error in a 3D flip (cavity boundary mismatch)");
-      tn_[4 * t + s] = nb;
+      set_tn(4 * t + s, nb);
     }
   }
   for (int i = 0; i < n_new; ++i)
@@ -388,6 +417,7 @@ bool Mesh3::replace(const Points3 &pts, const int *old_tets, int n_old, int (*nv
         dirty_[v] = 1;
         dirty_list_.push_back(v);
       }
+      undo_.push_back({kUndoVt, v, vt_[v]});
       vt_[v] = id[i];
       if (tn_[4 * id[i] + s] >= 0) stack_.push_back(4 * id[i] + s);
     }
@@ -674,17 +704,11 @@ bool Mesh3::update(const Points3 &pts, const double *roi_lo, const double *roi_h
   // motion merged into one step can leave no flippable triangle), back to
   // the mesh as it was and again in 2, 4, 8 substeps from the previous
   // positions, each one repaired before the next.
-  bk_tv_ = tv_;
-  bk_tn_ = tn_;
-  bk_vt_ = vt_;
-  bk_free_ = free_;
+  undo_.clear();
   bool ok = false;
   for (int nsub = 1; nsub <= 8 && !ok; nsub *= 2) {
     if (nsub > 1) {
-      tv_ = bk_tv_;
-      tn_ = bk_tn_;
-      vt_ = bk_vt_;
-      free_ = bk_free_;
+      rollback();
       f23_ = f32_ = f44_ = untangled_ = 0;
     }
     substeps_ = nsub;

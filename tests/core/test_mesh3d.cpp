@@ -199,6 +199,7 @@ struct Roi {
 struct RunStats {
   int rebuilds = 0;
   long flips = 0, f32 = 0, f44 = 0;
+  int substep_runs = 0;  // updates that went back and took substeps
 };
 
 // Moves the owned points by random steps of size step_len for steps steps;
@@ -234,6 +235,7 @@ RunStats run(Tissue tis, int steps, double step_len, unsigned seed, bool forces 
       st.flips += mesh.flips_last_update();
       st.f32 += mesh.flips32();
       st.f44 += mesh.flips44();
+      st.substep_runs += mesh.substeps() > 1;
     }
     const Tessellation3 ref = tessera::tessellate_local_3d(pts, tis.n);
     if (roi >= 0 && !tessera::check_coverage_3d(ref, lo, hi).ok) {
@@ -257,7 +259,10 @@ TEST(Mesh3, RandomPointsLargerMovesManyFlips) {
   const RunStats st = run(random_tissue(400, 2), 40, 0.05, 12);
   EXPECT_GT(st.flips, 1000);
   EXPECT_GT(st.f32, 0);
+  EXPECT_GT(st.substep_runs, 0);  // the rollback to the mesh as it was is used
   EXPECT_LE(st.rebuilds, 12);
+  std::printf("%ld flips, %d updates in substeps, %d rebuilds in 40 steps\n", st.flips,
+              st.substep_runs, st.rebuilds);
 }
 
 // Without a region of interest every tetrahedron, the ghost shell's flat

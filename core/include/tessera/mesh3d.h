@@ -50,6 +50,7 @@
 
 #include "tessera/voronoi3d.h"
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -126,7 +127,10 @@ private:
   std::vector<int> stack_, pending_;
   std::vector<double> prev_;  // positions of the last successful build() or update()
   std::vector<double> mid_;   // positions of a substep
-  std::vector<int> bk_tv_, bk_tn_, bk_vt_, bk_free_;  // the mesh before update()
+  // The writes of this update()'s flips, to go back to the mesh as it was:
+  // {what, index, old value}.
+  enum { kUndoTv, kUndoTn, kUndoVt, kUndoFreePop, kUndoFreePush, kUndoGrow };
+  std::vector<std::array<int, 3>> undo_;
   const double *roi_lo_ = nullptr, *roi_hi_ = nullptr;
   long substeps_ = 0;
   double buffer_ = 0.0;
@@ -154,6 +158,7 @@ private:
   int insphere(const Points3 &pts, const int *t, int e) const;
   bool less_xyz(const Points3 &pts, int a, int b) const;
   int new_tet();
+  void rollback();
   int slot_of(int tet, int v) const;
   int slot_of_nb(int tet, int nb) const;
   bool flip23(const Points3 &pts, int t, int k);

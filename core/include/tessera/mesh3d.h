@@ -79,7 +79,9 @@ public:
   // throws Error if throw_if_unbounded, else sets t.unbounded_cell (and the
   // cell has no faces), as tessellate_local_3d.  Throws Error if an owned
   // point lay outside the last update()'s region of interest (grown by the
-  // buffer): its tetrahedra were not kept.
+  // buffer): its tetrahedra were not kept.  The faces and rings of the
+  // cells whose stars no flip touched since the previous call are kept from
+  // it (only their geometry is computed again).
   void cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long *ids = nullptr,
              bool throw_if_unbounded = true) const;
 
@@ -131,7 +133,8 @@ private:
   // {what, index, old value}.
   enum { kUndoTv, kUndoTn, kUndoVt, kUndoFreePop, kUndoFreePush, kUndoGrow };
   std::vector<std::array<int, 3>> undo_;
-  const double *roi_lo_ = nullptr, *roi_hi_ = nullptr;
+  double roi_box_[6] = {};  // the region of interest of the running update()
+  const double *roi_lo_ = nullptr, *roi_hi_ = nullptr;  // into roi_box_, or none
   long substeps_ = 0;
   double buffer_ = 0.0;
   std::vector<char> skip_;
@@ -139,7 +142,7 @@ private:
   mutable std::vector<unsigned> tmark_;  // per tetrahedron: stamp of the last cell that visited it
   mutable std::vector<unsigned> pmark_;  // per point: stamp of the last cell that met it
   mutable std::vector<int> tmap_;        // mesh tetrahedron -> Tessellation3 index, -1
-  mutable std::vector<int> tused_, bfs_, ring_;
+  mutable std::vector<int> tused_, bfs_;
   // Per point: its star changed (a flip) since the last cells().
   mutable std::vector<char> dirty_;
   mutable std::vector<int> dirty_list_;

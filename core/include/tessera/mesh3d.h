@@ -11,7 +11,8 @@
 // the same symbolic perturbation as CGAL's Delaunay_triangulation_3 (points
 // ranked in lexicographic xyz order), so the triangulation is the one a
 // rebuild would give and cells() reproduces tessellate_local_3d's cells
-// exactly, zero-area faces included.
+// exactly, zero-area faces included (with a region of interest: the cells
+// whose circumspheres lie inside it, see below).
 //
 // The convex hull is closed by eight fixed points far outside the initial
 // bounding box (32 times its largest extent from its centre), so hull changes
@@ -40,6 +41,14 @@
 // circumsphere meets); callers check their cells' circumspheres against the
 // box, as check_coverage_3d(t, roi_lo, roi_hi) does.  Tetrahedra outside are
 // left as the points carry them (they may invert; that is never looked at).
+//
+// Per step, as a pair style would use it (ghosts re-listed: build() again):
+//
+//   if (!mesh.valid() || !mesh.advance(pts, n_owned, lo, hi, t)) {
+//     mesh.build(pts, ids);
+//     mesh.cells(pts, n_owned, t, ids);
+//   }
+//   then check_coverage_3d(t, lo, hi) as after tessellate_local_3d.
 //
 // update() returns false (the caller calls build() again) when an inverted
 // tetrahedron or a non-Delaunay triangle that matters has no repairing flip,

@@ -1,0 +1,735 @@
+// Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
+//
+// Mesh3: a 3D Delaunay tetrahedralisation repaired by flips (see mesh3d.h).
+//
+// Predicates.  orient(a, b, c, d) is the sign of det[b-a; c-a; d-a] (CGAL's
+// orientation: positive when the tetrahedron a b c d is positively
+// oriented).  The in-sphere test of a
+// positively oriented tetrahedron against e is positive when e lies inside
+// its circumsphere (CGAL's side_of_oriented_sphere).  Both are evaluated in
+// floating point with a static error bound (a multiple of the permanent, the
+// determinant with every product replaced by its magnitude, ten times and more
+// above the classical bounds); only inside the bound do they call CGAL's
+// exact predicates.  An exact zero of the in-sphere test is broken by the
+// symbolic perturbation of Delaunay_triangulation_3: the five points ranked
+// by lexicographic xyz order, the two highest ranked decide through
+// orientation tests with the point replaced (Devillers and Teillaud,
+// "Perturbations for Delaunay and weighted Delaunay 3D triangulations",
+// 2011), so the repaired triangulation is the unique one a rebuild gives.
+//
+// Flips.  A triangle a b c between tetrahedra (a b c p) and (a b c d) that
+// fails the in-sphere test is flipped 2-3 when the segment p d crosses the
+// triangle's interior (new tetrahedra a b d p, b c d p, c a d p), 3-2 when it
+// passes beyond an edge a b of degree 3 (the edge disappears: a c p d and
+// b c p d), 4-4 when it meets or passes beyond an edge a b of degree 4 (the
+// octahedron around a b gets p d as its axis; when p, d, a, b are not
+// coplanar only if its four inner triangles then pass the in-sphere test, so
+// that no 4-4 flip is undone by the next).  Otherwise the triangle waits
+// until other flips have changed its surroundings; if a whole round over the
+// waiting triangles flips nothing, the repair fails.  A flip of the five or
+// six points of its cavity preserves the signed volume covered, so a flip
+// whose new tetrahedra are all positive also repairs an inverted one.  Every triangle of the new tetrahedra is tested
+// again, so at the end every interior triangle is locally Delaunay (for the
+// perturbed predicate), hence the triangulation is Delaunay.
+
+#include "tessera/mesh3d.h"
+
+#include "point_name.h"
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_cell_base_with_info_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <utility>
+
+namespace tessera {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
+using Cb = CGAL::Triangulation_cell_base_with_info_3<int, K, CGAL::Delaunay_triangulation_cell_base_3<K>>;
+using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
+using DT = CGAL::Delaunay_triangulation_3<K, Tds>;
+using P3 = K::Point_3;
+
+inline P3 cp(const double *a) { return P3(a[0], a[1], a[2]); }
+
+// Sign of det[b-a; c-a; d-a]; exact_calls counts the calls to CGAL.
+int orient_raw(const double *a, const double *b, const double *c, const double *d, long &exact_calls) {
+  const double bx = b[0] - a[0], by = b[1] - a[1], bz = b[2] - a[2];
+  const double cx = c[0] - a[0], cy = c[1] - a[1], cz = c[2] - a[2];
+  const double dx = d[0] - a[0], dy = d[1] - a[1], dz = d[2] - a[2];
+  const double cydz = cy * dz, czdy = cz * dy, czdx = cz * dx, cxdz = cx * dz, cxdy = cx * dy,
+               cydx = cy * dx;
+  const double det = bx * (cydz - czdy) + by * (czdx - cxdz) + bz * (cxdy - cydx);
+  const double perm = std::fabs(bx) * (std::fabs(cydz) + std::fabs(czdy)) +
+                      std::fabs(by) * (std::fabs(czdx) + std::fabs(cxdz)) +
+                      std::fabs(bz) * (std::fabs(cxdy) + std::fabs(cydx));
+  const double bound = 1e-14 * perm;
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
+  ++exact_calls;
+  const CGAL::Orientation o = CGAL::orientation(cp(a), cp(b), cp(c), cp(d));
+  return o == CGAL::POSITIVE ? 1 : (o == CGAL::NEGATIVE ? -1 : 0);
+}
+
+// Positive when e is inside the circumsphere of the positively oriented
+// tetrahedron p0 p1 p2 p3 (CGAL's side_of_oriented_sphere), unperturbed.
+int insphere_raw(const double *p0, const double *p1, const double *p2, const double *p3,
+                 const double *e, long &exact_calls) {
+  const double ax = p0[0] - e[0], ay = p0[1] - e[1], az = p0[2] - e[2];
+  const double bx = p1[0] - e[0], by = p1[1] - e[1], bz = p1[2] - e[2];
+  const double cx = p2[0] - e[0], cy = p2[1] - e[1], cz = p2[2] - e[2];
+  const double dx = p3[0] - e[0], dy = p3[1] - e[1], dz = p3[2] - e[2];
+  const double axby = ax * by, bxay = bx * ay, bxcy = bx * cy, cxby = cx * by;
+  const double cxdy = cx * dy, dxcy = dx * cy, dxay = dx * ay, axdy = ax * dy;
+  const double axcy = ax * cy, cxay = cx * ay, bxdy = bx * dy, dxby = dx * by;
+  const double ab = axby - bxay, bc = bxcy - cxby, cd = cxdy - dxcy, da = dxay - axdy;
+  const double ac = axcy - cxay, bd = bxdy - dxby;
+  const double abc = az * bc - bz * ac + cz * ab;
+  const double bcd = bz * cd - cz * bd + dz * bc;
+  const double cda = cz * da + dz * ac + az * cd;
+  const double dab = dz * ab + az * bd + bz * da;
+  const double al = ax * ax + ay * ay + az * az, bl = bx * bx + by * by + bz * bz;
+  const double cl = cx * cx + cy * cy + cz * cz, dl = dx * dx + dy * dy + dz * dz;
+  const double det = (dl * abc - cl * dab) + (bl * cda - al * bcd);
+  const double pab = std::fabs(axby) + std::fabs(bxay), pbc = std::fabs(bxcy) + std::fabs(cxby);
+  const double pcd = std::fabs(cxdy) + std::fabs(dxcy), pda = std::fabs(dxay) + std::fabs(axdy);
+  const double pac = std::fabs(axcy) + std::fabs(cxay), pbd = std::fabs(bxdy) + std::fabs(dxby);
+  const double pabc = std::fabs(az) * pbc + std::fabs(bz) * pac + std::fabs(cz) * pab;
+  const double pbcd = std::fabs(bz) * pcd + std::fabs(cz) * pbd + std::fabs(dz) * pbc;
+  const double pcda = std::fabs(cz) * pda + std::fabs(dz) * pac + std::fabs(az) * pcd;
+  const double pdab = std::fabs(dz) * pab + std::fabs(az) * pbd + std::fabs(bz) * pda;
+  const double perm = dl * pabc + cl * pdab + bl * pcda + al * pbcd;
+  const double bound = 1e-13 * perm;
+  // det is the determinant in the orientation convention opposite to CGAL's.
+  if (det > bound) return -1;
+  if (det < -bound) return 1;
+  ++exact_calls;
+  const CGAL::Oriented_side s = CGAL::side_of_oriented_sphere(cp(p0), cp(p1), cp(p2), cp(p3), cp(e));
+  return s == CGAL::ON_POSITIVE_SIDE ? 1 : (s == CGAL::ON_NEGATIVE_SIDE ? -1 : 0);
+}
+
+// Slots of the triangle opposite slot k, ordered so that (f0 f1 f2 k) is an
+// even permutation: the apex k sees it positively.
+constexpr int kFace[4][3] = {{1, 3, 2}, {0, 2, 3}, {1, 0, 3}, {0, 1, 2}};
+
+inline void sort3(int *f) {
+  if (f[0] > f[1]) std::swap(f[0], f[1]);
+  if (f[1] > f[2]) std::swap(f[1], f[2]);
+  if (f[0] > f[1]) std::swap(f[0], f[1]);
+}
+
+}  // namespace
+
+int Mesh3::orient(const Points3 &pts, int a, int b, int c, int d) const {
+  return orient_raw(pos(pts, a), pos(pts, b), pos(pts, c), pos(pts, d), exact_);
+}
+
+bool Mesh3::less_xyz(const Points3 &pts, int a, int b) const {
+  const double *p = pos(pts, a), *q = pos(pts, b);
+  if (p[0] != q[0]) return p[0] < q[0];
+  if (p[1] != q[1]) return p[1] < q[1];
+  return p[2] < q[2];
+}
+
+// Perturbed in-sphere test of point e against the positively oriented
+// tetrahedron t[0..3]: +1 inside, -1 outside, never 0.
+int Mesh3::insphere(const Points3 &pts, const int *t, int e) const {
+  const int s = insphere_raw(pos(pts, t[0]), pos(pts, t[1]), pos(pts, t[2]), pos(pts, t[3]),
+                             pos(pts, e), exact_);
+  if (s != 0) return s;
+  // Symbolic perturbation: rank the five points (slot 4 is e).
+  int slot[5] = {0, 1, 2, 3, 4};
+  auto point = [&](int k) { return k == 4 ? e : t[k]; };
+  std::sort(slot, slot + 5, [&](int x, int y) { return less_xyz(pts, point(x), point(y)); });
+  for (int r = 4; r > 2; --r) {
+    const int k = slot[r];
+    if (k == 4) return -1;
+    int q[4] = {t[0], t[1], t[2], t[3]};
+    q[k] = e;
+    const int o = orient(pts, q[0], q[1], q[2], q[3]);
+    if (o != 0) return o;
+  }
+  return -1;
+}
+
+void Mesh3::build(const Points3 &pts, const long *ids, const int *report) {
+  valid_ = false;
+  const int n = pts.n;
+  auto name = [&](int i) { return point_name(report ? report[i] : i, ids); };
+  for (int i = 0; i < n; ++i) {
+    const double *p = pts.p(i);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      throw Error("tessera: non-finite coordinates for " + name(i));
+  }
+  // Four non-coplanar points.
+  int i1 = -1, i2 = -1, i3 = -1;
+  for (int i = 1; i < n && i1 < 0; ++i) {
+    const double *p = pts.p(0), *q = pts.p(i);
+    if (p[0] != q[0] || p[1] != q[1] || p[2] != q[2]) i1 = i;
+  }
+  for (int i = i1 + 1; i1 > 0 && i < n && i2 < 0; ++i)
+    if (!CGAL::collinear(cp(pts.p(0)), cp(pts.p(i1)), cp(pts.p(i)))) i2 = i;
+  for (int i = i2 + 1; i2 > 0 && i < n && i3 < 0; ++i)
+    if (CGAL::orientation(cp(pts.p(0)), cp(pts.p(i1)), cp(pts.p(i2)), cp(pts.p(i))) != CGAL::COPLANAR)
+      i3 = i;
+  if (i3 < 0)
+    throw Error("tessera: fewer than 4 non-coplanar points; the 3D mesh needs a 3D configuration");
+
+  n_points_ = n;
+  double lo[3], hi[3];
+  for (int d = 0; d < 3; ++d) lo[d] = hi[d] = pts.p(0)[d];
+  for (int i = 1; i < n; ++i)
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], pts.p(i)[d]);
+      hi[d] = std::max(hi[d], pts.p(i)[d]);
+    }
+  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  // The buffer kept Delaunay around a region of interest: about one spacing.
+  buffer_ = std::cbrt(std::max(hi[0] - lo[0], 1e-3 * extent) * std::max(hi[1] - lo[1], 1e-3 * extent) *
+                      std::max(hi[2] - lo[2], 1e-3 * extent) / n);
+  for (int k = 0; k < 8; ++k)
+    for (int d = 0; d < 3; ++d)
+      far_[k][d] = 0.5 * (lo[d] + hi[d]) + ((k >> d) & 1 ? 32.0 : -32.0) * extent;
+
+  std::vector<std::pair<P3, int>> in(n + 8);
+  for (int i = 0; i < n + 8; ++i) in[i] = {cp(pos(pts, i)), i};
+  DT dt(in.begin(), in.end());
+  if (static_cast<int>(dt.number_of_vertices()) != n + 8) {
+    std::vector<int> order(n);
+    for (int i = 0; i < n; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      const double *p = pts.p(a), *q = pts.p(b);
+      return std::lexicographical_compare(p, p + 3, q, q + 3);
+    });
+    for (int k = 0; k + 1 < n; ++k) {
+      const double *p = pts.p(order[k]), *q = pts.p(order[k + 1]);
+      if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2])
+        throw Error("tessera: two cell centres at the same position (" + name(order[k]) + " and " +
+                    name(order[k + 1]) + ")");
+    }
+    throw Error("tessera: points were lost by the 3D triangulation");
+  }
+  // Tetrahedra numbered by their smallest point index (a counting sort):
+  // callers keep points in spatial order (LAMMPS sorts atoms), so a point's
+  // star lies in a few cache lines; the owned points' tetrahedra come first.
+  std::vector<int> first(n + 9, 0);
+  int nt = 0;
+  auto smallest = [](DT::Cell_handle c) {
+    return std::min(std::min(c->vertex(0)->info(), c->vertex(1)->info()),
+                    std::min(c->vertex(2)->info(), c->vertex(3)->info()));
+  };
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
+    c->info() = -1;
+    if (!dt.is_infinite(c)) {
+      ++first[smallest(c) + 1];
+      ++nt;
+    }
+  }
+  for (int i = 0; i < n + 8; ++i) first[i + 1] += first[i];
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) c->info() = first[smallest(c)]++;
+  tv_.assign(4 * static_cast<size_t>(nt), -1);
+  tn_.assign(4 * static_cast<size_t>(nt), -1);
+  vt_.assign(n + 8, -1);
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
+    const int t = c->info();
+    for (int k = 0; k < 4; ++k) {
+      const int v = c->vertex(k)->info();
+      tv_[4 * t + k] = v;
+      tn_[4 * t + k] = c->neighbor(k)->info();
+      vt_[v] = t;
+    }
+  }
+  free_.clear();
+  skip_.assign(nt, 0);
+  dirty_.assign(n + 8, 0);
+  dirty_list_.clear();
+  cache_ok_ = false;
+  prev_.resize(3 * static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d) prev_[3 * i + d] = pts.p(i)[d];
+  tmark_.assign(nt, 0);
+  pmark_.assign(n + 8, 0);
+  tmap_.assign(nt, -1);
+  stamp_ = 0;
+  flips_ = f23_ = f32_ = f44_ = exact_ = 0;
+  valid_ = true;
+}
+
+std::size_t Mesh3::memory_bytes() const {
+  const std::size_t ints = tv_.capacity() + tn_.capacity() + free_.capacity() + vt_.capacity() +
+                           stack_.capacity() + pending_.capacity() + tmap_.capacity() +
+                           tused_.capacity() + bfs_.capacity() +
+                           3 * undo_.capacity() + dirty_list_.capacity() + c_off_.capacity() +
+                           c_nb_.capacity() + c_foff_.capacity() + c_tet_.capacity() +
+                           nx_off_.capacity() + nx_nb_.capacity() + nx_foff_.capacity() +
+                           nx_tet_.capacity();
+  return ints * sizeof(int) + skip_.capacity() + dirty_.capacity() + code_.capacity() * sizeof(unsigned short) +
+         (prev_.capacity() + mid_.capacity()) * sizeof(double) +
+         (tmark_.capacity() + pmark_.capacity()) * sizeof(unsigned);
+}
+
+int Mesh3::new_tet() {
+  if (!free_.empty()) {
+    const int t = free_.back();
+    free_.pop_back();
+    undo_.push_back({kUndoFreePop, 0, t});
+    return t;
+  }
+  const int t = static_cast<int>(tv_.size() / 4);
+  undo_.push_back({kUndoGrow, 0, static_cast<int>(tv_.size())});
+  for (int k = 0; k < 4; ++k) {
+    tv_.push_back(-1);
+    tn_.push_back(-1);
+  }
+  return t;
+}
+
+// Undoes the flips since undo_ was last cleared (in reverse order).
+void Mesh3::rollback() {
+  for (size_t k = undo_.size(); k-- > 0;) {
+    const auto &u = undo_[k];
+    switch (u[0]) {
+      case kUndoTv: tv_[u[1]] = u[2]; break;
+      case kUndoTn: tn_[u[1]] = u[2]; break;
+      case kUndoVt: vt_[u[1]] = u[2]; break;
+      case kUndoFreePop: free_.push_back(u[2]); break;
+      case kUndoFreePush: free_.pop_back(); break;
+      case kUndoGrow:
+        tv_.resize(u[2]);
+        tn_.resize(u[2]);
+        break;
+    }
+  }
+  undo_.clear();
+}
+
+// Replaces the tetrahedra old_tets (a flip's cavity) by the n_new
+// tetrahedra nv, if all of these are positively oriented; reconnects them to
+// each other and to the cavity's outside and queues all their triangles.
+bool Mesh3::replace(const Points3 &pts, const int *old_tets, int n_old, int (*nv)[4], int n_new) {
+  for (int i = 0; i < n_new; ++i)
+    if (orient(pts, nv[i][0], nv[i][1], nv[i][2], nv[i][3]) <= 0) return false;
+  // The cavity's boundary: triangle (sorted) and the tetrahedron outside.
+  int ext_face[16][3], ext_nb[16], n_ext = 0;
+  for (int i = 0; i < n_old; ++i) {
+    const int o = old_tets[i];
+    for (int s = 0; s < 4; ++s) {
+      const int nb = tn_[4 * o + s];
+      if (std::find(old_tets, old_tets + n_old, nb) != old_tets + n_old) continue;
+      int m = 0;
+      for (int q = 0; q < 4; ++q)
+        if (q != s) ext_face[n_ext][m++] = tv_[4 * o + q];
+      sort3(ext_face[n_ext]);
+      ext_nb[n_ext++] = nb;
+    }
+  }
+  int id[4];
+  for (int i = 0; i < n_new; ++i) id[i] = i < n_old ? old_tets[i] : new_tet();
+  if (skip_.size() < tv_.size() / 4) skip_.resize(tv_.size() / 4, 0);
+  for (int i = 0; i < n_new; ++i) skip_[id[i]] = 0;
+  auto set_tv = [&](int k, int v) {
+    undo_.push_back({kUndoTv, k, tv_[k]});
+    tv_[k] = v;
+  };
+  auto set_tn = [&](int k, int v) {
+    undo_.push_back({kUndoTn, k, tn_[k]});
+    tn_[k] = v;
+  };
+  for (int i = n_new; i < n_old; ++i) {
+    set_tv(4 * old_tets[i], -1);
+    free_.push_back(old_tets[i]);
+    undo_.push_back({kUndoFreePush, 0, 0});
+  }
+  for (int i = 0; i < n_new; ++i) {
+    const int t = id[i];
+    for (int s = 0; s < 4; ++s) set_tv(4 * t + s, nv[i][s]);
+    for (int s = 0; s < 4; ++s) {
+      int f[3], m = 0;
+      for (int q = 0; q < 4; ++q)
+        if (q != s) f[m++] = nv[i][q];
+      sort3(f);
+      int nb = -2;
+      for (int j = 0; j < n_new && nb == -2; ++j) {
+        if (j == i) continue;
+        int hit = 0;
+        for (int q = 0; q < 4; ++q) hit += nv[j][q] == f[0] || nv[j][q] == f[1] || nv[j][q] == f[2];
+        if (hit == 3) nb = id[j];
+      }
+      if (nb == -2) {
+        for (int e = 0; e < n_ext; ++e)
+          if (ext_face[e][0] == f[0] && ext_face[e][1] == f[1] && ext_face[e][2] == f[2]) {
+            nb = ext_nb[e];
+            if (nb >= 0)
+              for (int q = 0; q < 4; ++q) {
+                const int v = tv_[4 * nb + q];
+                if (v != f[0] && v != f[1] && v != f[2]) set_tn(4 * nb + q, t);
+              }
+            break;
+          }
+      }
+      if (nb == -2) throw Error("tessera: internal error in a 3D flip (cavity boundary mismatch)");
+      set_tn(4 * t + s, nb);
+    }
+  }
+  for (int i = 0; i < n_new; ++i)
+    for (int s = 0; s < 4; ++s) {
+      const int v = nv[i][s];
+      if (!dirty_[v]) {
+        dirty_[v] = 1;
+        dirty_list_.push_back(v);
+      }
+      undo_.push_back({kUndoVt, v, vt_[v]});
+      vt_[v] = id[i];
+      if (tn_[4 * id[i] + s] >= 0) stack_.push_back(4 * id[i] + s);
+    }
+  return true;
+}
+
+int Mesh3::slot_of_nb(int tet, int nb) const {
+  int j = 0;
+  while (tn_[4 * tet + j] != nb) ++j;
+  return j;
+}
+
+int Mesh3::slot_of(int tet, int v) const {
+  for (int q = 0; q < 4; ++q)
+    if (tv_[4 * tet + q] == v) return q;
+  return -1;
+}
+
+// The flips across triangle k of tetrahedron t = (a b c p), towards its
+// neighbour u = (a b c d).  edge: 0, 1, 2 for the edges a b, b c, c a of
+// the triangle; each flip checks that its new tetrahedra are positively
+// oriented and that the cavity has the right shape, and returns false (the
+// mesh unchanged) otherwise.
+bool Mesh3::flip23(const Points3 &pts, int t, int k) {
+  const int u = tn_[4 * t + k];
+  if (u < 0) return false;
+  const int p = tv_[4 * t + k], d = tv_[4 * u + slot_of_nb(u, t)];
+  const int a = tv_[4 * t + kFace[k][0]], b = tv_[4 * t + kFace[k][1]], c = tv_[4 * t + kFace[k][2]];
+  int nv[3][4] = {{a, b, d, p}, {b, c, d, p}, {c, a, d, p}};
+  const int old[2] = {t, u};
+  if (!replace(pts, old, 2, nv, 3)) return false;
+  ++f23_;
+  return true;
+}
+
+bool Mesh3::flip32(const Points3 &pts, int t, int k, int edge) {
+  const int u = tn_[4 * t + k];
+  if (u < 0) return false;
+  const int p = tv_[4 * t + k], d = tv_[4 * u + slot_of_nb(u, t)];
+  const int x = tv_[4 * t + kFace[k][edge]], y = tv_[4 * t + kFace[k][(edge + 1) % 3]],
+            z = tv_[4 * t + kFace[k][(edge + 2) % 3]];
+  // The edge x y must have degree 3, its third tetrahedron x y p d.
+  const int w = tn_[4 * t + slot_of(t, z)];
+  if (w < 0 || slot_of(w, d) < 0 || tn_[4 * u + slot_of(u, z)] != w) return false;
+  int nv[2][4] = {{x, d, z, p}, {d, y, z, p}};
+  const int old[3] = {t, u, w};
+  if (!replace(pts, old, 3, nv, 2)) return false;
+  ++f32_;
+  return true;
+}
+
+bool Mesh3::flip44(const Points3 &pts, int t, int k, int edge, bool delaunay) {
+  const int u = tn_[4 * t + k];
+  if (u < 0) return false;
+  const int p = tv_[4 * t + k], d = tv_[4 * u + slot_of_nb(u, t)];
+  const int x = tv_[4 * t + kFace[k][edge]], y = tv_[4 * t + kFace[k][(edge + 1) % 3]],
+            z = tv_[4 * t + kFace[k][(edge + 2) % 3]];
+  // The edge x y of degree 4: t, u, w1 = x y d e, w = x y p e.
+  const int w = tn_[4 * t + slot_of(t, z)];
+  if (w < 0) return false;
+  int e = -1;
+  for (int q = 0; q < 4; ++q) {
+    const int v = tv_[4 * w + q];
+    if (v != x && v != y && v != p) e = v;
+  }
+  const int w1 = tn_[4 * u + slot_of(u, z)];
+  if (w1 < 0 || w1 == w || slot_of(w1, e) < 0 || tn_[4 * w + slot_of(w, p)] != w1) return false;
+  int nv[4][4] = {{x, d, z, p}, {d, y, z, p}, {d, x, e, p}, {y, d, e, p}};
+  if (delaunay) {
+    // Unless p, d, x, y are coplanar the new axis need not be better for
+    // both halves: flip only to an octahedron whose four inner triangles
+    // pass the in-sphere test (no flip back and forth).
+    for (auto &q : nv)
+      if (orient(pts, q[0], q[1], q[2], q[3]) <= 0) return false;
+    if (insphere(pts, nv[0], y) > 0 || insphere(pts, nv[0], e) > 0 || insphere(pts, nv[1], e) > 0 ||
+        insphere(pts, nv[2], y) > 0)
+      return false;
+  }
+  const int old[4] = {t, u, w1, w};
+  if (!replace(pts, old, 4, nv, 4)) return false;
+  ++f44_;
+  return true;
+}
+
+// A triangle that fails the in-sphere test: the flip the position of the
+// segment p d relative to the triangle calls for.
+bool Mesh3::flip_face(const Points3 &pts, int t, int k) {
+  const int u = tn_[4 * t + k];
+  const int p = tv_[4 * t + k], d = tv_[4 * u + slot_of_nb(u, t)];
+  const int f[3] = {tv_[4 * t + kFace[k][0]], tv_[4 * t + kFace[k][1]], tv_[4 * t + kFace[k][2]]};
+  int o[3], bad = 0;
+  for (int e = 0; e < 3; ++e) {
+    o[e] = orient(pts, f[e], f[(e + 1) % 3], d, p);
+    bad += o[e] <= 0;
+  }
+  if (bad == 0) return flip23(pts, t, k);
+  // p d passes beyond (or through) an edge: remove it by 3-2 if it has
+  // degree 3, else by 4-4 if it has degree 4 (the octahedron around it gets
+  // p d as its axis; p, d and the edge need not be coplanar).
+  for (int e = 0; e < 3; ++e)
+    if (o[e] <= 0 && (flip32(pts, t, k, e) || flip44(pts, t, k, e, true))) return true;
+  return false;
+}
+
+// An inverted or flat tetrahedron t: any flip with a neighbour that leaves
+// only positively oriented tetrahedra (flips preserve the signed covering,
+// so the mesh is a triangulation again once no tetrahedron is negative).
+bool Mesh3::untangle(const Points3 &pts, int t) {
+  for (int k = 0; k < 4; ++k) {
+    if (tn_[4 * t + k] < 0) continue;
+    if (flip23(pts, t, k)) return true;
+    for (int e = 0; e < 3; ++e)
+      if (flip32(pts, t, k, e) || flip44(pts, t, k, e, false)) return true;
+  }
+  // As the neighbour of a triangle: the same flips seen from the other side.
+  for (int k = 0; k < 4; ++k) {
+    const int u = tn_[4 * t + k];
+    if (u < 0) continue;
+    const int j = slot_of_nb(u, t);
+    if (flip23(pts, u, j)) return true;
+    for (int e = 0; e < 3; ++e)
+      if (flip32(pts, u, j, e) || flip44(pts, u, j, e, false)) return true;
+  }
+  return false;
+}
+
+// Outcodes of the points against the region of interest: bit 2d (2d+1) set
+// when coordinate d lies below (above) the region grown by the buffer, bits
+// 6 + 2d (7 + 2d) the same for the region itself.  Points whose outcodes
+// share a bit are separated from the (grown) region by one of its faces'
+// planes, and so is their convex hull.
+void Mesh3::outcodes(const Points3 &pts) {
+  const int n = n_points_;
+  code_.resize(n + 8);
+  for (int i = 0; i < n + 8; ++i) {
+    const double *p = pos(pts, i);
+    unsigned c = 0;
+    for (int d = 0; d < 3; ++d) {
+      c |= (p[d] < roi_lo_[d] - buffer_) << (2 * d);
+      c |= (p[d] > roi_hi_[d] + buffer_) << (2 * d + 1);
+      c |= (p[d] < roi_lo_[d]) << (6 + 2 * d);
+      c |= (p[d] > roi_hi_[d]) << (7 + 2 * d);
+    }
+    code_[i] = static_cast<unsigned short>(c);
+  }
+}
+
+// Whether the points v[0..m) are separated from the region of interest
+// (grown by the buffer if grown).
+bool Mesh3::outside(const int *v, int m, bool grown) const {
+  if (!roi_lo_) return false;
+  unsigned c = code_[v[0]];
+  for (int s = 1; s < m; ++s) c &= code_[v[s]];
+  return (grown ? c & 0x3f : c >> 6) != 0;
+}
+
+// Marks the tetrahedra to leave alone (free slots, outside the region) and
+// lists the others that are inverted or flat in pending_; returns how many.
+int Mesh3::scan(const Points3 &pts) {
+  const int nt = static_cast<int>(tv_.size() / 4);
+  if (roi_lo_) outcodes(pts);
+  pending_.clear();
+  if (skip_.size() < static_cast<size_t>(nt)) skip_.resize(nt);
+  for (int t = 0; t < nt; ++t) {
+    const int *q = &tv_[4 * t];
+    skip_[t] = q[0] < 0 || outside(q, 4, true);
+    if (skip_[t]) continue;
+    if (orient(pts, q[0], q[1], q[2], q[3]) <= 0) pending_.push_back(t);
+  }
+  return static_cast<int>(pending_.size());
+}
+
+// After scan(pts): untangles pending_, then restores the Delaunay property.
+bool Mesh3::repair(const Points3 &pts) {
+  const int nt = static_cast<int>(tv_.size() / 4);
+  stack_.clear();
+  for (int t = 0; t < nt; ++t) {
+    if (skip_[t]) continue;
+    for (int k = 0; k < 4; ++k) {
+      const int u = tn_[4 * t + k];
+      if (u > t || (u >= 0 && skip_[u])) stack_.push_back(4 * t + k);
+    }
+  }
+  // Untangle inverted or flat tetrahedra first (the in-sphere test needs
+  // positive ones): rounds over them while some flip succeeds.
+  while (!pending_.empty()) {
+    bool progress = false;
+    for (size_t i = 0; i < pending_.size(); ++i) {
+      const int t = pending_[i];
+      const int *q = &tv_[4 * t];
+      if (q[0] < 0 || orient(pts, q[0], q[1], q[2], q[3]) > 0) {
+        pending_[i--] = pending_.back();
+        pending_.pop_back();
+        continue;
+      }
+      if (untangle(pts, t)) {
+        progress = true;
+        ++untangled_;
+        pending_[i--] = pending_.back();
+        pending_.pop_back();
+      }
+    }
+    if (progress) continue;
+    // Left as they are outside the region itself (in the buffer around it).
+    for (const int t : pending_) {
+      if (!outside(&tv_[4 * t], 4, false)) {
+        failure_ = "an inverted or flat tetrahedron no flip repairs";
+        return false;
+      }
+      skip_[t] = 1;
+    }
+    pending_.clear();
+  }
+  const long limit = flips_ + 1000 + n_tets();
+  bool flipped_this_round = false;
+  for (;;) {
+    while (!stack_.empty()) {
+      const int code = stack_.back();
+      stack_.pop_back();
+      const int t = code >> 2, k = code & 3;
+      if (tv_[4 * t] < 0) continue;
+      const int u = tn_[4 * t + k];
+      if (u < 0 || skip_[t] || skip_[u]) continue;
+      if (roi_lo_) {
+        const int f[3] = {tv_[4 * t + kFace[k][0]], tv_[4 * t + kFace[k][1]], tv_[4 * t + kFace[k][2]]};
+        if (outside(f, 3, true)) continue;
+      }
+      if (insphere(pts, &tv_[4 * t], tv_[4 * u + slot_of_nb(u, t)]) <= 0) continue;
+      if (!flip_face(pts, t, k)) {
+        pending_.push_back(code);
+        continue;
+      }
+      flipped_this_round = true;
+      if (++flips_ > limit) {
+        failure_ = "more flips than tetrahedra";
+        return false;
+      }
+    }
+    if (pending_.empty()) break;
+    if (!flipped_this_round) {
+      // A round over the waiting triangles changed nothing: if one of them
+      // is still not locally Delaunay, no flip sequence found it.
+      for (const int code : pending_) {
+        const int t = code >> 2, k = code & 3;
+        if (tv_[4 * t] < 0) continue;
+        const int u = tn_[4 * t + k];
+        if (u < 0) continue;
+        const int f[3] = {tv_[4 * t + kFace[k][0]], tv_[4 * t + kFace[k][1]], tv_[4 * t + kFace[k][2]]};
+        if (insphere(pts, &tv_[4 * t], tv_[4 * u + slot_of_nb(u, t)]) > 0 && !outside(f, 3, false)) {
+          failure_ = "a non-Delaunay triangle no flip repairs";
+          return false;
+        }
+      }
+      pending_.clear();
+      break;
+    }
+    flipped_this_round = false;
+    stack_.swap(pending_);
+    pending_.clear();
+  }
+  return true;
+}
+
+bool Mesh3::update(const Points3 &pts, const double *roi_lo, const double *roi_hi) {
+  flips_ = f23_ = f32_ = f44_ = exact_ = untangled_ = substeps_ = 0;
+  failure_ = nullptr;
+  if (!valid_ || pts.n != n_points_) {
+    failure_ = valid_ ? "the number of points changed" : "the mesh is invalid (call build())";
+    valid_ = false;
+    return false;
+  }
+  const int n = n_points_;
+  for (int i = 0; i < n; ++i) {
+    const double *p = pts.p(i);
+    if (!std::isfinite(p[0] + p[1] + p[2])) {
+      failure_ = "non-finite coordinates";
+      valid_ = false;
+      return false;
+    }
+  }
+  roi_lo_ = roi_hi_ = nullptr;
+  if (roi_lo && roi_hi) {
+    std::copy(roi_lo, roi_lo + 3, roi_box_);
+    std::copy(roi_hi, roi_hi + 3, roi_box_ + 3);
+    roi_lo_ = roi_box_;
+    roi_hi_ = roi_box_ + 3;
+  }
+  // First in one go; if the flips get stuck (several events of a continuous
+  // motion merged into one step can leave no flippable triangle), back to
+  // the mesh as it was and again in 2, 4, 8 substeps from the previous
+  // positions, each one repaired before the next.
+  undo_.clear();
+  bool ok = false;
+  for (int nsub = 1; nsub <= 8 && !ok; nsub *= 2) {
+    if (nsub > 1) {
+      rollback();
+      f23_ = f32_ = f44_ = untangled_ = 0;
+    }
+    substeps_ = nsub;
+    ok = true;
+    for (int k = 1; k <= nsub && ok; ++k) {
+      const Points3 at = k == nsub ? pts : interpolate(pts, static_cast<double>(k) / nsub);
+      scan(at);
+      ok = repair(at);
+    }
+  }
+  flips_ = f23_ + f32_ + f44_;
+  if (!ok) {
+    valid_ = false;
+    return false;
+  }
+  for (int i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d) prev_[3 * i + d] = pts.p(i)[d];
+  return true;
+}
+
+Points3 Mesh3::interpolate(const Points3 &pts, double s) {
+  const int n = n_points_;
+  mid_.resize(3 * static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i)
+    for (int d = 0; d < 3; ++d) mid_[3 * i + d] = prev_[3 * i + d] + s * (pts.p(i)[d] - prev_[3 * i + d]);
+  return Points3{mid_.data(), n, 3};
+}
+
+bool Mesh3::advance(const Points3 &pts, int n_owned, const double *roi_lo, const double *roi_hi,
+                    Tessellation3 &t) {
+  incremental_ = false;
+  if (!update(pts, roi_lo, roi_hi)) return false;
+  cells(pts, n_owned, t);
+  incremental_ = true;
+  return true;
+}
+
+double time_plain_delaunay_3d(const Points3 &pts, int n, long *cells) {
+  using Plain = CGAL::Delaunay_triangulation_3<K>;
+  std::vector<Plain::Point> in;
+  in.reserve(static_cast<size_t>(n > 0 ? n : 0));
+  for (int i = 0; i < n; ++i) in.push_back(cp(pts.p(i)));
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  Plain dt(in.begin(), in.end());
+  const double seconds = std::chrono::duration<double>(clock::now() - t0).count();
+  if (cells) *cells = static_cast<long>(dt.number_of_finite_cells());
+  return seconds;
+}
+
+}  // namespace tessera

@@ -234,9 +234,10 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
           if (a < best_angle) best_angle = a, best = j;
         }
       std::ostringstream s;
-      s << "tessera: " << point_name(i, ids) << " is too close to " << point_name(best, ids)
-        << " (angular distance " << best_angle
-        << ") to be triangulated on the sphere in double precision";
+      s << "tessera: " << point_name(std::min(i, best), ids) << " and "
+        << point_name(std::max(i, best), ids)
+        << " project to the same point of the sphere to double precision (angular distance "
+        << best_angle << "; points closer than about 1e-8 R cannot be triangulated)";
       throw Error(s.str());
     }
   if (static_cast<long>(faces.size()) != 2L * n - 4)

@@ -330,6 +330,18 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
     t.area[i] = R * R * area;
     t.perimeter[i] = perim;
   }
+  // Points on one circle that the rounding of their directions has lifted
+  // off a common plane: the hull is flat to round-off, every pole is one of
+  // the circle's two poles, and the cells are lunes of two edges.  A cell
+  // with fewer than three edges of non-zero length exists only then.
+  for (int i = 0; i < n; ++i)
+    if (t.coordination_number(i, 0.0) < 3) {
+      std::ostringstream s;
+      s << "tessera: all " << n
+        << " points lie on one circle of the sphere (to round-off; a great circle if its plane"
+           " passes through the centre): their tessellation is degenerate";
+      throw Error(s.str());
+    }
   return t;
 }
 

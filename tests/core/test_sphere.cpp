@@ -104,10 +104,11 @@ std::vector<W> dodecahedron() {
   return v;
 }
 
-std::vector<W> random_directions(int n, Rng &rng) {
+// n directions uniform on the sphere, or on the cap z > zmin.
+std::vector<W> random_directions(int n, Rng &rng, double zmin = -1.0) {
   std::vector<W> d;
   for (int i = 0; i < n; ++i) {
-    const double z = rng.uniform(-1.0, 1.0), ph = rng.uniform(0.0, 2.0 * kPi);
+    const double z = rng.uniform(zmin, 1.0), ph = rng.uniform(0.0, 2.0 * kPi);
     const double s = std::sqrt(1.0 - z * z);
     d.push_back({s * std::cos(ph), s * std::sin(ph), z});
   }
@@ -184,6 +185,16 @@ TEST(Sphere, ErrorsNameTheProblemAndThePoints) {
   for (int k = 0; k < 8; ++k) ring.push_back({std::cos(0.7 * k + 0.1), std::sin(0.7 * k + 0.1), 0.0});
   EXPECT_THAT(error_of([&] { tess(c, 2.0, place(c, ring, 2.0)); }),
               testing::HasSubstr("all 8 points lie on one circle"));
+  {
+    // The same circle turned: the rounded directions are no longer exactly
+    // coplanar, the hull is flat only to round-off.
+    Rng rng(7);
+    const Rotation rot(rng);
+    std::vector<W> turned;
+    for (const W &d : ring) turned.push_back(rot(d));
+    EXPECT_THAT(error_of([&] { tess(c, 2.0, place(c, turned, 2.0, &rng)); }),
+                testing::HasSubstr("all 8 points lie on one circle"));
+  }
   ring.clear();
   for (int k = 0; k < 6; ++k) ring.push_back({0.6 * std::cos(1.0 * k), 0.6 * std::sin(1.0 * k), 0.8});
   EXPECT_THAT(error_of([&] { tess(Vec3{}, 1.0, place(Vec3{}, ring, 1.0)); }),
@@ -285,23 +296,33 @@ TEST(Sphere, PentakisDodecahedronGivesTwelvePentagonsAndTwentyHexagons) {
 }
 
 TEST(Sphere, CubeKeepsItsFourfoldVerticesAsZeroLengthEdges) {
-  const Vec3 c{0.0, 0.0, 0.0};
-  const double R = 1.7;
-  std::vector<W> dirs;
-  for (int a : {-1, 1})
-    for (int b : {-1, 1})
-      for (int d : {-1, 1}) dirs.push_back({1.0 * a, 1.0 * b, 1.0 * d});
-  const auto t = tess(c, R, place(c, dirs, R));
-  ASSERT_EQ(t.triangles.size(), 12u);  // each square face split in two
-  for (int i = 0; i < 8; ++i) {
-    // A spherical triangle with its corners on three orthogonal axes; the
-    // face split through i's corner gives i one more vertex, at the same pole.
-    EXPECT_EQ(t.coordination_number(i), 3);
-    EXPECT_NEAR(t.area[i], kPi * R * R / 2.0, 1e-14);
-    EXPECT_NEAR(t.perimeter[i], 3.0 * kPi / 2.0 * R, 1e-14);
-    int zero = 0;
-    for (int k = t.cell_offset[i]; k < t.cell_offset[i + 1]; ++k) zero += t.edge_length[k] == 0.0;
-    EXPECT_EQ(zero, t.cell_size(i) - 3);
+  // Axis-aligned, then turned (the rounded directions of a face's four
+  // points are then coplanar only to round-off, so the poles of its two
+  // triangles differ by round-off, and that edge must still come out 0).
+  Rng rng(13);
+  for (int turned = 0; turned < 4; ++turned) {
+    const Vec3 c{0.0, 0.0, 0.0};
+    const double R = 1.7;
+    const Rotation rot(rng);
+    std::vector<W> dirs;
+    for (int a : {-1, 1})
+      for (int b : {-1, 1})
+        for (int d : {-1, 1}) {
+          const W x{1.0 * a, 1.0 * b, 1.0 * d};
+          dirs.push_back(turned ? rot(x) : x);
+        }
+    const auto t = tess(c, R, place(c, dirs, R, turned ? &rng : nullptr));
+    ASSERT_EQ(t.triangles.size(), 12u);  // each square face split in two
+    for (int i = 0; i < 8; ++i) {
+      // A spherical triangle with its corners on three orthogonal axes; a
+      // face split through i's corner gives i one more vertex, at the same pole.
+      EXPECT_EQ(t.coordination_number(i), 3);
+      EXPECT_NEAR(t.area[i], kPi * R * R / 2.0, 1e-14);
+      EXPECT_NEAR(t.perimeter[i], 3.0 * kPi / 2.0 * R, 1e-14);
+      int zero = 0;
+      for (int k = t.cell_offset[i]; k < t.cell_offset[i + 1]; ++k) zero += t.edge_length[k] == 0.0;
+      EXPECT_EQ(zero, t.cell_size(i) - 3) << "turned " << turned;
+    }
   }
 }
 
@@ -328,12 +349,14 @@ double girard_area(const tessera::SphereTessellation &t, int i) {
 }
 
 TEST(Sphere, RandomPointsMatchSlowOracles) {
-  for (uint64_t seed : {1, 2, 3}) {
+  // The last two: points on a cap, the centre outside their hull (cells
+  // reaching round the far side; poles that are not projected circumcentres).
+  for (uint64_t seed : {1, 2, 3, 4, 5}) {
     Rng rng(100 + seed);
-    const int n = seed == 1 ? 4 : seed == 2 ? 37 : 300;
+    const int n = seed == 1 ? 4 : seed == 2 ? 37 : seed == 3 ? 300 : seed == 4 ? 5 : 60;
     const Vec3 c{rng.uniform(-2, 2), rng.uniform(-2, 2), rng.uniform(-2, 2)};
     const double R = rng.uniform(0.5, 5.0);
-    const std::vector<W> dirs = random_directions(n, rng);
+    const std::vector<W> dirs = random_directions(n, rng, seed >= 4 ? 0.6 : -1.0);
     const auto t = tess(c, R, place(c, dirs, R, &rng));
     ASSERT_EQ(static_cast<int>(t.triangles.size()), 2 * n - 4);
     double total = 0.0, sum_l = 0.0, sum_p = 0.0;
@@ -372,12 +395,14 @@ TEST(Sphere, RandomPointsMatchSlowOracles) {
 
 // ---------------------------------------------------------------- forces
 
-// Central differences of E along geodesics through each point.
-void check_forces_fd(uint64_t seed, int n, tessera::Tension tension, bool per_cell_area0) {
+// Central differences of E along geodesics through each point, in two
+// tangent directions.
+void check_forces_fd(uint64_t seed, int n, tessera::Tension tension, bool per_cell_area0,
+                     double zmin = -1.0) {
   Rng rng(seed);
   const Vec3 c{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)};
   const double R = rng.uniform(1.0, 4.0);
-  const std::vector<W> dirs = random_directions(n, rng);
+  const std::vector<W> dirs = random_directions(n, rng, zmin);
   const std::vector<double> xyz = place(c, dirs, R);
   const double a0 = 4.0 * kPi * R * R / n;
   tessera::Model m = random_model(rng, 2, a0, tension);
@@ -416,8 +441,12 @@ void check_forces_fd(uint64_t seed, int n, tessera::Tension tension, bool per_ce
     const W e1 = unit(cross(u, std::fabs(u.x) < 0.6 ? W{1, 0, 0} : W{0, 1, 0}));
     const W e2 = cross(u, e1);
     for (const W &dir : {e1, e2}) {
-      const double fd = -(energy_at(i, dir, h) - energy_at(i, dir, -h)) / (2.0 * h);
-      EXPECT_NEAR(dot(F, dir), fd, 2e-6 * (fmax + 1.0)) << "seed " << seed << " point " << i;
+      // Fourth-order central difference (the cells reaching round a cap make
+      // third derivatives large).
+      const double fd = -(8.0 * (energy_at(i, dir, h) - energy_at(i, dir, -h)) -
+                          (energy_at(i, dir, 2.0 * h) - energy_at(i, dir, -2.0 * h))) /
+                        (12.0 * h);
+      EXPECT_NEAR(dot(F, dir), fd, 3e-7 * (fmax + 1.0)) << "seed " << seed << " point " << i;
     }
   }
   // Rotation invariance: no torque about the centre (the forces do not sum to zero).
@@ -444,6 +473,7 @@ TEST(Sphere, ForcesMatchCentralDifferencesEdgeTension) { check_forces_fd(201, 30
 TEST(Sphere, ForcesMatchCentralDifferencesCellTension) { check_forces_fd(202, 25, tessera::Tension::Cell, false); }
 TEST(Sphere, ForcesMatchCentralDifferencesPerCellArea) { check_forces_fd(203, 20, tessera::Tension::Edge, true); }
 TEST(Sphere, ForcesMatchCentralDifferencesFewCells) { check_forces_fd(204, 6, tessera::Tension::Edge, false); }
+TEST(Sphere, ForcesMatchCentralDifferencesOnACap) { check_forces_fd(205, 25, tessera::Tension::Cell, true, 0.5); }
 
 TEST(Sphere, QuadraticParametersGiveTheQuadraticEnergy) {
   Rng rng(301);
@@ -594,9 +624,9 @@ TEST(Sphere, FlatLimitApproachesThePlanarModelAsOneOverRSquared) {
     err_f.push_back(ef);
   }
   for (size_t k = 0; k + 1 < err_a.size(); ++k) {
-    EXPECT_NEAR(err_a[k] / err_a[k + 1], 4.0, 0.6) << k;
-    EXPECT_NEAR(err_p[k] / err_p[k + 1], 4.0, 0.6) << k;
-    EXPECT_NEAR(err_f[k] / err_f[k + 1], 4.0, 0.6) << k;
+    EXPECT_NEAR(err_a[k] / err_a[k + 1], 4.0, 0.3) << k;
+    EXPECT_NEAR(err_p[k] / err_p[k + 1], 4.0, 0.3) << k;
+    EXPECT_NEAR(err_f[k] / err_f[k + 1], 4.0, 0.3) << k;
   }
   EXPECT_LT(err_a.back(), 1e-3);
   EXPECT_LT(err_f.back(), 1e-3);

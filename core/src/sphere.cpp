@@ -5,12 +5,16 @@
 // Triangulation.  The spherical Delaunay triangulation of points on a sphere
 // is the convex hull of the points (a circle on the sphere is the sphere cut
 // by a plane; a triangle's circumcircle cap is empty iff no point lies
-// beyond its facet plane).  The hull is taken by CGAL (exact predicates) of
-// the unit directions u_i as rounded to doubles.  Those are not exactly on
-// the unit sphere, but a point can only fall inside the hull of the others
-// if it is within about sqrt(eps) of another one (the sagitta of a cap of
-// angular size d is d^2/2, against round-off of order eps), whatever the
-// co-circularity; such inputs are refused with a message naming the pair.
+// beyond its facet plane).  It is built from the unit directions u_i as
+// rounded to doubles, with exact predicates, by CGAL's Delaunay
+// triangulation on the sphere (Caroli et al., SEA 2010: the predicates are
+// 3D orientations, so the result is the hull of the rounded directions), or
+// by CGAL's convex hull when the points lie in one hemisphere.  The rounded
+// directions are not exactly on the sphere, but a point can only fall
+// inside the hull of the others if it is within about sqrt(eps) of another
+// one (the sagitta of a cap of angular size d is d^2/2, against round-off
+// of order eps), whatever the co-circularity; pairs closer than 2^-23 (the
+// bound of CGAL's triangulation on the sphere) are refused, naming them.
 //
 // Geometry.  Voronoi vertex of facet (a, b, c), counter-clockwise from
 // outside: v = n/|n|, n = (u_b - u_a) x (u_c - u_a), its outward normal.  A
@@ -36,12 +40,20 @@
 
 #include "point_name.h"
 
+#include <CGAL/Delaunay_triangulation_on_sphere_2.h>
+#include <CGAL/Delaunay_triangulation_on_sphere_traits_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_on_sphere_face_base_2.h>
+#include <CGAL/Triangulation_on_sphere_vertex_base_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/convex_hull_3.h>
+#include <CGAL/hilbert_sort_on_sphere.h>
 
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <numeric>
 #include <sstream>
 #include <unordered_map>
@@ -77,6 +89,115 @@ inline double solid_angle(V a, V b, V c) {
   const double D = dot(a, cross(b, c));
   const double S = 1.0 + dot(a, b) + dot(b, c) + dot(c, a);
   return 2.0 * std::atan2(D, S);
+}
+
+// Closest two directions may be (chord on the unit sphere), the bound under
+// which CGAL's triangulation on the sphere guarantees that no point rounded
+// to doubles near the sphere is hidden by round-off: 2^-23.
+constexpr double kMinChord = 0x1p-23;
+
+std::array<double, 3> key_of(const P3 &p) { return {p.x(), p.y(), p.z()}; }
+struct KeyHash {
+  static uint64_t mix(uint64_t z) {  // splitmix64's finaliser
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  size_t operator()(const std::array<double, 3> &a) const {
+    uint64_t b[3];
+    std::memcpy(b, a.data(), sizeof b);
+    return mix(b[0] + mix(b[1] + mix(b[2])));
+  }
+};
+using IndexMap = std::unordered_map<std::array<double, 3>, int, KeyHash>;
+
+[[noreturn]] void throw_too_close(int i, int j, const std::vector<Vec3> &dir, const long *ids) {
+  std::ostringstream s;
+  s << "tessera: " << point_name(i, ids) << " and " << point_name(j, ids)
+    << " project to the same point of the sphere to double precision (angular distance "
+    << angle(vv(dir[i]), vv(dir[j])) << "; points closer than 2^-23 R = 1.2e-7 R cannot be"
+       " triangulated)";
+  throw Error(s.str());
+}
+
+// The nearest other point of i (brute force; for error messages only).
+int nearest(int i, const std::vector<Vec3> &dir) {
+  int best = -1;
+  double best_angle = 10.0;
+  for (int j = 0; j < static_cast<int>(dir.size()); ++j)
+    if (j != i) {
+      const double a = angle(vv(dir[i]), vv(dir[j]));
+      if (a < best_angle) best_angle = a, best = j;
+    }
+  return best;
+}
+
+// CGAL's Delaunay triangulation on the sphere (Caroli et al.'s predicates,
+// points inserted along a Hilbert curve on the sphere: about ten times
+// faster than the hull).  Returns false, leaving the work to the hull, when
+// it does not give a full triangulation of the sphere: points all in one
+// hemisphere (CGAL then fills the rest with "ghost" faces, which are not
+// hull facets) or a direction CGAL finds too far off the sphere.
+struct VertexIndex {
+  int i = -1;
+};
+using SphereTraits = CGAL::Delaunay_triangulation_on_sphere_traits_2<K>;
+using SVb = CGAL::Triangulation_vertex_base_with_info_2<VertexIndex, SphereTraits,
+                                                        CGAL::Triangulation_on_sphere_vertex_base_2<SphereTraits>>;
+using SFb = CGAL::Triangulation_on_sphere_face_base_2<SphereTraits>;
+using STds = CGAL::Triangulation_data_structure_2<SVb, SFb>;
+using SDT = CGAL::Delaunay_triangulation_on_sphere_2<SphereTraits, STds>;
+
+bool delaunay_on_sphere(const std::vector<P3> &P, const IndexMap &index_of,
+                        const std::vector<Vec3> &dir, const long *ids,
+                        std::vector<std::array<int, 3>> &faces) {
+  std::vector<P3> order(P);
+  CGAL::hilbert_sort_on_sphere(order.begin(), order.end(), 1.0, P3(0.0, 0.0, 0.0));
+  SDT dt(SphereTraits(P3(0.0, 0.0, 0.0), 1.0));
+  SDT::Face_handle hint;
+  for (const P3 &p : order) {
+    const int i = index_of.at(key_of(p));
+    const SDT::Vertex_handle v = dt.insert(p, hint);
+    if (v == SDT::Vertex_handle()) return false;
+    if (v->info().i >= 0) throw_too_close(std::min(i, v->info().i), std::max(i, v->info().i), dir, ids);
+    v->info().i = i;
+    hint = v->face();
+  }
+  if (dt.dimension() != 2 || static_cast<int>(dt.number_of_vertices()) != static_cast<int>(P.size()))
+    return false;
+  faces.clear();
+  for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) {
+    if (dt.is_ghost(f)) return false;
+    faces.push_back({f->vertex(0)->info().i, f->vertex(1)->info().i, f->vertex(2)->info().i});
+  }
+  return true;
+}
+
+// The convex hull (CGAL's quickhull, exact predicates): right for any
+// points, also all in one hemisphere.  A point the rounding of directions
+// put inside the hull of the others is named with its nearest point.
+void convex_hull(const std::vector<P3> &P, const IndexMap &index_of, const std::vector<Vec3> &dir,
+                 const long *ids, std::vector<std::array<int, 3>> &faces) {
+  const int n = static_cast<int>(P.size());
+  std::vector<P3> hull_points;
+  std::vector<std::array<int, 3>> hf;
+  CGAL::convex_hull_3(P.begin(), P.end(), hull_points, hf);
+  std::vector<int> hull_index(hull_points.size());
+  std::vector<char> on_hull(n, 0);
+  for (size_t h = 0; h < hull_points.size(); ++h) {
+    const auto it = index_of.find(key_of(hull_points[h]));
+    if (it == index_of.end()) throw Error("tessera: internal error: a hull vertex is no input point");
+    hull_index[h] = it->second;
+    on_hull[it->second] = 1;
+  }
+  for (int i = 0; i < n; ++i)
+    if (!on_hull[i]) {
+      const int j = nearest(i, dir);
+      throw_too_close(std::min(i, j), std::max(i, j), dir, ids);
+    }
+  faces.resize(hf.size());
+  for (size_t f = 0; f < hf.size(); ++f)
+    for (int m = 0; m < 3; ++m) faces[f][m] = hull_index[hf[f][m]];
 }
 
 bool finite3(const double *p) {
@@ -128,7 +249,7 @@ int SphereTessellation::coordination_number(int c, double rel_tol) const {
 }
 
 SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3 &pts,
-                                     const long *ids) {
+                                     const long *ids, bool reference_hull) {
   if (!(std::isfinite(R) && R > 0.0)) {
     std::ostringstream s;
     s << "tessera: sphere radius must be positive and finite, got " << R;
@@ -199,54 +320,27 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
     throw Error(s.str());
   }
 
-  std::vector<P3> hull_points;
-  std::vector<std::array<int, 3>> faces;
-  CGAL::convex_hull_3(P.begin(), P.end(), hull_points, faces);
-
-  // Hull vertices back to point indices (the hull's points are copies of ours).
-  struct Hash {
-    size_t operator()(const std::array<double, 3> &a) const {
-      const std::hash<double> h;
-      return h(a[0]) ^ (h(a[1]) * 0x9E3779B97F4A7C15ull) ^ (h(a[2]) * 0xC2B2AE3D27D4EB4Full);
-    }
-  };
-  std::unordered_map<std::array<double, 3>, int, Hash> index_of;
+  // Point indices by their (rounded) directions, which are distinct now.
+  std::unordered_map<std::array<double, 3>, int, KeyHash> index_of;
   index_of.reserve(2 * n);
-  for (int i = 0; i < n; ++i)
-    index_of.emplace(std::array<double, 3>{t.direction[i].x, t.direction[i].y, t.direction[i].z}, i);
-  std::vector<int> hull_index(hull_points.size());
-  std::vector<char> on_hull(n, 0);
-  for (size_t h = 0; h < hull_points.size(); ++h) {
-    const auto it = index_of.find(
-        std::array<double, 3>{hull_points[h].x(), hull_points[h].y(), hull_points[h].z()});
-    if (it == index_of.end()) throw Error("tessera: internal error: a hull vertex is no input point");
-    hull_index[h] = it->second;
-    on_hull[it->second] = 1;
-  }
-  for (int i = 0; i < n; ++i)
-    if (!on_hull[i]) {
-      // Hidden by round-off: name its nearest point.
-      int best = -1;
-      double best_angle = 10.0;
-      for (int j = 0; j < n; ++j)
-        if (j != i) {
-          const double a = angle(vv(t.direction[i]), vv(t.direction[j]));
-          if (a < best_angle) best_angle = a, best = j;
-        }
-      std::ostringstream s;
-      s << "tessera: " << point_name(std::min(i, best), ids) << " and "
-        << point_name(std::max(i, best), ids)
-        << " project to the same point of the sphere to double precision (angular distance "
-        << best_angle << "; points closer than about 1e-8 R cannot be triangulated)";
-      throw Error(s.str());
-    }
-  if (static_cast<long>(faces.size()) != 2L * n - 4)
-    throw Error("tessera: internal error: the convex hull of the points on the sphere is not a"
-                " triangulated sphere");
+  for (int i = 0; i < n; ++i) index_of.emplace(key_of(P[i]), i);
 
-  t.triangles.resize(faces.size());
-  for (size_t f = 0; f < faces.size(); ++f)
-    for (int m = 0; m < 3; ++m) t.triangles[f][m] = hull_index[faces[f][m]];
+  std::vector<std::array<int, 3>> faces;
+  if (reference_hull || !delaunay_on_sphere(P, index_of, t.direction, ids, faces))
+    convex_hull(P, index_of, t.direction, ids, faces);
+  if (static_cast<long>(faces.size()) != 2L * n - 4)
+    throw Error("tessera: internal error: the triangulation of the points on the sphere is not a"
+                " triangulated sphere");
+  // Pairs closer than the precision bound (the nearest point is always a
+  // Delaunay neighbour), so that both routes refuse the same inputs.
+  for (const auto &f : faces)
+    for (int m = 0; m < 3; ++m) {
+      const int i = f[m], j = f[(m + 1) % 3];
+      if (i < j && norm(vv(t.direction[i]) - vv(t.direction[j])) < kMinChord)
+        throw_too_close(std::min(i, j), std::max(i, j), t.direction, ids);
+    }
+
+  t.triangles = std::move(faces);
   // Orientation: counter-clockwise seen from outside, i.e. every other point
   // below the facet.  CGAL's faces are consistently oriented; test one.
   {

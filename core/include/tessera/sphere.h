@@ -73,12 +73,19 @@ struct SphereTessellation {
 // The spherical Voronoi cells of the n points (each projected radially onto
 // the sphere).  ids (optional, n entries) name points in error messages.
 // Throws Error on: R not positive or not finite, a non-finite centre or
-// coordinate, a point at the centre, fewer than 4 points, two points with
-// one projection, two points too close together to be triangulated in
-// double precision (angular distance below about 1e-7), all points on one
-// circle of the sphere (one plane: a great circle or a small one).
+// coordinate, a point at the centre, fewer than 4 points, two points whose
+// projections are closer than 2^-23 R = 1.2e-7 R (chord; below that double
+// precision cannot triangulate them), all points on one circle of the
+// sphere (one plane: a great circle or a small one; also when the rounding
+// of their directions lifts them off it).
+// The triangulation is CGAL's Delaunay triangulation on the sphere, or, when
+// that does not cover the whole sphere (all points in one hemisphere), or
+// with reference_hull, CGAL's convex hull of the directions (about ten
+// times slower; the tests' oracle for the first).  Both give the same
+// triangles except where four or more points are co-circular (then the
+// choice of diagonals may differ; the cells do not).
 SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3 &pts,
-                                     const long *ids = nullptr);
+                                     const long *ids = nullptr, bool reference_hull = false);
 
 struct SphereForceOutput {
   double energy = 0.0;

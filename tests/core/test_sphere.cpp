@@ -719,3 +719,48 @@ TEST(Sphere, TransportAroundAGeodesicTriangleTurnsByItsArea) {
 }
 
 }  // namespace
+
+namespace {
+
+// Turning the whole configuration about the centre turns the forces with it
+// and changes no area, perimeter or energy (the Hilbert order of insertion
+// changes, the triangulation must not).
+TEST(Sphere, TurningTheConfigurationTurnsTheForces) {
+  Rng rng(701);
+  const int n = 80;
+  const Vec3 c{0.7, -0.1, 0.2};
+  const double R = 2.1;
+  const std::vector<W> dirs = random_directions(n, rng);
+  const Rotation rot(rng);
+  std::vector<W> turned;
+  for (const W &d : dirs) turned.push_back(rot(d));
+  const std::vector<double> xa = place(c, dirs, R), xb = place(c, turned, R);
+  const auto ta = tess(c, R, xa), tb = tess(c, R, xb);
+  EXPECT_EQ(canonical(ta), canonical(tb));
+  tessera::Model m = random_model(rng, 2, 4.0 * kPi * R * R / n, tessera::Tension::Edge);
+  std::vector<int> type(n);
+  for (int &ty : type) ty = rng.below(2);
+  std::vector<double> fa(3 * n, 0.0), fb(3 * n, 0.0);
+  const auto oa = tessera::sphere_forces(ta, {xa.data(), n, 3}, type.data(), m, fa.data(), 3);
+  const auto ob = tessera::sphere_forces(tb, {xb.data(), n, 3}, type.data(), m, fb.data(), 3);
+  EXPECT_NEAR(oa.energy, ob.energy, 1e-12 * std::fabs(oa.energy));
+  double fmax = 0.0;
+  for (double x : fa) fmax = std::max(fmax, std::fabs(x));
+  for (int i = 0; i < n; ++i) {
+    EXPECT_NEAR(ta.area[i], tb.area[i], 1e-12 * R * R);
+    EXPECT_NEAR(ta.perimeter[i], tb.perimeter[i], 1e-12 * R);
+    const W F = rot(W{fa[3 * i], fa[3 * i + 1], fa[3 * i + 2]});
+    EXPECT_NEAR(norm(F - W{fb[3 * i], fb[3 * i + 1], fb[3 * i + 2]}), 0.0, 1e-10 * fmax) << i;
+  }
+}
+
+TEST(Sphere, ErrorsUseTheCallersIds) {
+  std::vector<double> xyz = place(Vec3{}, icosahedron(), 1.0);
+  xyz.insert(xyz.end(), {xyz[9], xyz[10], xyz[11] + 1e-10});
+  std::vector<long> ids(13);
+  for (int i = 0; i < 13; ++i) ids[i] = 1000 + i;
+  EXPECT_THAT(error_of([&] { tess(Vec3{}, 1.0, xyz, ids.data()); }),
+              testing::HasSubstr("id 1003 and id 1012 project to the same point"));
+}
+
+}  // namespace

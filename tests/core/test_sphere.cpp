@@ -764,3 +764,77 @@ TEST(Sphere, ErrorsUseTheCallersIds) {
 }
 
 }  // namespace
+
+namespace {
+
+// At a multifold vertex the energy has a kink; the forces are the mean over
+// the fan triangulations of the ring, which for a four-fold vertex is the
+// mean of the two one-sided derivatives: the central difference.
+void check_fourfold_fd(const Vec3 &c, double R, const std::vector<double> &xyz, uint64_t seed,
+                       int expect_groups) {
+  Rng rng(seed);
+  const int n = static_cast<int>(xyz.size() / 3);
+  const auto t = tess(c, R, xyz);
+  int zero = 0;
+  for (double l : t.edge_length) zero += l == 0.0;
+  EXPECT_EQ(zero, 2 * expect_groups);  // each four-fold vertex: its two triangles' shared edge, in 2 cells
+  tessera::Model m = random_model(rng, 2, 4.0 * kPi * R * R / n, tessera::Tension::Edge);
+  std::vector<int> type(n);
+  for (int &ty : type) ty = rng.below(2);
+  std::vector<double> f(3 * n, 0.0);
+  tessera::sphere_forces(t, {xyz.data(), n, 3}, type.data(), m, f.data(), 3);
+  double fmax = 0.0;
+  for (double x : f) fmax = std::max(fmax, std::fabs(x));
+  W torque{0, 0, 0};
+  for (int i = 0; i < n; ++i) {
+    const W u = w3(t.direction[i]);
+    const W F{f[3 * i], f[3 * i + 1], f[3 * i + 2]};
+    torque = torque + cross(R * u, F);
+    const W e1 = unit(cross(u, std::fabs(u.x) < 0.6 ? W{1, 0, 0} : W{0, 1, 0})), e2 = cross(u, e1);
+    for (const W &dir : {e1, e2}) {
+      double e[2];
+      for (int s = 0; s < 2; ++s) {
+        const double eps = (s ? -1e-7 : 1e-7) * R;
+        std::vector<double> moved = xyz;
+        const W p = w3(c) + R * (std::cos(eps / R) * u + std::sin(eps / R) * dir);
+        moved[3 * i] = p.x, moved[3 * i + 1] = p.y, moved[3 * i + 2] = p.z;
+        e[s] = tessera::sphere_energy(tess(c, R, moved), type.data(), m);
+      }
+      const double fd = -(e[0] - e[1]) / (2e-7 * R);
+      EXPECT_NEAR(dot(F, dir), fd, 1e-6 * (fmax + 1.0)) << "point " << i;
+    }
+  }
+  EXPECT_LT(norm(torque), 1e-12 * R * (fmax + 1.0) * n);
+}
+
+TEST(Sphere, FourfoldVerticesOfTheCubeGiveTheCentralDifference) {
+  Rng rng(801);
+  for (int turned = 0; turned < 3; ++turned) {
+    const Rotation rot(rng);
+    std::vector<W> dirs;
+    for (int a : {-1, 1})
+      for (int b : {-1, 1})
+        for (int d : {-1, 1}) {
+          const W x{1.0 * a, 1.0 * b, 1.0 * d};
+          dirs.push_back(turned ? rot(x) : x);
+        }
+    const Vec3 c{0.2, 0.1, -0.4};
+    check_fourfold_fd(c, 1.4, place(c, dirs, 1.4), 810 + turned, 6);
+  }
+}
+
+TEST(Sphere, AFourfoldVertexAmongOrdinaryCellsGivesTheCentralDifference) {
+  // Four points on a small circle round the north pole (nothing else inside
+  // its cap), among random points elsewhere.
+  Rng rng(802);
+  std::vector<W> dirs;
+  const double rho = 0.35;
+  for (double a : {0.0, 1.4, 3.3, 4.7})
+    dirs.push_back({std::sin(rho) * std::cos(a), std::sin(rho) * std::sin(a), std::cos(rho)});
+  for (const W &d : random_directions(40, rng))
+    if (d.z < std::cos(rho + 0.25)) dirs.push_back(d);
+  const Vec3 c{-0.5, 0.3, 0.8};
+  check_fourfold_fd(c, 2.2, place(c, dirs, 2.2), 820, 1);
+}
+
+}  // namespace

@@ -115,9 +115,11 @@ struct SphereForceOutput {
 // Unlike in the plane a cell's forces need not add up to zero, so the cell
 // virials add up to the total only after adding sum_i (r_i - c) (x) sum_p F^(i)_p.
 //
-// Multifold vertices (co-circular points) use the fixed triangulation with
-// zero-length edges contributing no perimeter gradient; the plane's average
-// over the fan triangulations (doc/model.md, Geometry) is not done here.
+// Multifold vertices (co-circular points): as in the plane (doc/model.md,
+// Geometry), the force is the mean of the energy's branch gradients over the
+// fan triangulations of the vertex's ring, each zero-length edge taking the
+// direction it has on its branch's side (for a four-fold vertex: the central
+// difference); it does not depend on how CGAL broke the tie.
 SphereForceOutput sphere_forces(const SphereTessellation &t, const Points3 &pts, const int *type,
                                 const Model &model, double *f, int f_stride,
                                 double *cell_energy = nullptr, double *cell_virial = nullptr);

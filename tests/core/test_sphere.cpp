@@ -838,3 +838,57 @@ TEST(Sphere, AFourfoldVertexAmongOrdinaryCellsGivesTheCentralDifference) {
 }
 
 }  // namespace
+
+namespace {
+
+// Five co-circular points (a five-fold vertex) among random points: the
+// forces do not depend on which diagonals the triangulation picked (the
+// route, or the Hilbert order after turning everything), and have no torque.
+TEST(Sphere, FivefoldVertexForcesDoNotDependOnTheTieBreak) {
+  Rng rng(901);
+  std::vector<W> dirs;
+  const double rho = 0.4;
+  for (double a : {0.3, 1.5, 2.6, 3.9, 5.1})
+    dirs.push_back({std::sin(rho) * std::cos(a), std::sin(rho) * std::sin(a), std::cos(rho)});
+  for (const W &d : random_directions(40, rng))
+    if (d.z < std::cos(rho + 0.25)) dirs.push_back(d);
+  const int n = static_cast<int>(dirs.size());
+  const Vec3 c{0.1, 0.2, -0.3};
+  const double R = 1.6;
+  tessera::Model m = random_model(rng, 2, 4.0 * kPi * R * R / n, tessera::Tension::Cell);
+  std::vector<int> type(n);
+  for (int &ty : type) ty = rng.below(2);
+  auto forces = [&](const std::vector<double> &xyz, bool hull, int *zero) {
+    const auto t = tess(c, R, xyz, nullptr, hull);
+    *zero = 0;
+    for (double l : t.edge_length) *zero += l == 0.0;
+    std::vector<double> f(3 * n, 0.0);
+    tessera::sphere_forces(t, {xyz.data(), n, 3}, type.data(), m, f.data(), 3);
+    return f;
+  };
+  const std::vector<double> xyz = place(c, dirs, R);
+  int z0 = 0, z1 = 0;
+  const std::vector<double> f0 = forces(xyz, false, &z0), f1 = forces(xyz, true, &z1);
+  EXPECT_EQ(z0, 4);  // a five-fold vertex: three triangles, two zero edges, each in two cells
+  EXPECT_EQ(z1, 4);
+  double fmax = 0.0;
+  for (double x : f0) fmax = std::max(fmax, std::fabs(x));
+  for (int k = 0; k < 3 * n; ++k) EXPECT_NEAR(f0[k], f1[k], 1e-12 * fmax);
+  W torque{0, 0, 0};
+  for (int i = 0; i < n; ++i) torque = torque + cross(R * unit(dirs[i]), W{f0[3 * i], f0[3 * i + 1], f0[3 * i + 2]});
+  EXPECT_LT(norm(torque), 1e-12 * R * fmax * n);
+  for (int trial = 0; trial < 4; ++trial) {
+    const Rotation rot(rng);
+    std::vector<W> turned;
+    for (const W &d : dirs) turned.push_back(rot(d));
+    int z2 = 0;
+    const std::vector<double> f2 = forces(place(c, turned, R), false, &z2);
+    EXPECT_EQ(z2, 4);
+    for (int i = 0; i < n; ++i) {
+      const W F = rot(W{f0[3 * i], f0[3 * i + 1], f0[3 * i + 2]});
+      EXPECT_NEAR(norm(F - W{f2[3 * i], f2[3 * i + 1], f2[3 * i + 2]}), 0.0, 1e-9 * fmax) << i;
+    }
+  }
+}
+
+}  // namespace

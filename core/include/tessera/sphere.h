@@ -34,7 +34,7 @@ namespace tessera {
 // (When the centre lies inside the hull this is the triangle's circumcentre
 // projected radially onto the sphere.)
 //
-// Cell i has vertices cell_vertex[k], k = cell_offset[i] .. cell_offset[i+1)-1,
+// Cell i has vertices cell_vertex[k], k = cell_offset[i] .. cell_offset[i+1]-1,
 // counter-clockwise seen from outside; the geodesic edge from vertex k to
 // vertex k+1 (cyclically) separates i from point cell_neighbor[k] and has
 // length edge_length[k].  Four or more co-circular points (cube vertices,

@@ -365,4 +365,29 @@ Vec3 sphere_rotate_tangent(const Vec3 &centre, const Vec3 &p, const Vec3 &v, dou
   return to3(cs * x + sn * cross(u, x));
 }
 
+void sphere_alignment_torque(const SphereTessellation &t, const double *n, int n_stride,
+                             double J_S, double *tau) {
+  auto tangent = [&](int p) {
+    const double *q = n + static_cast<long>(p) * n_stride;
+    const V u = vv(t.direction[p]), x{q[0], q[1], q[2]};
+    return x - dot(x, u) * u;
+  };
+  for (int i = 0; i < t.n_points; ++i) {
+    const V ui = vv(t.direction[i]);
+    const V ni = tangent(i);
+    double sum = 0.0;
+    for (int k = t.cell_offset[i]; k < t.cell_offset[i + 1]; ++k) {
+      if (!(t.edge_length[k] > 0.0)) continue;
+      const int j = t.cell_neighbor[k];
+      const V uj = vv(t.direction[j]);
+      const V nj = tangent(j);
+      // Transport from j to i (never antipodal: Voronoi neighbours are
+      // less than pi apart).
+      const V m = nj - (dot(ui, nj) / (1.0 + dot(uj, ui))) * (uj + ui);
+      sum += dot(ui, cross(ni, m));
+    }
+    tau[i] = J_S * sum;
+  }
+}
+
 }  // namespace tessera

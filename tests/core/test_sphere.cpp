@@ -892,3 +892,84 @@ TEST(Sphere, FivefoldVertexForcesDoNotDependOnTheTieBreak) {
 }
 
 }  // namespace
+
+namespace {
+
+// The alignment torque is minus the derivative of the alignment energy
+// U = -J_S sum_pairs n_i . T_ji n_j with respect to turning n_i (central
+// differences, U computed here from sphere_transport), and in the flat limit
+// it is the plane's J_S sum sin(th_j - th_i).
+TEST(Sphere, AlignmentTorqueIsTheDerivativeOfTheAlignmentEnergy) {
+  Rng rng(1001);
+  const int n = 50;
+  const Vec3 c{0.3, 0.3, -0.6};
+  const double R = 1.8;
+  const std::vector<double> xyz = place(c, random_directions(n, rng), R);
+  const auto t = tess(c, R, xyz);
+  std::vector<double> pol(4 * n);  // stride 4, as LAMMPS's mu
+  for (int i = 0; i < n; ++i) {
+    const W tv = w3(tessera::sphere_tangent(c, t.point(i), Vec3{rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)}));
+    const W v = unit(tv);
+    pol[4 * i] = v.x, pol[4 * i + 1] = v.y, pol[4 * i + 2] = v.z, pol[4 * i + 3] = 1.0;
+  }
+  const double J = 0.7;
+  std::vector<double> tau(n);
+  tessera::sphere_alignment_torque(t, pol.data(), 4, J, tau.data());
+  auto energy = [&](const std::vector<double> &p) {
+    double U = 0.0;
+    for (int i = 0; i < n; ++i)
+      for (int k = t.cell_offset[i]; k < t.cell_offset[i + 1]; ++k) {
+        const int j = t.cell_neighbor[k];
+        if (t.edge_length[k] <= 0.0 || j < i) continue;
+        const W m = w3(tessera::sphere_transport(c, t.point(j), t.point(i), Vec3{p[4 * j], p[4 * j + 1], p[4 * j + 2]}));
+        U -= J * dot(W{p[4 * i], p[4 * i + 1], p[4 * i + 2]}, m);
+      }
+    return U;
+  };
+  for (int i = 0; i < n; ++i) {
+    double e[2];
+    for (int s = 0; s < 2; ++s) {
+      std::vector<double> p = pol;
+      const W r = w3(tessera::sphere_rotate_tangent(c, t.point(i), Vec3{pol[4 * i], pol[4 * i + 1], pol[4 * i + 2]}, s ? -1e-5 : 1e-5));
+      p[4 * i] = r.x, p[4 * i + 1] = r.y, p[4 * i + 2] = r.z;
+      e[s] = energy(p);
+    }
+    EXPECT_NEAR(tau[i], -(e[0] - e[1]) / 2e-5, 1e-8) << i;
+  }
+}
+
+TEST(Sphere, AlignmentTorqueApproachesThePlanesInTheFlatLimit) {
+  Rng rng(1002);
+  std::vector<double> xy;
+  for (int j = -5; j <= 5; ++j)
+    for (int i = -5; i <= 5; ++i) {
+      xy.push_back(i + 0.5 * (j & 1) + rng.uniform(-0.1, 0.1));
+      xy.push_back(j * std::sqrt(3.0) / 2.0 + rng.uniform(-0.1, 0.1));
+    }
+  const int np = static_cast<int>(xy.size() / 2);
+  std::vector<double> theta(np);
+  for (double &th : theta) th = rng.uniform(-kPi, kPi);
+  const tessera::Tessellation flat = tessera::tessellate_local({xy.data(), np, 2}, np, nullptr, false);
+  const double R = 400.0;
+  const Vec3 c{0.0, 0.0, -R};  // tangent plane z = 0 at the north pole
+  std::vector<W> dirs;
+  for (int p = 0; p < np; ++p) dirs.push_back({xy[2 * p], xy[2 * p + 1], R});
+  const std::vector<double> xyz = place(c, dirs, R);
+  const auto t = tess(c, R, xyz);
+  std::vector<double> pol(3 * np);
+  for (int p = 0; p < np; ++p) {
+    const W v = w3(tessera::sphere_tangent(c, t.point(p), Vec3{std::cos(theta[p]), std::sin(theta[p]), 0.0}));
+    pol[3 * p] = v.x, pol[3 * p + 1] = v.y, pol[3 * p + 2] = v.z;
+  }
+  std::vector<double> tau(np);
+  tessera::sphere_alignment_torque(t, pol.data(), 3, 1.0, tau.data());
+  for (int p = 0; p < np; ++p) {
+    if (std::hypot(xy[2 * p], xy[2 * p + 1]) > 2.5) continue;
+    double plane = 0.0;
+    for (int k = flat.cell_offset[p]; k < flat.cell_offset[p + 1]; ++k)
+      if (flat.edge_length[k] > 0.0) plane += std::sin(theta[flat.cell_neighbor[k]] - theta[p]);
+    EXPECT_NEAR(tau[p], plane, 1e-3) << p;
+  }
+}
+
+}  // namespace

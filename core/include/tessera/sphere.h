@@ -147,4 +147,16 @@ Vec3 sphere_transport(const Vec3 &centre, const Vec3 &a, const Vec3 &b, const Ve
 // the outward normal (counter-clockwise seen from outside).
 Vec3 sphere_rotate_tangent(const Vec3 &centre, const Vec3 &p, const Vec3 &v, double angle);
 
+// Neighbour alignment of tangent polarities: for each cell i, the torque
+// about its outward normal u_i
+//   tau_i = J_S sum_j u_i . (n_i x T_ji n_j)
+// over its Voronoi neighbours j (edges of non-zero length), T_ji the
+// parallel transport from j to i.  n: a polarity per point (stride
+// n_stride, 3 components; projected onto the tangent plane, not normalised);
+// tau: n_points values.  tau_i = -dU/dphi_i for the alignment energy
+// U = -J_S sum_{neighbour pairs} n_i . T_ji n_j, phi_i turning n_i about
+// u_i; in the plane it is polarity_torque's J_S sum_j sin(th_j - th_i).
+void sphere_alignment_torque(const SphereTessellation &t, const double *n, int n_stride,
+                             double J_S, double *tau);
+
 }  // namespace tessera

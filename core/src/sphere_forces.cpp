@@ -206,7 +206,7 @@ SphereForceOutput sphere_forces(const SphereTessellation &t, const Points3 &pts,
       const V a = vv(t.vertex_direction[t.cell_vertex[k0 + j]]);
       const V b = vv(t.vertex_direction[t.cell_vertex[k0 + jn]]);
       const double l = t.edge_length[k0 + j];
-      if (l <= 0.0) continue;  // zero-length edge: no area, no length gradient
+      if (l <= 0.0) continue;  // inside a multifold vertex: done with its ring below
       // Area of the fan triangle (u, a, b).
       const double D = dot(u, cross(a, b));
       const double S = 1.0 + dot(u, a) + dot(a, b) + dot(b, u);

@@ -100,9 +100,9 @@ int nearest(int i, const std::vector<Vec3> &dir) {
 }
 
 // CGAL's Delaunay triangulation on the sphere (Caroli et al.'s predicates,
-// points inserted along a Hilbert curve on the sphere: about ten times
-// faster than the hull).  Returns false, leaving the work to the hull, when
-// it does not give a full triangulation of the sphere: points all in one
+// points inserted along a Hilbert curve on the sphere: about eight times
+// faster than the hull at N = 1e5).  Returns false, leaving the work to the
+// hull, when it does not give a full triangulation of the sphere: points all in one
 // hemisphere (CGAL then fills the rest with "ghost" faces, which are not
 // hull facets) or a direction CGAL finds too far off the sphere.
 struct VertexIndex {

@@ -80,8 +80,8 @@ struct SphereTessellation {
 // of their directions lifts them off it).
 // The triangulation is CGAL's Delaunay triangulation on the sphere, or, when
 // that does not cover the whole sphere (all points in one hemisphere), or
-// with reference_hull, CGAL's convex hull of the directions (about ten
-// times slower; the tests' oracle for the first).  Both give the same
+// with reference_hull, CGAL's convex hull of the directions (about eight
+// times slower at N = 1e5; the tests' oracle for the first).  Both give the same
 // triangles except where four or more points are co-circular (then the
 // choice of diagonals may differ; the cells do not).
 SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3 &pts,

@@ -7,10 +7,11 @@
      E = sum_i [ K/2 (V_i - V0)^2 + Gamma/2 S_i^2 ] + sum_faces Lambda_IJ a_f
    with the pair_coeff values of 2D read as K, V0, Gamma, Lambda (and
    'quadratic KV V0 KS S0' for Merkel & Manning's form); per-cell V0 from
-   'd_area0' as in 2D.  Each rank tetrahedralises its owned and ghost atoms
-   from scratch every step; every circumsphere of an owned cell must lie
-   inside the ghost shell, checked every step, and the shell grows as in 2D
-   when it does not.
+   'd_area0' as in 2D.  Each rank tetrahedralises its owned and ghost atoms,
+   from scratch after a neighbor-list build and repaired by flips in between
+   (tessera::Mesh3); every circumsphere of an owned cell must lie inside the
+   ghost shell, checked every step, and the shell grows as in 2D when it
+   does not.
 ------------------------------------------------------------------------- */
 
 #include "pair_vertex_voronoi_3d.h"
@@ -20,8 +21,10 @@
 #include "atom.h"
 #include "domain.h"
 #include "error.h"
+#include "neighbor.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -43,10 +46,36 @@ void Vertex3d::init()
     error->all(FLERR,
                "pair_style vertex/voronoi: 'reference' times the 2d triangulation; in 3d every "
                "step is a from-scratch triangulation already");
-  if (pair->incremental == 2)
-    error->all(FLERR,
-               "pair_style vertex/voronoi: 'incremental check' is for 2d; in 3d the cells are "
-               "triangulated from scratch every step");
+  mesh_ncalls = -1;
+}
+
+/* incremental check: the repaired mesh's cells against a from-scratch
+   tetrahedralisation of the same atoms: the same neighbours across faces
+   larger than a round-off threshold, the same volumes and surfaces. */
+
+void Vertex3d::check_against_scratch(const tessera::Points3 &pts, const tessera::Region3 &sub,
+                                     double w)
+{
+  const tessera::Tessellation3 ref = tessera::tessellate_local_3d(pts, tess3.n_owned, nullptr, false);
+  if (!tessera::check_coverage_3d(ref, sub, w).ok) return;    // the shell grows or the run stops
+  auto strong = [](const tessera::Tessellation3 &t, int c) {
+    std::vector<int> nb;
+    for (int f = t.cell_offset[c]; f < t.cell_offset[c + 1]; f++)
+      if (t.face_area[f] > 1e-9 * t.surface[c]) nb.push_back(t.face_neighbor[f]);
+    std::sort(nb.begin(), nb.end());
+    return nb;
+  };
+  for (int c = 0; c < tess3.n_owned; c++) {
+    const double scale = std::cbrt(std::fabs(ref.volume[c])) + 1.0;
+    if (strong(tess3, c) != strong(ref, c) ||
+        std::fabs(tess3.volume[c] - ref.volume[c]) > 1e-9 * scale * scale * scale ||
+        std::fabs(tess3.surface[c] - ref.surface[c]) > 1e-9 * scale * scale)
+      error->one(FLERR,
+                 "pair_style vertex/voronoi incremental check: the cell of atom {} differs from a "
+                 "from-scratch tetrahedralisation at step {} (volume {} vs {}, surface {} vs {})",
+                 atom->tag[c], update->ntimestep, tess3.volume[c], ref.volume[c], tess3.surface[c],
+                 ref.surface[c]);
+  }
 }
 
 /* This rank's sub-domain: a box, or for a triclinic box the parallelepiped
@@ -119,21 +148,64 @@ bool Vertex3d::tessellate()
     tess3 = tessera::Tessellation3();
     return !pair->ghost_shell_complete(std::numeric_limits<double>::infinity());
   }
-  try {
-    tess3 = tessera::tessellate_local_3d(pts, nlocal, nullptr, false);
-  } catch (tessera::Error &) {
-    // Redo with atom IDs so that the message names them.
-    std::vector<long> ids(nall);
-    for (int i = 0; i < nall; i++) ids[i] = atom->tag[i];
-    try {
-      tess3 = tessera::tessellate_local_3d(pts, nlocal, ids.data(), false);
-    } catch (tessera::Error &e) {
-      error->one(FLERR, "pair_style vertex/voronoi at step {}: {}", update->ntimestep, e.what());
+  // Between neighbor-list builds the atoms keep their local indices: the
+  // tetrahedralisation of the previous step is repaired by flips
+  // (tessera::Mesh3, the same cells as a rebuild); after a rebuild of the
+  // lists (atoms exchanged or sorted, a new run) it is built from scratch.
+  // The repaired mesh is certified inside the sub-domain's bounding box grown
+  // by 0.6 of the ghost shell, where the owned cells' circumspheres lie.
+  const tessera::Region3 sub = subdomain();
+  const double w = pair->ghost_width(), wi = 0.6 * w;
+  double lo[3], hi[3];
+  for (int d = 0; d < 3; d++) {
+    // Bounding box of the parallelepiped o + s a + t b + u c.
+    double mn = sub.o[d], mx = sub.o[d];
+    for (int k = 1; k < 8; k++) {
+      const double v = sub.o[d] + ((k & 1) ? sub.a[d] : 0.0) + ((k & 2) ? sub.b[d] : 0.0) +
+          ((k & 4) ? sub.c[d] : 0.0);
+      mn = MIN(mn, v);
+      mx = MAX(mx, v);
     }
-    error->one(FLERR, "pair_style vertex/voronoi: tessellation failed");
+    lo[d] = mn - wi;
+    hi[d] = mx + wi;
   }
-  pair->stats[2] += 1.0;
-  const tessera::Coverage cov = tessera::check_coverage_3d(tess3, subdomain(), pair->ghost_width());
+  bool fresh = false;
+  auto build = [&]() {
+    tess3 = tessera::Tessellation3();
+    try {
+      mesh.build(pts);
+      mesh.cells(pts, nlocal, tess3, nullptr, false);
+    } catch (tessera::Error &) {
+      // Redo with atom IDs so that the message names them.
+      std::vector<long> ids(nall);
+      for (int i = 0; i < nall; i++) ids[i] = atom->tag[i];
+      try {
+        mesh.build(pts, ids.data());
+        mesh.cells(pts, nlocal, tess3, ids.data(), false);
+      } catch (tessera::Error &e) {
+        error->one(FLERR, "pair_style vertex/voronoi at step {}: {}", update->ntimestep, e.what());
+      }
+      error->one(FLERR, "pair_style vertex/voronoi: tessellation failed");
+    }
+    mesh_ncalls = neighbor->ncalls;
+    fresh = true;
+    pair->stats[2] += 1.0;
+  };
+  if (nlocal == 0) {
+    tess3 = tessera::tessellate_local_3d(pts, 0);
+    mesh_ncalls = -1;
+  } else if (!pair->incremental || mesh_ncalls != neighbor->ncalls || !mesh.valid() ||
+             mesh.n_points() != nall) {
+    build();
+  } else if (mesh.advance(pts, nlocal, lo, hi, tess3)) {
+    pair->stats[3] += mesh.flips_last_update();
+    if (!tessera::check_coverage_3d(tess3, lo, hi).ok) build();
+  } else {
+    build();
+  }
+  if (pair->incremental == 2 && !fresh && nlocal > 0) check_against_scratch(pts, sub, w);
+  tessera::Coverage cov;
+  if (fresh) cov = tessera::check_coverage_3d(tess3, sub, w);
   if (!pair->ghost_shell_complete(cov.needed_margin)) return true;
   cells_.bind(tess3, pts);
   return false;

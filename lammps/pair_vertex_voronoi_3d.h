@@ -8,12 +8,13 @@
 
 #include "pair_vertex_voronoi_model.h"
 
+#include "tessera/mesh3d.h"
 #include "tessera/voronoi3d.h"
 
 namespace LAMMPS_NS {
 
-// 3D Voronoi polyhedra ('dimension 3'): a CGAL tetrahedralisation of owned
-// and ghost atoms every step.
+// 3D Voronoi polyhedra ('dimension 3'): the tetrahedralisation of owned and
+// ghost atoms, kept between neighbor-list builds and repaired by flips.
 class Vertex3d : public VertexModel {
  public:
   Vertex3d(LAMMPS *lmp, PairVertexVoronoi *p) : VertexModel(lmp, p) {}
@@ -25,9 +26,12 @@ class Vertex3d : public VertexModel {
 
  private:
   tessera::Tessellation3 tess3;
+  tessera::Mesh3 mesh;          // kept between neighbor-list builds, repaired by flips
+  bigint mesh_ncalls = -1;      // neighbor->ncalls when the mesh was built
   tessera::Cells3 cells_;
   bool tessellate();    // true if the ghost shell had to grow
   tessera::Region3 subdomain() const;
+  void check_against_scratch(const tessera::Points3 &, const tessera::Region3 &, double);
 };
 
 }    // namespace LAMMPS_NS

@@ -19,6 +19,7 @@
 #include "input.h"
 #include "lammps.h"
 
+#include <dlfcn.h>
 #include <mpi.h>
 
 #include <cstdio>
@@ -173,6 +174,28 @@ void print_help(const char *exe)
 }
 
 }    // namespace
+
+/* ----------------------------------------------------------------------
+   `clear` keeps Tessera's styles.  liblammps.so calls Input::clear() from
+   Input::execute_command() through its procedure linkage table, so this
+   definition in the executable takes the call; the library's own is the
+   next definition of the symbol after ours (RTLD_NEXT).  tests/lammps/
+   test_clear.py fails if a LAMMPS build binds the call internally.
+------------------------------------------------------------------------- */
+
+void Input::clear()
+{
+  using ClearFunction = void (*)(Input *);
+  static const char *const symbol = "_ZN9LAMMPS_NS5Input5clearEv";    // LAMMPS_NS::Input::clear()
+  static ClearFunction library_clear =
+      reinterpret_cast<ClearFunction>(dlsym(RTLD_NEXT, symbol));
+  if (!library_clear)
+    error->all(FLERR, "tessera-lmp: liblammps.so has no {} (LAMMPS_NS::Input::clear()) to run "
+               "for 'clear'; rebuild tessera-lmp against the LAMMPS it runs with",
+               symbol);
+  library_clear(this);
+  tessera_register_styles(lmp);
+}
 
 /* ---------------------------------------------------------------------- */
 

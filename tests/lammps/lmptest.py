@@ -58,9 +58,24 @@ def nprocs(n):
 
 def mpiexec_command(n):
     """The command prefix that starts n ranks, e.g. for OpenMPI as root
-    ``mpiexec --allow-run-as-root --oversubscribe -n 2``."""
+    ``env OMPI_MCA_orte_tmpdir_base=DIR mpiexec --allow-run-as-root --oversubscribe -n 2``.
+
+    OpenMPI keeps a session directory per job under one machine-wide
+    /tmp/ompi.<host>.<uid>, which the last job to finish removes: a job starting
+    at that moment fails to create its own directory in it (a singleton's orted
+    then dies, "Unable to start a daemon on the local node"; a daemonless one
+    reports "orte_session_dir failed").  So every run of this test process keeps
+    its session directories in a private DIR (orte_tmpdir_base), and one rank
+    starts as a singleton without forking an orted (ess_singleton_isolated).
+    Both settings are ignored by other MPI implementations."""
+    if getattr(mpiexec_command, "private", None) is None:
+        import atexit
+        # in $TMPDIR, whose path is short: PMIx may put sockets there
+        mpiexec_command.private = tempfile.mkdtemp(prefix="tessera-ompi-")
+        atexit.register(shutil.rmtree, mpiexec_command.private, True)
+    prefix = ["env", "OMPI_MCA_orte_tmpdir_base=" + mpiexec_command.private]
     if n == 1:
-        return []
+        return prefix + ["OMPI_MCA_ess_singleton_isolated=1"]
     if not Config.mpiexec:
         raise unittest.SkipTest("no mpiexec (CMake's MPIEXEC_EXECUTABLE) to start %d ranks" % n)
     cmd = [Config.mpiexec]
@@ -69,7 +84,7 @@ def mpiexec_command(n):
         if os.geteuid() == 0:
             cmd.append("--allow-run-as-root")
         cmd.append("--oversubscribe")    # CI machines may have fewer cores than ranks
-    return cmd + ["-n", str(n)]
+    return prefix + cmd + ["-n", str(n)]
 
 
 class Run:

@@ -155,6 +155,28 @@ write_restart rs.restart
                            ok=False)
         self.assertLammpsError(run, "Unrecognized fix style 'nosuchstyle'")
 
+    def test_plugin_load_banner_once(self):
+        """`plugin load` prints LAMMPS's "Loading plugin" line once, not once per
+        style, and registers every style (plugin host only)."""
+        if not self.plugin_host:
+            self.skipTest("tessera-lmp has its styles built in: no plugin load")
+        saved = os.environ.pop("LAMMPS_PLUGIN_PATH", None)    # not loaded at start-up
+        try:
+            run = self.run_lmp("plugin load %s\nplugin list\n" % lmptest.Config.plugin)
+        finally:
+            if saved is not None:
+                os.environ["LAMMPS_PLUGIN_PATH"] = saved
+        self.assertEqual(run.stdout.count("Loading plugin: Tessera"), 1, run.stdout)
+        listed = re.findall(r"(?m)^\s*\d+: (\w+) style plugin (\S+)$", run.stdout)
+        self.assertIn(("pair", "vertex/voronoi"), listed)
+        self.assertGreaterEqual(len(listed), 7, run.stdout)
+        self.assertEqual(run.stdout.count("Tessera %s styles:" % self.version(run)), 1)
+
+    def version(self, run):
+        match = re.search(r"^Tessera (\S+) styles:", run.stdout, re.M)
+        self.assertIsNotNone(match, run.stdout)
+        return match.group(1)
+
     @nprocs(2)
     def test_two_ranks(self):
         run = self.run_lmp(SCRIPT, variables={"greeting": "mpi"}, nprocs=2)

@@ -32,7 +32,9 @@ CASES = {}
 for _dir in sorted(os.listdir(EXAMPLES)):
     if os.path.isdir(os.path.join(EXAMPLES, _dir)):
         for _input in sorted(os.listdir(os.path.join(EXAMPLES, _dir))):
-            if _input.startswith("in."):
+            # (an in.*.continue input continues from the restart file its
+            # example's main input writes: not a run of its own)
+            if _input.startswith("in.") and not _input.endswith(".continue"):
                 _name = _dir if _input == "in." + _dir else _dir + "_" + _input[3:]
                 CASES[re.sub(r"\W", "_", _name)] = (_dir, _input, {})
 VARIANTS = {"shear_fluid": ("shear", "in.shear", {"p0": 4.0})}    # examples/shear/README.md

@@ -23,8 +23,17 @@ PH = math.sqrt(8 * math.sqrt(3))  # perimeter of the regular hexagon of area 1
 
 
 def hessian_exe():
-    # tessera-lmp is build/lammps/tessera-lmp; tessera-hessian is build/core/.
-    return os.path.join(os.path.dirname(os.path.dirname(lmptest.Config.lmp)), "core", "tessera-hessian")
+    # scripts/build puts tessera-hessian into <build>/core/ (this build, the
+    # plugin build, or the tessera-lmp build the plugin host compares with).
+    candidates = [os.path.join(lmptest.Config.build or "", "core", "tessera-hessian")]
+    for lmp in (lmptest.Config.lmp, lmptest.Config.tessera_lmp):
+        if lmp:
+            candidates.append(os.path.join(os.path.dirname(os.path.dirname(lmp)), "core",
+                                           "tessera-hessian"))
+    for path in candidates:
+        if os.path.isfile(path) and os.access(path, os.X_OK):
+            return path
+    return candidates[0]
 
 
 class ModuliRoutes(LammpsTestCase):

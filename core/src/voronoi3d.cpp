@@ -155,6 +155,87 @@ int Tessellation3::face_count(int c, double rel_tol) const {
 
 double Tessellation3::shape_index(int c) const { return surface[c] / std::cbrt(volume[c] * volume[c]); }
 
+namespace {
+
+// Tetrahedra flatter than this (|det| of the edge vectors over the cube of
+// the longest edge component) have an ill-conditioned circumcentre.
+constexpr double kSliver = 1e-6;
+// A point within this fraction of the radius of a sphere counts as on it.
+constexpr double kCoSpherical = 1e-8;
+
+// Slivers of co-spherical points.  Near-co-spherical points given with
+// round-off (a lattice in a tilted box, coordinates not exact in binary)
+// may be triangulated with a flat tetrahedron whose four points are nearly
+// on one circle.  Its circumcentre is then round-off (or 0/0), and so is its
+// gradient, though the Voronoi vertex it stands for is well defined: the
+// centre of the sphere through the cluster, which the well-shaped
+// tetrahedra of the cluster give.  Such a sliver is dropped from the face
+// polygons when a facet-adjacent well-shaped tetrahedron's circumsphere
+// holds its four points (kCoSpherical): every face then has only
+// well-conditioned vertices, all on the face's bisector plane, and the
+// polygon loses a corner within the cluster, which changes areas and
+// volumes only at second order in the distance from the co-spherical
+// configuration (doc/model.md, "Reliability of the finite and 3D paths").
+// The sliver keeps the neighbour's circumcentre and radius (unused).  A
+// sliver without such a neighbour (not co-spherical) keeps its own.
+template <class TetOf>
+void drop_slivers(Tessellation3 &t, const DT &dt, const std::vector<DT::Cell_handle> &handle,
+                  TetOf &&tet_of, const Points3 &pts) {
+  auto quality = [&](int v) {
+    const auto &q = t.tets[v];
+    const V3 p0 = load(pts, q[0]);
+    const V3 e1 = load(pts, q[1]) - p0, e2 = load(pts, q[2]) - p0, e3 = load(pts, q[3]) - p0;
+    double l = 0.0;
+    for (const V3 &e : {e1, e2, e3}) l = std::max({l, std::fabs(e.x), std::fabs(e.y), std::fabs(e.z)});
+    const double det = dot(e1, cross(e2, e3));
+    return l > 0.0 ? std::fabs(det) / (l * l * l) : 0.0;
+  };
+  std::vector<int> slivers;
+  const int n_tets = static_cast<int>(t.tets.size());
+  for (int v = 0; v < n_tets; ++v)
+    if (!(quality(v) >= kSliver)) slivers.push_back(v);
+  if (slivers.empty()) return;
+  auto on_sphere = [&](int v, int w) {  // the points of v on w's circumsphere
+    const V3 h = vv(t.vertices[w]);
+    const double r = t.radius[w];
+    if (!std::isfinite(r)) return false;
+    for (int k = 0; k < 4; ++k) {
+      const V3 d = load(pts, t.tets[v][k]) - h;
+      if (!(std::fabs(std::sqrt(dot(d, d)) - r) <= kCoSpherical * r)) return false;
+    }
+    return true;
+  };
+  std::vector<char> drop(n_tets, 0);
+  bool any = false;
+  for (int v : slivers)
+    for (int k = 0; k < 4; ++k) {
+      const DT::Cell_handle nb = handle[v]->neighbor(k);
+      if (dt.is_infinite(nb)) continue;
+      const int w = tet_of(nb);  // registers it if new (then unused by faces)
+      if (!(quality(w) >= kSliver) || !on_sphere(v, w)) continue;
+      t.vertices[v] = t.vertices[w];
+      t.radius[v] = t.radius[w];
+      drop[v] = 1;
+      any = true;
+      break;
+    }
+  if (!any) return;
+  std::vector<int> fv, fo(1, 0);
+  fv.reserve(t.face_vertex.size());
+  for (size_t f = 0; f + 1 < t.face_offset.size(); ++f) {
+    const size_t start = fv.size();
+    for (int k = t.face_offset[f]; k < t.face_offset[f + 1]; ++k)
+      if (!drop[t.face_vertex[k]]) fv.push_back(t.face_vertex[k]);
+    if (fv.size() == start)  // only slivers: keep them (an area-0 face)
+      for (int k = t.face_offset[f]; k < t.face_offset[f + 1]; ++k) fv.push_back(t.face_vertex[k]);
+    fo.push_back(static_cast<int>(fv.size()));
+  }
+  t.face_vertex.swap(fv);
+  t.face_offset.swap(fo);
+}
+
+}  // namespace
+
 Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *ids,
                                   bool throw_if_unbounded) {
   const int n = pts.n;
@@ -205,10 +286,12 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
   t.volume.assign(n_owned, 0.0);
   t.surface.assign(n_owned, 0.0);
 
+  std::vector<DT::Cell_handle> handle;  // of each tetrahedron in t.tets
   auto tet_of = [&](DT::Cell_handle c) {
     if (c->info() >= 0) return c->info();
     const int id = static_cast<int>(t.tets.size());
     c->info() = id;
+    handle.push_back(c);
     std::array<int, 4> q;
     for (int k = 0; k < 4; ++k) q[k] = c->vertex(k)->info();
     t.tets.push_back(q);
@@ -225,8 +308,6 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
     edges.clear();
     dt.finite_incident_edges(vh[i], std::back_inserter(edges));
     bool unbounded = false;
-    const V3 xi = load(pts, i);
-    double vol = 0.0, sur = 0.0;
     for (const DT::Edge &e : edges) {
       DT::Vertex_handle a = e.first->vertex(e.second), b = e.first->vertex(e.third);
       const int j = (a->info() == i) ? b->info() : a->info();
@@ -255,21 +336,7 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
       for (const auto &c : ring) t.face_vertex.push_back(tet_of(c));
       t.face_offset.push_back(static_cast<int>(t.face_vertex.size()));
       t.face_neighbor.push_back(j);
-      // Area and volume contribution.
-      const int o = t.face_offset[t.face_offset.size() - 2], m = static_cast<int>(ring.size());
-      V3 av{0, 0, 0}, q{0, 0, 0};
-      for (int k = 0; k < m; ++k) {
-        const V3 u = vv(t.vertices[t.face_vertex[o + k]]) - xi;
-        const V3 w = vv(t.vertices[t.face_vertex[o + (k + 1) % m]]) - xi;
-        av = av + 0.5 * cross(u, w);
-        q = q + u;
-      }
-      q = (1.0 / m) * q;
-      const V3 d = load(pts, j) - xi;
-      const double area = dot(av, d) / std::sqrt(dot(d, d));
-      t.face_area.push_back(area);
-      sur += area;
-      vol += dot(av, q) / 3.0;
+      t.face_area.push_back(0.0);  // measured below, after merge_slivers
     }
     if (unbounded) {
       if (throw_if_unbounded)
@@ -282,11 +349,32 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
       t.face_offset.resize(f_begin + 1);
       t.face_neighbor.resize(f_begin);
       t.face_area.resize(f_begin);
-      vol = sur = 0.0;
+    }
+    t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
+  }
+  drop_slivers(t, dt, handle, tet_of, pts);
+  // Face areas, volumes and surfaces.
+  for (int i = 0; i < n_owned; ++i) {
+    const V3 xi = load(pts, i);
+    double vol = 0.0, sur = 0.0;
+    for (int f = t.cell_offset[i]; f < t.cell_offset[i + 1]; ++f) {
+      const int o = t.face_offset[f], m = t.face_offset[f + 1] - o;
+      V3 av{0, 0, 0}, q{0, 0, 0};
+      for (int k = 0; k < m; ++k) {
+        const V3 u = vv(t.vertices[t.face_vertex[o + k]]) - xi;
+        const V3 w = vv(t.vertices[t.face_vertex[o + (k + 1) % m]]) - xi;
+        av = av + 0.5 * cross(u, w);
+        q = q + u;
+      }
+      q = (1.0 / m) * q;
+      const V3 d = load(pts, t.face_neighbor[f]) - xi;
+      const double area = dot(av, d) / std::sqrt(dot(d, d));
+      t.face_area[f] = area;
+      sur += area;
+      vol += dot(av, q) / 3.0;
     }
     t.volume[i] = vol;
     t.surface[i] = sur;
-    t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
   }
   return t;
 }

@@ -509,6 +509,24 @@ Tessellation3 tessellate_periodic_3d(const Box3 &box, const Points3 &pts, const 
 
 namespace {
 
+// Energies or forces beyond double's range: an Error naming the cell (its
+// owner for a periodic image) and the value, never inf or NaN.
+[[noreturn]] void throw_overflow_3d(const Tessellation3 &t, int c, const char *what, double value) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "tessera: the " << what;
+  if (c >= 0) {
+    const int o = t.origin.empty() ? c : t.origin[c];
+    s << (std::string(what).find("force") == 0 ? " of point " : " of the cell of point ") << o;
+  }
+  s << " is not finite (" << value << ")";
+  if (c >= 0 && c < t.n_owned)
+    s << "; the cell has volume " << t.volume[c] << " and surface " << t.surface[c];
+  s << ": the parameters are far outside reduced units; rescale the units (length, energy) "
+       "so that K V0^2, Gamma S^2 and Lambda S stay well below 1e300";
+  throw Error(s.str());
+}
+
 // Per-cell energies and their sum.
 double energy_3d(const Tessellation3 &t, const int *type, const Model &model, double *cell_energy) {
   const double w = model.tension_weight();
@@ -520,9 +538,11 @@ double energy_3d(const Tessellation3 &t, const int *type, const Model &model, do
       tension += model.lambda_of(type[c], type[t.face_neighbor[f]]) * t.face_area[f];
     const double dv = t.volume[c] - ct.A0;
     const double e = 0.5 * ct.K * dv * dv + 0.5 * ct.Gamma * t.surface[c] * t.surface[c] + w * tension;
+    if (!std::isfinite(e)) throw_overflow_3d(t, c, "energy", e);
     if (cell_energy) cell_energy[c] = e;
     total += e;
   }
+  if (!std::isfinite(total)) throw_overflow_3d(t, -1, "total energy", total);
   return total;
 }
 
@@ -629,6 +649,11 @@ ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const
     if (gv.x == 0.0 && gv.y == 0.0 && gv.z == 0.0) continue;
     chain_rule(t, pts, static_cast<int>(v), gv, [&](int p, V3 fp) { force[p] = force[p] + fp; });
   }
+  for (int p = 0; p < t.n_points; ++p)
+    if (!std::isfinite(force[p].x) || !std::isfinite(force[p].y) || !std::isfinite(force[p].z))
+      throw_overflow_3d(t, p, "force on the centre",
+                        !std::isfinite(force[p].x) ? force[p].x
+                        : !std::isfinite(force[p].y) ? force[p].y : force[p].z);
   for (int p = 0; p < t.n_points; ++p) {
     double *fp = f + static_cast<long>(p) * f_stride;
     fp[0] += force[p].x;
@@ -639,6 +664,8 @@ ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) out.virial[3 * a + b] += ra[a] * fb[b];
   }
+  for (double v : out.virial)
+    if (!std::isfinite(v)) throw_overflow_3d(t, -1, "virial", v);
   return out;
 }
 

@@ -248,3 +248,41 @@ TEST(Reliability3D, LocalPathWithTriclinicRegionMatchesClipping) {
   }
   EXPECT_NEAR(vsum, c.box.volume(), 1e-9);
 }
+
+// Energies beyond double's range: an Error naming the cell and the value
+// (not inf or NaN), from compute_forces_3d and compute_energy_3d; also when
+// every cell's energy is finite but their sum is not.
+TEST(Reliability3D, EnergyOverflowIsAnError) {
+  const Lattice3 c = lattice(2, 1.0, kFCC, 0.0);
+  const Tessellation3 t = tessellate_periodic_3d(c.box, c.points());
+  std::vector<int> ty(t.n_points, 0);
+  const Points3 all{t.position.data(), t.n_points, 3};
+  std::vector<double> f(3 * static_cast<size_t>(t.n_points), 0.0);
+  Model m = one_type();
+  m.types[0].Gamma = 1e308;  // Gamma/2 S^2 with S = 2.6
+  for (int which = 0; which < 2; ++which) {
+    try {
+      if (which == 0)
+        compute_forces_3d(t, all, ty.data(), m, f.data(), 3);
+      else
+        compute_energy_3d(t, ty.data(), m);
+      ADD_FAILURE() << "no error";
+    } catch (const Error &e) {
+      const std::string s = e.what();
+      EXPECT_NE(s.find("energy of the cell of point 0"), std::string::npos) << s;
+      EXPECT_NE(s.find("inf"), std::string::npos) << s;
+      EXPECT_NE(s.find("far outside reduced units"), std::string::npos) << s;
+    }
+  }
+  // K/2 (V - V0)^2 = 0.5 * 1.7e308 * 0.75^2 = 4.8e307 per cell, 32 cells.
+  m.types[0].Gamma = 0.0;
+  m.types[0].K = 1.7e308;
+  m.types[0].A0 = 1.0;
+  try {
+    compute_energy_3d(t, ty.data(), m);
+    ADD_FAILURE() << "no error";
+  } catch (const Error &e) {
+    EXPECT_NE(std::string(e.what()).find("total energy"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(compute_forces_3d(t, all, ty.data(), m, f.data(), 3), Error);
+}

@@ -256,3 +256,303 @@ TEST(FiniteReliability, EnergyOverflowIsAnError) {
   EXPECT_THROW(tessera::finite_energy(t, type, m, free_tension), tessera::Error);
   EXPECT_THROW(tessera::finite_forces(t, p, type, m, free_tension, f.data(), 2), tessera::Error);
 }
+
+// ---------------------------------------------------------------------------
+// Randomized generators.
+
+namespace {
+
+// Pair-local separation limit of the finite model (finite.h).
+bool has_near_pair(const FiniteInput &in) {
+  for (int i = 0; i < in.n(); ++i)
+    for (int j = i + 1; j < in.n(); ++j) {
+      const double dx = in.xy[2 * j] - in.xy[2 * i], dy = in.xy[2 * j + 1] - in.xy[2 * i + 1];
+      const double mag = std::max({std::fabs(in.xy[2 * i]), std::fabs(in.xy[2 * i + 1]),
+                                   std::fabs(in.xy[2 * j]), std::fabs(in.xy[2 * j + 1])});
+      const double lim = std::max(1e-10 * mag, 1e-100);
+      if (std::hypot(dx, dy) < 2 * in.r && std::hypot(dx, dy) < lim * (1 + 1e-12)) return true;
+    }
+  return false;
+}
+
+// The largest energy term the parameters can give (per cell, times n).
+double energy_scale(const FiniteInput &in) {
+  const double a = kPi * in.r * in.r, p = 2 * kPi * in.r;
+  double e = 0.0;
+  for (int t = 0; t < 2; ++t) {
+    const auto &ct = in.model.types[t];
+    e = std::max({e, ct.K * std::max(a, ct.A0) * std::max(a, ct.A0), ct.Gamma * p * p,
+                  std::fabs(in.free_tension[t]) * p});
+  }
+  for (int a1 = 0; a1 < 2; ++a1)
+    for (int b = 0; b < 2; ++b) e = std::max(e, std::fabs(in.model.lambda_of(a1, b)) * p);
+  return e * in.n();
+}
+
+struct Stats {
+  long inputs = 0, refused = 0, failures = 0, fd_checked = 0, fd_kink = 0;
+  double worst_area = 0.0;
+  std::map<std::string, long> reasons;
+};
+
+// "" if the input passes, else what is wrong.
+std::string check(const FiniteInput &in, Rng &rng, Stats &st) {
+  std::vector<double> f(2 * static_cast<size_t>(in.n()), 0.0);
+  tessera::FiniteTessellation t;
+  tessera::ForceOutput out;
+  try {
+    t = tessera::finite_tessellate(in.points(), in.n(), in.r);
+    out = tessera::finite_forces(t, in.points(), in.type.data(), in.model,
+                                 in.free_tension.data(), f.data(), 2);
+  } catch (const tessera::Error &e) {
+    const std::string m = e.what();
+    std::string why;
+    if (m.find("nearly coincide") != std::string::npos && has_near_pair(in))
+      why = "nearly coincident centres";
+    else if (m.find("far outside reduced units") != std::string::npos && energy_scale(in) > 1e280)
+      why = "energy overflow";
+    else if (m.find("radius") != std::string::npos && (in.r < 1e-100 || in.r > 1e100))
+      why = "radius out of range";
+    else if (m.find("beyond 1e+100") != std::string::npos &&
+             std::any_of(in.xy.begin(), in.xy.end(), [](double v) { return std::fabs(v) > 1e100; }))
+      why = "coordinate beyond 1e100";
+    if (why.empty()) return "unexpected Error: " + m;
+    ++st.refused;
+    ++st.reasons[why];
+    return "";
+  }
+  if (!std::isfinite(out.energy)) return "energy not finite";
+  for (double v : out.virial)
+    if (!std::isfinite(v)) return "virial not finite";
+  double S = 0.0, fsum[2] = {0, 0}, fabs_sum = 0.0, fmax = 0.0;
+  for (int i = 0; i < in.n(); ++i) {
+    S = std::max({S, std::fabs(in.xy[2 * i]), std::fabs(in.xy[2 * i + 1])});
+    for (int d = 0; d < 2; ++d) {
+      if (!std::isfinite(f[2 * i + d])) return "force not finite";
+      fsum[d] += f[2 * i + d];
+      fabs_sum += std::fabs(f[2 * i + d]);
+      fmax = std::max(fmax, std::fabs(f[2 * i + d]));
+    }
+  }
+  // Areas tile the union of the discs.
+  double asum = 0.0;
+  for (int c = 0; c < in.n(); ++c) {
+    if (!(t.area[c] >= 0.0)) return "negative cell area";
+    asum += t.area[c];
+  }
+  const double disc = kPi * in.r * in.r;
+  const double cond = 1.0 + S / in.r;
+  const double atol = in.n() * disc * (1e-11 + 256 * kEps * cond);
+  const double aerr = std::fabs(asum - union_area(in.xy, in.r));
+  st.worst_area = std::max(st.worst_area, aerr / atol);
+  if (aerr > atol) {
+    std::ostringstream s;
+    s << "cell areas sum to " << asum << ", the union of the discs is " << union_area(in.xy, in.r);
+    return s.str();
+  }
+  // Translation invariance.  A corner between two centres d apart is known
+  // to eps S / d of its distance from them (S the coordinates' magnitude).
+  double dmin = 2 * in.r;
+  for (int i = 0; i < in.n(); ++i)
+    for (int j = i + 1; j < in.n(); ++j)
+      dmin = std::min(dmin, std::hypot(in.xy[2 * j] - in.xy[2 * i], in.xy[2 * j + 1] - in.xy[2 * i + 1]));
+  const double ftol = (1e-9 * cond + 1e4 * kEps * S / dmin) * fabs_sum + 1e-300;
+  if (std::fabs(fsum[0]) > ftol || std::fabs(fsum[1]) > ftol) {
+    std::ostringstream s;
+    s << "forces sum to (" << fsum[0] << ", " << fsum[1] << "), sum |F| " << fabs_sum;
+    return s.str();
+  }
+  // Central differences on two components, where the energy is smooth.
+  if (cond > 1e6 || S / dmin > 1e8 || fmax < 1e-200 || energy_scale(in) > 1e200) return "";
+  const double E0 = out.energy;
+  for (int k = 0; k < 2; ++k) {
+    const int q = rng.below(2 * in.n());
+    const double h = std::min(1e-6 * in.r, 1e-3 * dmin);  // smooth within the step
+    FiniteInput p = in, m = in;
+    p.xy[q] += h;
+    m.xy[q] -= h;
+    FiniteInput p4 = in, m4 = in;
+    p4.xy[q] += 0.25 * h;
+    m4.xy[q] -= 0.25 * h;
+    double Ep, Em, Ep4, Em4;
+    try {
+      Ep = energy(p);
+      Em = energy(m);
+      Ep4 = energy(p4);
+      Em4 = energy(m4);
+    } catch (const tessera::Error &) {
+      continue;
+    }
+    const double right = (Ep - E0) / h, left = (E0 - Em) / h, central = (Ep - Em) / (2 * h);
+    // The central difference of a quarter of the step: a square-root
+    // singularity (a contact opening on both sides) can make the one-sided
+    // differences agree by chance, not at two steps.
+    const double central4 = (Ep4 - Em4) / (0.5 * h);
+    // The smoothness test: at a kink (a contact appearing, the square-root
+    // singularity of a nearly tangent pair) the one-sided differences
+    // disagree and there is nothing to compare with.  Round-off of the energy: of its terms (coordinates rounded to eps S),
+    // and of corners near two close centres (known to eps S / dmin times
+    // their distance ~ r, moving the energy by the force times that).
+    const double noise = 64 * kEps *
+                         ((std::fabs(E0) + energy_scale(in) / in.n()) * cond +
+                          fabs_sum / in.n() * S * in.r / dmin) / h;
+    const double scale =
+        std::max({std::fabs(right), std::fabs(left), 1e-9 * fabs_sum / in.n()});
+    if (noise > 1e-3 * scale) {  // the differences are round-off
+      ++st.fd_kink;
+      continue;
+    }
+    if (std::fabs(right - left) > 1e-3 * scale + 4 * noise ||
+        std::fabs(central4 - central) > 1e-4 * scale + 16 * noise) {
+      ++st.fd_kink;
+      continue;
+    }
+    ++st.fd_checked;
+    if (std::fabs(-central - f[q]) > 1e-4 * scale + 4 * noise) {
+      std::ostringstream s;
+      s.precision(10);
+      s << "force component " << q << " is " << f[q] << ", central difference " << -central
+        << " (one-sided " << -right << ", " << -left << ")";
+      return s.str();
+    }
+  }
+  return "";
+}
+
+using Gen = void (*)(Rng &, FiniteInput &);
+
+// A cluster of 2..25 cells in a square, at a random offset.
+void gen_cluster(Rng &rng, FiniteInput &in) {
+  in.r = std::pow(10.0, rng.uniform(-3, 3));
+  const int n = 2 + rng.below(24);
+  const double side = in.r * std::sqrt(n) * rng.uniform(0.5, 2.5);
+  const double ox = in.r * std::pow(10.0, rng.uniform(0, 4)) * (rng.below(2) ? 1 : -1);
+  for (int i = 0; i < n; ++i)
+    in.xy.insert(in.xy.end(), {ox + side * rng.uniform(), side * rng.uniform() - 0.5 * side});
+  set_model(rng, in);
+}
+
+// Chains of cells at 2r(1 + s 1e-12), s in {-1, 0, 1}: tangent within round-off.
+void gen_tangent(Rng &rng, FiniteInput &in) {
+  in.r = std::pow(10.0, rng.uniform(-2, 2));
+  const int n = 2 + rng.below(7);
+  double x = in.r * rng.uniform(-10, 10), y = in.r * rng.uniform(-10, 10);
+  const bool straight = rng.below(2);
+  double ang = rng.uniform(0, 2 * kPi);
+  for (int i = 0; i < n; ++i) {
+    in.xy.insert(in.xy.end(), {x, y});
+    const double d = 2 * in.r * (1 + (rng.below(3) - 1) * 1e-12);
+    if (!straight) ang += rng.uniform(-1.2, 1.2);
+    if (rng.below(3) == 0) ang = 0.0;  // exact axis-aligned steps
+    x += d * std::cos(ang);
+    y += d * std::sin(ang);
+  }
+  set_model(rng, in);
+}
+
+// Rows of cells on one line (equal or random spacing, any angle).
+void gen_row(Rng &rng, FiniteInput &in) {
+  in.r = std::pow(10.0, rng.uniform(-2, 2));
+  const int n = 3 + rng.below(18);
+  const double ang = rng.below(2) ? 0.0 : rng.uniform(0, 2 * kPi);
+  const bool equal = rng.below(2);
+  const double step = in.r * rng.uniform(0.3, 2.2);
+  double s = 0.0;
+  const double ox = in.r * rng.uniform(-100, 100), oy = in.r * rng.uniform(-100, 100);
+  for (int i = 0; i < n; ++i) {
+    in.xy.insert(in.xy.end(), {ox + s * std::cos(ang), oy + s * std::sin(ang)});
+    s += equal ? step : in.r * rng.uniform(0.3, 2.2);
+  }
+  set_model(rng, in);
+}
+
+// Small groups 1e4 .. 1e12 radii apart.
+void gen_far(Rng &rng, FiniteInput &in) {
+  in.r = std::pow(10.0, rng.uniform(-6, 2));
+  const int groups = 2 + rng.below(3);
+  for (int g = 0; g < groups; ++g) {
+    const double gx = (g == 0 ? 0.0 : in.r * std::pow(10.0, rng.uniform(4, 10))) *
+                      (rng.below(2) ? 1 : -1);
+    const double gy = rng.below(2) ? 0.0 : in.r * std::pow(10.0, rng.uniform(0, 10));
+    const int n = 1 + rng.below(5);
+    for (int i = 0; i < n; ++i)
+      in.xy.insert(in.xy.end(), {gx + in.r * rng.uniform(0, 3), gy + in.r * rng.uniform(0, 3)});
+  }
+  set_model(rng, in);
+}
+
+// Radii over the whole supported range (and a little beyond: an Error),
+// parameters of order 1 in absolute units, so energies underflow or
+// overflow at the extremes.
+void gen_extreme(Rng &rng, FiniteInput &in) {
+  in.r = std::pow(10.0, rng.uniform(-105, 105));
+  const int n = 2 + rng.below(8);
+  for (int i = 0; i < n; ++i)
+    in.xy.insert(in.xy.end(), {in.r * rng.uniform(0, 4), in.r * rng.uniform(0, 4)});
+  set_model(rng, in);
+  for (auto &t : in.model.types) {
+    t.K = rng.uniform(0.5, 1.5);
+    t.A0 = rng.uniform(0.5, 1.5);
+    t.Gamma = rng.uniform(0.0, 0.2);
+  }
+  in.model.set_lambda(0, 0, -0.5);
+  in.model.set_lambda(1, 1, -0.3);
+  in.model.set_lambda(0, 1, 0.2);
+  for (double &f : in.free_tension) f = 0.1;
+}
+
+// Near-duplicates: pairs 1e-13 .. 1e-6 of their magnitude apart.
+void gen_near_duplicate(Rng &rng, FiniteInput &in) {
+  in.r = 1.0;
+  const double ox = std::pow(10.0, rng.uniform(-3, 8));
+  const int n = 2 + rng.below(6);
+  for (int i = 0; i < n; ++i) {
+    const double x = ox + rng.uniform(0, 3), y = rng.uniform(0, 3);
+    in.xy.insert(in.xy.end(), {x, y});
+    if (rng.below(2)) {
+      const double d = std::max(std::fabs(x), std::fabs(y)) * std::pow(10.0, rng.uniform(-13, -6));
+      in.xy.insert(in.xy.end(), {x + d, y});
+    }
+  }
+  set_model(rng, in);
+}
+
+long count(long n) {
+  const char *s = std::getenv("TESSERA_FUZZ_SCALE");
+  return s ? std::max(1L, static_cast<long>(n * std::atof(s))) : n;
+}
+uint64_t seed(uint64_t s) {
+  const char *e = std::getenv("TESSERA_FUZZ_SEED");
+  return e ? s + 1000 * std::strtoull(e, nullptr, 10) : s;
+}
+
+void run(const char *name, Gen gen, long n, uint64_t seed0) {
+  Stats st;
+  for (long k = 0; k < n; ++k) {
+    Rng rng(seed0 * 1000003 + k);
+    FiniteInput in;
+    gen(rng, in);
+    ++st.inputs;
+    const std::string why = check(in, rng, st);
+    if (!why.empty()) {
+      ++st.failures;
+      if (st.failures <= 3)
+        ADD_FAILURE() << name << " input " << k << " (seed " << seed0 << "): " << why
+                      << "\nreproducer: " << reproducer(in);
+    }
+  }
+  std::printf("%s: %ld inputs, %ld refused with an Error, %ld failures; %ld finite-difference "
+              "checks (%ld skipped at kinks or round-off); worst area-sum error %.3g of its tolerance\n",
+              name, st.inputs, st.refused, st.failures, st.fd_checked, st.fd_kink, st.worst_area);
+  for (const auto &r : st.reasons) std::printf("  refused %6ld x  %s\n", r.second, r.first.c_str());
+  EXPECT_EQ(st.failures, 0);
+}
+
+}  // namespace
+
+TEST(FiniteFuzz, Clusters) { run("finite clusters", gen_cluster, count(3000), seed(101)); }
+TEST(FiniteFuzz, TangentPairs) { run("finite tangent", gen_tangent, count(4000), seed(102)); }
+TEST(FiniteFuzz, CollinearRows) { run("finite rows", gen_row, count(3000), seed(103)); }
+TEST(FiniteFuzz, FarApart) { run("finite far apart", gen_far, count(3000), seed(104)); }
+TEST(FiniteFuzz, ExtremeRadii) { run("finite extreme r", gen_extreme, count(4000), seed(105)); }
+TEST(FiniteFuzz, NearDuplicates) { run("finite near-duplicates", gen_near_duplicate, count(4000), seed(106)); }

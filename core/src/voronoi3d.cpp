@@ -30,6 +30,7 @@
 #include "tessera/voronoi3d.h"
 
 #include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
@@ -84,6 +85,29 @@ V3 circumcentre(V3 p0, V3 p1, V3 p2, V3 p3) {
   const double det = dot(e1, c23);
   const double s = 0.5 / det;
   return p0 + s * (dot(e1, e1) * c23 + dot(e2, e2) * c31 + dot(e3, e3) * c12);
+}
+
+// The circumcentre of a flat tetrahedron (sliver) to the nearest double:
+// the formula above loses about eps/q of its radius (q its flatness), all
+// of it for the slivers of co-spherical points that round-off creates.
+V3 exact_circumcentre(V3 p0, V3 p1, V3 p2, V3 p3) {
+  using E = CGAL::Exact_predicates_exact_constructions_kernel;
+  const E::Point_3 c = CGAL::circumcenter(E::Point_3(p0.x, p0.y, p0.z), E::Point_3(p1.x, p1.y, p1.z),
+                                          E::Point_3(p2.x, p2.y, p2.z), E::Point_3(p3.x, p3.y, p3.z));
+  // exact(): the lazy number's own approximation is an interval, as
+  // ill-conditioned as the formula above.
+  return {CGAL::to_double(CGAL::exact(c.x())), CGAL::to_double(CGAL::exact(c.y())),
+          CGAL::to_double(CGAL::exact(c.z()))};
+}
+
+// |det| of the edge vectors over the cube of the longest edge component:
+// the flatness of a tetrahedron (0 flat, 1/6.. for a well-shaped one).
+double flatness(V3 p0, V3 p1, V3 p2, V3 p3) {
+  const V3 e1 = p1 - p0, e2 = p2 - p0, e3 = p3 - p0;
+  double l = 0.0;
+  for (const V3 &e : {e1, e2, e3}) l = std::max({l, std::fabs(e.x), std::fabs(e.y), std::fabs(e.z)});
+  const double det = dot(e1, cross(e2, e3));
+  return l > 0.0 ? std::fabs(det) / (l * l * l) : 0.0;
 }
 
 // Parity of the permutation (a, b, c, d) of (0, 1, 2, 3): +1 even, -1 odd.
@@ -183,12 +207,7 @@ void drop_slivers(Tessellation3 &t, const DT &dt, const std::vector<DT::Cell_han
                   TetOf &&tet_of, const Points3 &pts) {
   auto quality = [&](int v) {
     const auto &q = t.tets[v];
-    const V3 p0 = load(pts, q[0]);
-    const V3 e1 = load(pts, q[1]) - p0, e2 = load(pts, q[2]) - p0, e3 = load(pts, q[3]) - p0;
-    double l = 0.0;
-    for (const V3 &e : {e1, e2, e3}) l = std::max({l, std::fabs(e.x), std::fabs(e.y), std::fabs(e.z)});
-    const double det = dot(e1, cross(e2, e3));
-    return l > 0.0 ? std::fabs(det) / (l * l * l) : 0.0;
+    return flatness(load(pts, q[0]), load(pts, q[1]), load(pts, q[2]), load(pts, q[3]));
   };
   std::vector<int> slivers;
   const int n_tets = static_cast<int>(t.tets.size());
@@ -213,6 +232,13 @@ void drop_slivers(Tessellation3 &t, const DT &dt, const std::vector<DT::Cell_han
       if (dt.is_infinite(nb)) continue;
       const int w = tet_of(nb);  // registers it if new (then unused by faces)
       if (!(quality(w) >= kSliver) || !on_sphere(v, w)) continue;
+      // Co-spherical is not enough: four points of a square shared by two
+      // cubes of co-spherical points (a four-fold Voronoi edge, SC) lie on
+      // both cubes' spheres, and the sliver's circumcentre is a real vertex
+      // anywhere on the edge between their centres.  Only a sliver whose
+      // (exactly computed) circumcentre is at w's is dropped.
+      const V3 dh = vv(t.vertices[v]) - vv(t.vertices[w]);
+      if (!(std::sqrt(dot(dh, dh)) <= kCoSpherical * t.radius[w])) continue;
       t.vertices[v] = t.vertices[w];
       t.radius[v] = t.radius[w];
       drop[v] = 1;
@@ -295,7 +321,9 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
     std::array<int, 4> q;
     for (int k = 0; k < 4; ++k) q[k] = c->vertex(k)->info();
     t.tets.push_back(q);
-    const V3 h = circumcentre(load(pts, q[0]), load(pts, q[1]), load(pts, q[2]), load(pts, q[3]));
+    const V3 p0 = load(pts, q[0]), p1 = load(pts, q[1]), p2 = load(pts, q[2]), p3 = load(pts, q[3]);
+    const V3 h = flatness(p0, p1, p2, p3) >= kSliver ? circumcentre(p0, p1, p2, p3)
+                                                     : exact_circumcentre(p0, p1, p2, p3);
     t.vertices.push_back({h.x, h.y, h.z});
     const V3 d = h - load(pts, q[0]);
     t.radius.push_back(std::sqrt(dot(d, d)));

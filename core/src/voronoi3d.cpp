@@ -260,6 +260,32 @@ void drop_slivers(Tessellation3 &t, const DT &dt, const std::vector<DT::Cell_han
   t.face_offset.swap(fo);
 }
 
+// Face areas, volumes and surfaces of the owned cells from t.vertices.
+void measure(Tessellation3 &t, const Points3 &pts) {
+  for (int i = 0; i < t.n_owned; ++i) {
+    const V3 xi = load(pts, i);
+    double vol = 0.0, sur = 0.0;
+    for (int f = t.cell_offset[i]; f < t.cell_offset[i + 1]; ++f) {
+      const int o = t.face_offset[f], m = t.face_offset[f + 1] - o;
+      V3 av{0, 0, 0}, q{0, 0, 0};
+      for (int k = 0; k < m; ++k) {
+        const V3 u = vv(t.vertices[t.face_vertex[o + k]]) - xi;
+        const V3 w = vv(t.vertices[t.face_vertex[o + (k + 1) % m]]) - xi;
+        av = av + 0.5 * cross(u, w);
+        q = q + u;
+      }
+      q = (1.0 / m) * q;
+      const V3 d = load(pts, t.face_neighbor[f]) - xi;
+      const double area = dot(av, d) / std::sqrt(dot(d, d));
+      t.face_area[f] = area;
+      sur += area;
+      vol += dot(av, q) / 3.0;
+    }
+    t.volume[i] = vol;
+    t.surface[i] = sur;
+  }
+}
+
 }  // namespace
 
 Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *ids,
@@ -381,30 +407,21 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
     t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
   }
   drop_slivers(t, dt, handle, tet_of, pts);
-  // Face areas, volumes and surfaces.
-  for (int i = 0; i < n_owned; ++i) {
-    const V3 xi = load(pts, i);
-    double vol = 0.0, sur = 0.0;
-    for (int f = t.cell_offset[i]; f < t.cell_offset[i + 1]; ++f) {
-      const int o = t.face_offset[f], m = t.face_offset[f + 1] - o;
-      V3 av{0, 0, 0}, q{0, 0, 0};
-      for (int k = 0; k < m; ++k) {
-        const V3 u = vv(t.vertices[t.face_vertex[o + k]]) - xi;
-        const V3 w = vv(t.vertices[t.face_vertex[o + (k + 1) % m]]) - xi;
-        av = av + 0.5 * cross(u, w);
-        q = q + u;
-      }
-      q = (1.0 / m) * q;
-      const V3 d = load(pts, t.face_neighbor[f]) - xi;
-      const double area = dot(av, d) / std::sqrt(dot(d, d));
-      t.face_area[f] = area;
-      sur += area;
-      vol += dot(av, q) / 3.0;
-    }
-    t.volume[i] = vol;
-    t.surface[i] = sur;
-  }
+  measure(t, pts);
   return t;
+}
+
+void remeasure_3d(Tessellation3 &t, const Points3 &pts) {
+  for (size_t v = 0; v < t.tets.size(); ++v) {
+    const auto &q = t.tets[v];
+    const V3 p0 = load(pts, q[0]), p1 = load(pts, q[1]), p2 = load(pts, q[2]), p3 = load(pts, q[3]);
+    const V3 h = flatness(p0, p1, p2, p3) >= kSliver ? circumcentre(p0, p1, p2, p3)
+                                                     : exact_circumcentre(p0, p1, p2, p3);
+    t.vertices[v] = {h.x, h.y, h.z};
+    const V3 d = h - p0;
+    t.radius[v] = std::sqrt(dot(d, d));
+  }
+  measure(t, pts);
 }
 
 Coverage check_coverage_3d(const Tessellation3 &t, const double lo[3], const double hi[3],

@@ -1,11 +1,15 @@
 // Tessera tests.  SPDX-License-Identifier: GPL-2.0-or-later
 //
 // Reliability of the 3D path on co-spherical lattices (SC, FCC) in tilted
-// boxes, the multifold rule at four-fold Voronoi edges, and overflow.
+// boxes (slivers), what 3D does at four-fold Voronoi edges, and overflow;
+// at the end a disabled reproducer of a known 2D (confluent) failure at
+// rounded co-circular rosettes.
 
 #include "reference3d.h"
 #include "test_util.h"
 
+#include "tessera/energy.h"
+#include "tessera/tessellation.h"
 #include "tessera/voronoi3d.h"
 
 #include <gtest/gtest.h>
@@ -378,4 +382,48 @@ TEST(Reliability3D, MultifoldEdgesForceIsTheBranchGradient) {
   }
   EXPECT_GT(kinks, 0) << "no kink seen: the lattice has no four-fold edges?";
   EXPECT_LT(err, 1e-6 * testutil::max_abs(f));
+}
+
+// Confluent 2D, known failure (not fixed here; it needs a change to the
+// multifold-vertex grouping of the mesh).  23 centres on a circle of radius
+// 1.8 around x = 1e7: the coordinates are rounded to 2e-9, and the
+// circumcentres of the fan triangles (three neighbouring points of the
+// circle: nearly collinear) scatter by up to 2e-8, far beyond the grouping
+// tolerance (1e-10 of the circumradius).  Only some triangles are grouped
+// (rings of 4 and 8 instead of one of 23, 13 triangles left alone), so the
+// cells around the vertex use different branches: the mean over the fans of
+// a partial ring for some, the round-off directions of edges 1e-9..1e-8
+// long for others.  The forces are then not a gradient, and do not sum to
+// zero (about 5e-4 of sum |F|).  At x = 0 the same rosette is one group of
+// 23 and the forces sum to 1e-14.
+TEST(Confluent2D, DISABLED_RoundedRosetteForcesSumToZero) {
+  for (double X : {0.0, 1e5, 1e7})
+    for (int k : {7, 12, 23}) {
+      const double R = 1.8, pi = 3.141592653589793;
+      const Box box = Box::rect(X - 3.0, X + 3.0, -3.0, 3.0);
+      std::vector<double> xy;
+      std::vector<int> type;
+      for (int i = 0; i < k; ++i) {
+        xy.push_back(X + R * std::cos(2 * pi * i / k));
+        xy.push_back(R * std::sin(2 * pi * i / k));
+        type.push_back(i % 2);
+      }
+      Model m(2);
+      m.types[0].K = 1.0;
+      m.types[0].A0 = 36.0 / k;
+      m.types[0].Gamma = 0.1;
+      m.types[1] = m.types[0];
+      m.set_lambda(0, 0, -0.2);
+      m.set_lambda(1, 1, -0.3);
+      m.set_lambda(0, 1, 0.4);
+      std::vector<double> f;
+      periodic_forces(box, Points{xy.data(), k, 2}, type.data(), m, f);
+      double sx = 0.0, sy = 0.0, sa = 0.0;
+      for (int i = 0; i < k; ++i) {
+        sx += f[2 * i];
+        sy += f[2 * i + 1];
+        sa += std::abs(f[2 * i]) + std::abs(f[2 * i + 1]);
+      }
+      EXPECT_LT(std::hypot(sx, sy), 1e-9 * sa) << "x " << X << ", " << k << " centres";
+    }
 }

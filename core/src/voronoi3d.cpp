@@ -202,9 +202,8 @@ constexpr double kCoSpherical = 1e-8;
 // configuration (doc/model.md, "Reliability of the finite and 3D paths").
 // The sliver keeps the neighbour's circumcentre and radius (unused).  A
 // sliver without such a neighbour (not co-spherical) keeps its own.
-template <class TetOf>
 void drop_slivers(Tessellation3 &t, const DT &dt, const std::vector<DT::Cell_handle> &handle,
-                  TetOf &&tet_of, const Points3 &pts) {
+                  const Points3 &pts) {
   auto quality = [&](int v) {
     const auto &q = t.tets[v];
     return flatness(load(pts, q[0]), load(pts, q[1]), load(pts, q[2]), load(pts, q[3]));
@@ -229,8 +228,10 @@ void drop_slivers(Tessellation3 &t, const DT &dt, const std::vector<DT::Cell_han
   for (int v : slivers)
     for (int k = 0; k < 4; ++k) {
       const DT::Cell_handle nb = handle[v]->neighbor(k);
-      if (dt.is_infinite(nb)) continue;
-      const int w = tet_of(nb);  // registers it if new (then unused by faces)
+      // Only tetrahedra already in the faces: the tetrahedra of t stay those
+      // of the owned cells' faces (as an incremental mesh reproduces them).
+      if (dt.is_infinite(nb) || nb->info() < 0) continue;
+      const int w = nb->info();
       if (!(quality(w) >= kSliver) || !on_sphere(v, w)) continue;
       // Co-spherical is not enough: four points of a square shared by two
       // cubes of co-spherical points (a four-fold Voronoi edge, SC) lie on
@@ -406,7 +407,7 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
     }
     t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
   }
-  drop_slivers(t, dt, handle, tet_of, pts);
+  drop_slivers(t, dt, handle, pts);
   measure(t, pts);
   return t;
 }

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 #include <utility>
 
@@ -191,51 +192,123 @@ bool clip(std::vector<FinitePiece> &cell, int j, Vec2 D, double r, double tol_s,
   return true;
 }
 
-// Points binned on a grid of spacing 2 r (sorted by bin), for the
-// neighbours within 2 r.
+// Points binned on a grid of spacing at least 2 r (sorted by bin), for the
+// neighbours within 2 r.  Any finite input is safe: the bin size grows so
+// that there are at most kMaxBins bins along an axis (points far apart then
+// share bins, which costs time, not correctness: two points within 2 r are
+// still in the same or adjacent bins), bin indices are clamped to
+// [0, kMaxBins] before the conversion to an integer, and keys are unsigned.
 struct Grid {
-  double x0 = 0.0, y0 = 0.0, s = 1.0;
-  std::vector<std::pair<long long, int>> keyed;
-  static long long key(long long bx, long long by) { return (bx << 32) ^ (by & 0xffffffffLL); }
-  void build(const Points &pts, double spacing) {
-    s = spacing;
+  static constexpr double kMaxBins = 1 << 20;
+  double x0 = 0.0, y0 = 0.0, sx = 1.0, sy = 1.0;
+  std::vector<std::pair<uint64_t, int>> keyed;
+  // Bins -1 .. kMaxBins + 1 (near() looks one beyond) shifted to 0 ..
+  static uint64_t key(long long bx, long long by) {
+    return (static_cast<uint64_t>(bx + 1) << 32) | static_cast<uint64_t>(by + 1);
+  }
+  // Bin size along one axis for coordinates lo .. hi (halved first, so
+  // that hi - lo cannot overflow).
+  static double spacing(double lo, double hi, double s) {
+    const double per_bin = (0.5 * hi - 0.5 * lo) / (0.5 * kMaxBins);
+    return std::max(s, per_bin);
+  }
+  void build(const Points &pts, double s) {
     x0 = pts.x(0);
     y0 = pts.y(0);
+    double x1 = x0, y1 = y0;
     for (int i = 1; i < pts.n; ++i) {
       x0 = std::min(x0, pts.x(i));
       y0 = std::min(y0, pts.y(i));
+      x1 = std::max(x1, pts.x(i));
+      y1 = std::max(y1, pts.y(i));
     }
+    sx = spacing(x0, x1, s);
+    sy = spacing(y0, y1, s);
     keyed.resize(pts.n);
     for (int i = 0; i < pts.n; ++i)
-      keyed[i] = {key(bin(pts.x(i), x0), bin(pts.y(i), y0)), i};
+      keyed[i] = {key(bin(pts.x(i), x0, sx), bin(pts.y(i), y0, sy)), i};
     std::sort(keyed.begin(), keyed.end());
   }
-  long long bin(double v, double v0) const { return static_cast<long long>(std::floor((v - v0) / s)); }
+  static long long bin(double v, double v0, double s) {
+    // v - v0 may overflow to +inf (then the last bin); s may be +inf (bin 0).
+    const double q = std::floor((v - v0) / s);
+    if (!(q > 0.0)) return 0;  // also NaN (inf / inf)
+    return static_cast<long long>(std::min(q, kMaxBins));
+  }
   template <class F>
   void near(double x, double y, F &&visit) const {
-    const long long bx = bin(x, x0), by = bin(y, y0);
+    const long long bx = bin(x, x0, sx), by = bin(y, y0, sy);
     for (long long ix = bx - 1; ix <= bx + 1; ++ix)
       for (long long iy = by - 1; iy <= by + 1; ++iy) {
-        const long long k = key(ix, iy);
+        const uint64_t k = key(ix, iy);
         auto it = std::lower_bound(keyed.begin(), keyed.end(), std::make_pair(k, -1));
         for (; it != keyed.end() && it->first == k; ++it) visit(it->second);
       }
   }
 };
 
-}  // namespace
+// Input limits, as for the confluent model (doc/model.md, "Limits of the
+// input"): lengths within [kMinLength, kMaxLength] so that squares and
+// products of lengths neither underflow nor overflow, and two centres closer
+// than kMinSeparation times their coordinates' magnitude refused (the
+// bisector between them is round-off).  The magnitude is that of the pair
+// itself, not of the whole input: a finite cell depends only on points
+// within 2 r, which are translated exactly (an image or ghost is rounded to
+// its own coordinates' precision).
+constexpr double kMinSeparation = 1e-10;
+constexpr double kMinLength = 1e-100;
+constexpr double kMaxLength = 1e100;
 
-FiniteTessellation finite_tessellate(const Points &pts, int n_owned, double radius,
-                                     const long *ids) {
+void check_radius(double radius) {
   if (!(radius > 0.0) || !std::isfinite(radius)) {
     std::ostringstream s;
     s << "tessera: finite Voronoi radius must be positive and finite, got " << radius;
     throw Error(s.str());
   }
+  if (radius < kMinLength || radius > kMaxLength) {
+    std::ostringstream s;
+    s << "tessera: finite Voronoi radius " << radius << " is outside [" << kMinLength << ", "
+      << kMaxLength
+      << "]: areas (r^2) would underflow or overflow double precision; rescale the length unit";
+    throw Error(s.str());
+  }
+}
+
+[[noreturn]] void throw_too_close(const Points &pts, int c, int j, const long *ids, double lim) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "tessera: two cell centres nearly coincide: " << point_name(c, ids) << " at (" << pts.x(c)
+    << ", " << pts.y(c) << ") and " << point_name(j, ids) << " at (" << pts.x(j) << ", "
+    << pts.y(j) << ") are " << std::hypot(pts.x(j) - pts.x(c), pts.y(j) - pts.y(c))
+    << " apart, closer than " << lim;
+  if (lim > kMinLength)
+    s << " (" << kMinSeparation
+      << " times their coordinates' magnitude): double precision cannot resolve the cell "
+         "boundary between them; move or delete one of them";
+  else
+    s << ": lengths this small underflow in double precision; rescale the length unit";
+  throw Error(s.str());
+}
+
+}  // namespace
+
+FiniteTessellation finite_tessellate(const Points &pts, int n_owned, double radius,
+                                     const long *ids) {
+  check_radius(radius);
   if (n_owned < 0 || n_owned > pts.n) throw Error("tessera: n_owned out of range");
-  for (int i = 0; i < pts.n; ++i)
+  for (int i = 0; i < pts.n; ++i) {
     if (!std::isfinite(pts.x(i)) || !std::isfinite(pts.y(i)))
       throw Error("tessera: non-finite coordinates of " + point_name(i, ids));
+    if (std::max(std::fabs(pts.x(i)), std::fabs(pts.y(i))) > kMaxLength) {
+      std::ostringstream s;
+      s.precision(17);
+      s << "tessera: " << point_name(i, ids) << " at (" << pts.x(i) << ", " << pts.y(i)
+        << ") is beyond " << kMaxLength
+        << " in magnitude: squares of lengths would overflow double precision; rescale the "
+           "length unit";
+      throw Error(s.str());
+    }
+  }
 
   const double r = radius;
   FiniteTessellation t;
@@ -260,10 +333,13 @@ FiniteTessellation finite_tessellate(const Points &pts, int n_owned, double radi
       if (j == c) return;
       const double dx = pts.x(j) - cx, dy = pts.y(j) - cy;
       const double d2 = dx * dx + dy * dy;
-      if (d2 == 0.0)
-        throw Error("tessera: coincident points " + point_name(c, ids) + " and " +
-                    point_name(j, ids) + " (finite Voronoi cells need distinct centres)");
-      if (d2 < reach2) cand.push_back({d2, j});
+      if (d2 < reach2) {
+        const double mag = std::max({std::fabs(cx), std::fabs(cy), std::fabs(pts.x(j)),
+                                     std::fabs(pts.y(j))});
+        const double lim = std::max(kMinSeparation * mag, kMinLength);
+        if (d2 < lim * lim) throw_too_close(pts, c, j, ids, lim);
+        cand.push_back({d2, j});
+      }
     });
     std::sort(cand.begin(), cand.end());
     cell.assign(1, FinitePiece{});
@@ -311,11 +387,7 @@ FiniteTessellation finite_tessellate(const Points &pts, int n_owned, double radi
 FiniteTessellation finite_tessellate_periodic(const Box &box, const Points &pts, double radius,
                                               const long *ids) {
   box.validate();
-  if (!(radius > 0.0) || !std::isfinite(radius)) {
-    std::ostringstream s;
-    s << "tessera: finite Voronoi radius must be positive and finite, got " << radius;
-    throw Error(s.str());
-  }
+  check_radius(radius);
   const double lx = box.length(0), ly = box.length(1), xy = box.xy;
   // Margins in fractional coordinates: 2 r over the distance between the
   // lattice lines of each family.
@@ -367,6 +439,28 @@ std::vector<double> positions_of(const FiniteTessellation &t) {
 
 namespace {
 
+[[noreturn]] void throw_total_overflow(double e) {
+  std::ostringstream s;
+  s << "tessera: the total energy or virial of the finite cells is not finite (" << e
+    << ", every cell's being finite): the parameters are far outside reduced units; rescale "
+       "the units (length, energy)";
+  throw Error(s.str());
+}
+
+// Energies or forces beyond double's range: an Error naming the cell (its
+// owner for an image) and the value, never inf or NaN.
+[[noreturn]] void throw_overflow(const FiniteTessellation &t, int c, const char *what,
+                                 double value) {
+  std::ostringstream s;
+  s.precision(17);
+  const int o = t.origin.empty() ? c : t.origin[c];
+  s << "tessera: the " << what << " of the finite cell of point " << o << " is not finite ("
+    << value << "; its area " << t.area[c] << ", perimeter " << t.perimeter[c]
+    << "): the parameters are far outside reduced units; rescale the units (length, energy) "
+       "so that K A0^2, Gamma P^2, Lambda P and F P stay well below 1e300";
+  throw Error(s.str());
+}
+
 double cell_energy_of(const FiniteTessellation &t, int c, const int *type, const Model &m,
                       const double *free_tension) {
   const CellType &ct = m.types[type[c]];
@@ -379,6 +473,7 @@ double cell_energy_of(const FiniteTessellation &t, int c, const int *type, const
   }
   e += m.tension_weight() * tension;
   if (free_tension) e += free_tension[type[c]] * t.free_length[c];
+  if (!std::isfinite(e)) throw_overflow(t, c, "energy", e);
   return e;
 }
 
@@ -392,6 +487,7 @@ double finite_energy(const FiniteTessellation &t, const int *type, const Model &
     if (cell_energy) cell_energy[c] = ec;
     e += ec;
   }
+  if (!std::isfinite(e)) throw_total_overflow(e);
   return e;
 }
 
@@ -483,6 +579,8 @@ ForceOutput finite_forces(const FiniteTessellation &t, const Points &pts, const 
     for (const auto &pg : grad) {
       const int p = pg.first;
       const double fx = -pg.second.x, fy = -pg.second.y;
+      if (!std::isfinite(fx) || !std::isfinite(fy))
+        throw_overflow(t, c, "force on a point from the energy", std::isfinite(fx) ? fy : fx);
       f[static_cast<long>(p) * f_stride] += fx;
       f[static_cast<long>(p) * f_stride + 1] += fy;
       const double rx = pts.x(p) - xc.x, ry = pts.y(p) - xc.y;
@@ -493,6 +591,10 @@ ForceOutput finite_forces(const FiniteTessellation &t, const Points &pts, const 
       }
     }
   }
+  if (!std::isfinite(out.energy) || !std::isfinite(out.virial[0]) ||
+      !std::isfinite(out.virial[1]) || !std::isfinite(out.virial[2]) ||
+      !std::isfinite(out.virial[3]))
+    throw_total_overflow(std::isfinite(out.energy) ? out.virial[0] : out.energy);
   return out;
 }
 

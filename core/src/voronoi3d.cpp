@@ -30,6 +30,7 @@
 #include "tessera/voronoi3d.h"
 
 #include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
@@ -84,6 +85,29 @@ V3 circumcentre(V3 p0, V3 p1, V3 p2, V3 p3) {
   const double det = dot(e1, c23);
   const double s = 0.5 / det;
   return p0 + s * (dot(e1, e1) * c23 + dot(e2, e2) * c31 + dot(e3, e3) * c12);
+}
+
+// The circumcentre of a flat tetrahedron (sliver) to the nearest double:
+// the formula above loses about eps/q of its radius (q its flatness), all
+// of it for the slivers of co-spherical points that round-off creates.
+V3 exact_circumcentre(V3 p0, V3 p1, V3 p2, V3 p3) {
+  using E = CGAL::Exact_predicates_exact_constructions_kernel;
+  const E::Point_3 c = CGAL::circumcenter(E::Point_3(p0.x, p0.y, p0.z), E::Point_3(p1.x, p1.y, p1.z),
+                                          E::Point_3(p2.x, p2.y, p2.z), E::Point_3(p3.x, p3.y, p3.z));
+  // exact(): the lazy number's own approximation is an interval, as
+  // ill-conditioned as the formula above.
+  return {CGAL::to_double(CGAL::exact(c.x())), CGAL::to_double(CGAL::exact(c.y())),
+          CGAL::to_double(CGAL::exact(c.z()))};
+}
+
+// |det| of the edge vectors over the cube of the longest edge component:
+// the flatness of a tetrahedron (0 flat, 1/6.. for a well-shaped one).
+double flatness(V3 p0, V3 p1, V3 p2, V3 p3) {
+  const V3 e1 = p1 - p0, e2 = p2 - p0, e3 = p3 - p0;
+  double l = 0.0;
+  for (const V3 &e : {e1, e2, e3}) l = std::max({l, std::fabs(e.x), std::fabs(e.y), std::fabs(e.z)});
+  const double det = dot(e1, cross(e2, e3));
+  return l > 0.0 ? std::fabs(det) / (l * l * l) : 0.0;
 }
 
 // Parity of the permutation (a, b, c, d) of (0, 1, 2, 3): +1 even, -1 odd.
@@ -155,6 +179,116 @@ int Tessellation3::face_count(int c, double rel_tol) const {
 
 double Tessellation3::shape_index(int c) const { return surface[c] / std::cbrt(volume[c] * volume[c]); }
 
+namespace {
+
+// Tetrahedra flatter than this (|det| of the edge vectors over the cube of
+// the longest edge component) have an ill-conditioned circumcentre.
+constexpr double kSliver = 1e-6;
+// A point within this fraction of the radius of a sphere counts as on it.
+constexpr double kCoSpherical = 1e-8;
+
+// Slivers of co-spherical points.  Near-co-spherical points given with
+// round-off (a lattice in a tilted box, coordinates not exact in binary)
+// may be triangulated with a flat tetrahedron whose four points are nearly
+// on one circle.  Its circumcentre is then round-off (or 0/0), and so is its
+// gradient, though the Voronoi vertex it stands for is well defined: the
+// centre of the sphere through the cluster, which the well-shaped
+// tetrahedra of the cluster give.  Such a sliver is dropped from the face
+// polygons when a facet-adjacent well-shaped tetrahedron's circumsphere
+// holds its four points (kCoSpherical): every face then has only
+// well-conditioned vertices, all on the face's bisector plane, and the
+// polygon loses a corner within the cluster, which changes areas and
+// volumes only at second order in the distance from the co-spherical
+// configuration (doc/model.md, "Reliability of the finite and 3D paths").
+// The sliver keeps the neighbour's circumcentre and radius (unused).  A
+// sliver without such a neighbour (not co-spherical) keeps its own.
+void drop_slivers(Tessellation3 &t, const DT &dt, const std::vector<DT::Cell_handle> &handle,
+                  const Points3 &pts) {
+  auto quality = [&](int v) {
+    const auto &q = t.tets[v];
+    return flatness(load(pts, q[0]), load(pts, q[1]), load(pts, q[2]), load(pts, q[3]));
+  };
+  std::vector<int> slivers;
+  const int n_tets = static_cast<int>(t.tets.size());
+  for (int v = 0; v < n_tets; ++v)
+    if (!(quality(v) >= kSliver)) slivers.push_back(v);
+  if (slivers.empty()) return;
+  auto on_sphere = [&](int v, int w) {  // the points of v on w's circumsphere
+    const V3 h = vv(t.vertices[w]);
+    const double r = t.radius[w];
+    if (!std::isfinite(r)) return false;
+    for (int k = 0; k < 4; ++k) {
+      const V3 d = load(pts, t.tets[v][k]) - h;
+      if (!(std::fabs(std::sqrt(dot(d, d)) - r) <= kCoSpherical * r)) return false;
+    }
+    return true;
+  };
+  std::vector<char> drop(n_tets, 0);
+  bool any = false;
+  for (int v : slivers)
+    for (int k = 0; k < 4; ++k) {
+      const DT::Cell_handle nb = handle[v]->neighbor(k);
+      // Only tetrahedra already in the faces: the tetrahedra of t stay those
+      // of the owned cells' faces (as an incremental mesh reproduces them).
+      if (dt.is_infinite(nb) || nb->info() < 0) continue;
+      const int w = nb->info();
+      if (!(quality(w) >= kSliver) || !on_sphere(v, w)) continue;
+      // Co-spherical is not enough: four points of a square shared by two
+      // cubes of co-spherical points (a four-fold Voronoi edge, SC) lie on
+      // both cubes' spheres, and the sliver's circumcentre is a real vertex
+      // anywhere on the edge between their centres.  Only a sliver whose
+      // (exactly computed) circumcentre is at w's is dropped.
+      const V3 dh = vv(t.vertices[v]) - vv(t.vertices[w]);
+      if (!(std::sqrt(dot(dh, dh)) <= kCoSpherical * t.radius[w])) continue;
+      t.vertices[v] = t.vertices[w];
+      t.radius[v] = t.radius[w];
+      drop[v] = 1;
+      any = true;
+      break;
+    }
+  if (!any) return;
+  std::vector<int> fv, fo(1, 0);
+  fv.reserve(t.face_vertex.size());
+  for (size_t f = 0; f + 1 < t.face_offset.size(); ++f) {
+    const size_t start = fv.size();
+    for (int k = t.face_offset[f]; k < t.face_offset[f + 1]; ++k)
+      if (!drop[t.face_vertex[k]]) fv.push_back(t.face_vertex[k]);
+    if (fv.size() == start)  // only slivers: keep them (an area-0 face)
+      for (int k = t.face_offset[f]; k < t.face_offset[f + 1]; ++k) fv.push_back(t.face_vertex[k]);
+    fo.push_back(static_cast<int>(fv.size()));
+  }
+  t.face_vertex.swap(fv);
+  t.face_offset.swap(fo);
+}
+
+// Face areas, volumes and surfaces of the owned cells from t.vertices.
+void measure(Tessellation3 &t, const Points3 &pts) {
+  for (int i = 0; i < t.n_owned; ++i) {
+    const V3 xi = load(pts, i);
+    double vol = 0.0, sur = 0.0;
+    for (int f = t.cell_offset[i]; f < t.cell_offset[i + 1]; ++f) {
+      const int o = t.face_offset[f], m = t.face_offset[f + 1] - o;
+      V3 av{0, 0, 0}, q{0, 0, 0};
+      for (int k = 0; k < m; ++k) {
+        const V3 u = vv(t.vertices[t.face_vertex[o + k]]) - xi;
+        const V3 w = vv(t.vertices[t.face_vertex[o + (k + 1) % m]]) - xi;
+        av = av + 0.5 * cross(u, w);
+        q = q + u;
+      }
+      q = (1.0 / m) * q;
+      const V3 d = load(pts, t.face_neighbor[f]) - xi;
+      const double area = dot(av, d) / std::sqrt(dot(d, d));
+      t.face_area[f] = area;
+      sur += area;
+      vol += dot(av, q) / 3.0;
+    }
+    t.volume[i] = vol;
+    t.surface[i] = sur;
+  }
+}
+
+}  // namespace
+
 Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *ids,
                                   bool throw_if_unbounded) {
   const int n = pts.n;
@@ -205,14 +339,18 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
   t.volume.assign(n_owned, 0.0);
   t.surface.assign(n_owned, 0.0);
 
+  std::vector<DT::Cell_handle> handle;  // of each tetrahedron in t.tets
   auto tet_of = [&](DT::Cell_handle c) {
     if (c->info() >= 0) return c->info();
     const int id = static_cast<int>(t.tets.size());
     c->info() = id;
+    handle.push_back(c);
     std::array<int, 4> q;
     for (int k = 0; k < 4; ++k) q[k] = c->vertex(k)->info();
     t.tets.push_back(q);
-    const V3 h = circumcentre(load(pts, q[0]), load(pts, q[1]), load(pts, q[2]), load(pts, q[3]));
+    const V3 p0 = load(pts, q[0]), p1 = load(pts, q[1]), p2 = load(pts, q[2]), p3 = load(pts, q[3]);
+    const V3 h = flatness(p0, p1, p2, p3) >= kSliver ? circumcentre(p0, p1, p2, p3)
+                                                     : exact_circumcentre(p0, p1, p2, p3);
     t.vertices.push_back({h.x, h.y, h.z});
     const V3 d = h - load(pts, q[0]);
     t.radius.push_back(std::sqrt(dot(d, d)));
@@ -225,8 +363,6 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
     edges.clear();
     dt.finite_incident_edges(vh[i], std::back_inserter(edges));
     bool unbounded = false;
-    const V3 xi = load(pts, i);
-    double vol = 0.0, sur = 0.0;
     for (const DT::Edge &e : edges) {
       DT::Vertex_handle a = e.first->vertex(e.second), b = e.first->vertex(e.third);
       const int j = (a->info() == i) ? b->info() : a->info();
@@ -255,21 +391,7 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
       for (const auto &c : ring) t.face_vertex.push_back(tet_of(c));
       t.face_offset.push_back(static_cast<int>(t.face_vertex.size()));
       t.face_neighbor.push_back(j);
-      // Area and volume contribution.
-      const int o = t.face_offset[t.face_offset.size() - 2], m = static_cast<int>(ring.size());
-      V3 av{0, 0, 0}, q{0, 0, 0};
-      for (int k = 0; k < m; ++k) {
-        const V3 u = vv(t.vertices[t.face_vertex[o + k]]) - xi;
-        const V3 w = vv(t.vertices[t.face_vertex[o + (k + 1) % m]]) - xi;
-        av = av + 0.5 * cross(u, w);
-        q = q + u;
-      }
-      q = (1.0 / m) * q;
-      const V3 d = load(pts, j) - xi;
-      const double area = dot(av, d) / std::sqrt(dot(d, d));
-      t.face_area.push_back(area);
-      sur += area;
-      vol += dot(av, q) / 3.0;
+      t.face_area.push_back(0.0);  // measured below, after merge_slivers
     }
     if (unbounded) {
       if (throw_if_unbounded)
@@ -282,13 +404,25 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
       t.face_offset.resize(f_begin + 1);
       t.face_neighbor.resize(f_begin);
       t.face_area.resize(f_begin);
-      vol = sur = 0.0;
     }
-    t.volume[i] = vol;
-    t.surface[i] = sur;
     t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
   }
+  drop_slivers(t, dt, handle, pts);
+  measure(t, pts);
   return t;
+}
+
+void remeasure_3d(Tessellation3 &t, const Points3 &pts) {
+  for (size_t v = 0; v < t.tets.size(); ++v) {
+    const auto &q = t.tets[v];
+    const V3 p0 = load(pts, q[0]), p1 = load(pts, q[1]), p2 = load(pts, q[2]), p3 = load(pts, q[3]);
+    const V3 h = flatness(p0, p1, p2, p3) >= kSliver ? circumcentre(p0, p1, p2, p3)
+                                                     : exact_circumcentre(p0, p1, p2, p3);
+    t.vertices[v] = {h.x, h.y, h.z};
+    const V3 d = h - p0;
+    t.radius[v] = std::sqrt(dot(d, d));
+  }
+  measure(t, pts);
 }
 
 Coverage check_coverage_3d(const Tessellation3 &t, const double lo[3], const double hi[3],
@@ -421,6 +555,24 @@ Tessellation3 tessellate_periodic_3d(const Box3 &box, const Points3 &pts, const 
 
 namespace {
 
+// Energies or forces beyond double's range: an Error naming the cell (its
+// owner for a periodic image) and the value, never inf or NaN.
+[[noreturn]] void throw_overflow_3d(const Tessellation3 &t, int c, const char *what, double value) {
+  std::ostringstream s;
+  s.precision(17);
+  s << "tessera: the " << what;
+  if (c >= 0) {
+    const int o = t.origin.empty() ? c : t.origin[c];
+    s << (std::string(what).find("force") == 0 ? " of point " : " of the cell of point ") << o;
+  }
+  s << " is not finite (" << value << ")";
+  if (c >= 0 && c < t.n_owned)
+    s << "; the cell has volume " << t.volume[c] << " and surface " << t.surface[c];
+  s << ": the parameters are far outside reduced units; rescale the units (length, energy) "
+       "so that K V0^2, Gamma S^2 and Lambda S stay well below 1e300";
+  throw Error(s.str());
+}
+
 // Per-cell energies and their sum.
 double energy_3d(const Tessellation3 &t, const int *type, const Model &model, double *cell_energy) {
   const double w = model.tension_weight();
@@ -432,9 +584,11 @@ double energy_3d(const Tessellation3 &t, const int *type, const Model &model, do
       tension += model.lambda_of(type[c], type[t.face_neighbor[f]]) * t.face_area[f];
     const double dv = t.volume[c] - model.area0_of(c, type[c]);
     const double e = 0.5 * ct.K * dv * dv + 0.5 * ct.Gamma * t.surface[c] * t.surface[c] + w * tension;
+    if (!std::isfinite(e)) throw_overflow_3d(t, c, "energy", e);
     if (cell_energy) cell_energy[c] = e;
     total += e;
   }
+  if (!std::isfinite(total)) throw_overflow_3d(t, -1, "total energy", total);
   return total;
 }
 
@@ -541,6 +695,11 @@ ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const
     if (gv.x == 0.0 && gv.y == 0.0 && gv.z == 0.0) continue;
     chain_rule(t, pts, static_cast<int>(v), gv, [&](int p, V3 fp) { force[p] = force[p] + fp; });
   }
+  for (int p = 0; p < t.n_points; ++p)
+    if (!std::isfinite(force[p].x) || !std::isfinite(force[p].y) || !std::isfinite(force[p].z))
+      throw_overflow_3d(t, p, "force on the centre",
+                        !std::isfinite(force[p].x) ? force[p].x
+                        : !std::isfinite(force[p].y) ? force[p].y : force[p].z);
   for (int p = 0; p < t.n_points; ++p) {
     double *fp = f + static_cast<long>(p) * f_stride;
     fp[0] += force[p].x;
@@ -551,6 +710,8 @@ ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b) out.virial[3 * a + b] += ra[a] * fb[b];
   }
+  for (double v : out.virial)
+    if (!std::isfinite(v)) throw_overflow_3d(t, -1, "virial", v);
   return out;
 }
 

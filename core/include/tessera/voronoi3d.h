@@ -113,6 +113,14 @@ struct Tessellation3 {
 Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *ids = nullptr,
                                   bool throw_if_unbounded = true);
 
+// The same triangulation at moved points: circumcentres, radii, face areas,
+// volumes and surfaces recomputed, the tetrahedra and faces kept.  Its
+// energy is the smooth branch the triangulation stands for, which the
+// forces of compute_forces_3d are the exact gradient of; it is the true
+// energy only while the triangulation stays Delaunay (doc/model.md,
+// "Reliability of the finite and 3D paths").
+void remeasure_3d(Tessellation3 &t, const Points3 &pts);
+
 // Whether every tetrahedron of an owned cell has its circumsphere inside the
 // box [lo, hi] grown by margin (then no unseen point outside can change the
 // owned cells).  needed_margin: how much more margin the worst one needs.

@@ -49,6 +49,28 @@ void Vertex3d::init()
   mesh_ncalls = -1;
 }
 
+/* Whether a tetrahedron of this step's cells is flatter than 1e-6 (|det| of
+   its edge vectors over the cube of its longest edge component), the limit
+   below which the core computes circumcentres exactly. */
+
+bool Vertex3d::has_sliver(const tessera::Points3 &pts) const
+{
+  for (const auto &q : tess3.tets) {
+    const double *p0 = pts.p(q[0]);
+    double e[3][3], l = 0.0;
+    for (int k = 0; k < 3; k++)
+      for (int d = 0; d < 3; d++) {
+        e[k][d] = pts.p(q[k + 1])[d] - p0[d];
+        l = MAX(l, std::fabs(e[k][d]));
+      }
+    const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
+        e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+        e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+    if (!(std::fabs(det) >= 1e-6 * l * l * l)) return true;
+  }
+  return false;
+}
+
 /* incremental check: the repaired mesh's cells against a from-scratch
    tetrahedralisation of the same atoms: the same neighbours across faces
    larger than a round-off threshold, the same volumes and surfaces. */
@@ -202,6 +224,19 @@ bool Vertex3d::tessellate()
     if (!tessera::check_coverage_3d(tess3, lo, hi).ok) build();
   } else {
     build();
+  }
+  // Flat tetrahedra (slivers of co-spherical points given with round-off, as
+  // a lattice in a tilted box) have ill-conditioned circumcentres: the
+  // from-scratch path computes those exactly and leaves them out of the
+  // faces (tessellate_local_3d); the repaired mesh does not, so such steps
+  // take that path.
+  if (nlocal > 0 && has_sliver(pts)) {
+    try {
+      tess3 = tessera::tessellate_local_3d(pts, nlocal, nullptr, false);
+    } catch (tessera::Error &e) {
+      error->one(FLERR, "pair_style vertex/voronoi at step {}: {}", update->ntimestep, e.what());
+    }
+    fresh = true;
   }
   if (pair->incremental == 2 && !fresh && nlocal > 0) check_against_scratch(pts, sub, w);
   tessera::Coverage cov;

@@ -139,7 +139,9 @@ void FixBrownianTessera::reset_dt()
 void FixBrownianTessera::set_step()
 {
   dt = update->dt;
-  if (!(dt > 0.0) || !std::isfinite(dt))
+  // (0 is allowed for 'run 0', which takes no step; initial_integrate
+  // refuses it)
+  if (!(dt >= 0.0) || !std::isfinite(dt))
     error->all(FLERR,
                "Fix {} (ID {}): the timestep must be > 0 for overdamped dynamics (a displacement "
                "dt F/gamma_t and noise sqrt(2 D dt)), got {}; set it with 'timestep'",
@@ -159,6 +161,11 @@ void FixBrownianTessera::set_step()
 
 void FixBrownianTessera::initial_integrate(int /*vflag*/)
 {
+  if (!(dt > 0.0))
+    error->all(FLERR,
+               "Fix {} (ID {}): the timestep must be > 0 to take a step (the velocity is the "
+               "displacement over dt), got {}; set it with 'timestep'",
+               style, id, dt);
   const bool three_d = domain->dimension == 3;
   switch (noise) {
     case NOISE_UNIFORM:

@@ -100,6 +100,11 @@ void FixBrownianHeun::setup(int /*vflag*/)
 
 void FixBrownianHeun::initial_integrate(int /*vflag*/)
 {
+  if (!(update->dt > 0.0))
+    error->all(FLERR,
+               "Fix {} (ID {}): the timestep must be > 0 to take a step, got {}; set it with "
+               "'timestep'",
+               style, id, update->dt);
   const bool three_d = domain->dimension == 3;
   const bigint step = update->ntimestep;
 

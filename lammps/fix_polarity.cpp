@@ -150,7 +150,7 @@ void FixPolarity::init()
   else
     init_angles();
   find_driver();
-  if (!(update->dt > 0.0) || !std::isfinite(update->dt))
+  if (!(update->dt >= 0.0) || !std::isfinite(update->dt))
     error->all(FLERR,
                "fix polarity {}: the timestep must be > 0 (rotational noise sqrt(2 D_r dt), "
                "turn dt/gamma_R torque), got {}; set it with 'timestep'",

@@ -20,6 +20,7 @@ class Messages(LammpsTestCase):
         self.assertLammpsError(run, "Gamma must be >= 0", "-0.1")
 
     def test_nonpositive_timestep(self):
+        # (timestep 0 with 'run 0' is fine: no step is taken)
         for dt in ("-0.01", "0"):
             run = self.run_lmp(BASE + f"""pair_coeff * * 1 1 0.1 -0.5
 fix p all polarity 0.3 1.0 noise 0.1 7

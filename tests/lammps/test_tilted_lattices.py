@@ -51,7 +51,7 @@ class TiltedLattices(LammpsTestCase):
     @nprocs(4)
     def test_fcc_four_ranks(self):
         self.check("fcc", 4)
-        self.check("bcc", 4, tilt=2)
+        self.check("bcc", 4)
 
 
 import lmptest

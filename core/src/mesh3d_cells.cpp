@@ -10,6 +10,8 @@
 
 #include "tessera/mesh3d.h"
 
+#include "vec3_detail.h"
+
 #include "point_name.h"
 
 #include <cmath>
@@ -19,37 +21,7 @@ namespace tessera {
 
 namespace {
 
-int parity(int a, int b, int c, int d) {
-  int p[4] = {a, b, c, d}, sign = 1;
-  for (int i = 0; i < 4; ++i)
-    for (int j = i + 1; j < 4; ++j)
-      if (p[i] > p[j]) sign = -sign;
-  return sign;
-}
-
-struct V3 {
-  double x, y, z;
-};
-inline V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline V3 operator*(double s, V3 a) { return {s * a.x, s * a.y, s * a.z}; }
-inline double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline V3 cross(V3 a, V3 b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline V3 load(const Points3 &pts, int i) {
-  const double *p = pts.p(i);
-  return {p[0], p[1], p[2]};
-}
-inline V3 vv(const Vec3 &v) { return {v.x, v.y, v.z}; }
-
-// Circumcentre of a tetrahedron, relative to p0 (as tessellate_local_3d).
-V3 circumcentre(V3 p0, V3 p1, V3 p2, V3 p3) {
-  const V3 e1 = p1 - p0, e2 = p2 - p0, e3 = p3 - p0;
-  const V3 c23 = cross(e2, e3), c31 = cross(e3, e1), c12 = cross(e1, e2);
-  const double s = 0.5 / dot(e1, c23);
-  return p0 + s * (dot(e1, e1) * c23 + dot(e2, e2) * c31 + dot(e3, e3) * c12);
-}
+using namespace detail3;
 
 }  // namespace
 

@@ -29,6 +29,8 @@
 
 #include "tessera/voronoi3d.h"
 
+#include "vec3_detail.h"
+
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -53,21 +55,7 @@ using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
 using DT = CGAL::Delaunay_triangulation_3<K, Tds>;
 using P3 = K::Point_3;
 
-struct V3 {
-  double x, y, z;
-};
-inline V3 operator+(V3 a, V3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline V3 operator-(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline V3 operator*(double s, V3 a) { return {s * a.x, s * a.y, s * a.z}; }
-inline double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline V3 cross(V3 a, V3 b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline V3 load(const Points3 &pts, int i) {
-  const double *p = pts.p(i);
-  return {p[0], p[1], p[2]};
-}
-inline V3 vv(const Vec3 &v) { return {v.x, v.y, v.z}; }
+using namespace detail3;
 
 std::string point_name(int i, const long *ids) {
   std::ostringstream s;
@@ -76,15 +64,6 @@ std::string point_name(int i, const long *ids) {
   else
     s << "point " << i;
   return s.str();
-}
-
-// Circumcentre of a tetrahedron, computed relative to p0.
-V3 circumcentre(V3 p0, V3 p1, V3 p2, V3 p3) {
-  const V3 e1 = p1 - p0, e2 = p2 - p0, e3 = p3 - p0;
-  const V3 c23 = cross(e2, e3), c31 = cross(e3, e1), c12 = cross(e1, e2);
-  const double det = dot(e1, c23);
-  const double s = 0.5 / det;
-  return p0 + s * (dot(e1, e1) * c23 + dot(e2, e2) * c31 + dot(e3, e3) * c12);
 }
 
 // The circumcentre of a flat tetrahedron (sliver) to the nearest double:
@@ -108,15 +87,6 @@ double flatness(V3 p0, V3 p1, V3 p2, V3 p3) {
   for (const V3 &e : {e1, e2, e3}) l = std::max({l, std::fabs(e.x), std::fabs(e.y), std::fabs(e.z)});
   const double det = dot(e1, cross(e2, e3));
   return l > 0.0 ? std::fabs(det) / (l * l * l) : 0.0;
-}
-
-// Parity of the permutation (a, b, c, d) of (0, 1, 2, 3): +1 even, -1 odd.
-int parity(int a, int b, int c, int d) {
-  int p[4] = {a, b, c, d}, sign = 1;
-  for (int i = 0; i < 4; ++i)
-    for (int j = i + 1; j < 4; ++j)
-      if (p[i] > p[j]) sign = -sign;
-  return sign;
 }
 
 }  // namespace

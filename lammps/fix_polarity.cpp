@@ -320,6 +320,12 @@ void FixPolarity::post_force(int /*vflag*/)
 
 void FixPolarity::initial_integrate(int /*vflag*/)
 {
+  // (timestep 0 is fine for 'run 0', which takes no step)
+  if (!(update->dt > 0.0))
+    error->all(FLERR,
+               "fix polarity {}: the timestep must be > 0 to take a step, got {}; set it with "
+               "'timestep'",
+               id, update->dt);
   if (driven) return;    // fix brownian/heun advances the angles (coupled_*)
   if (domain->dimension == 3) {
     initial_integrate_3d();

@@ -1,27 +1,25 @@
 // Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
 //
-// Small 3-vector helpers shared by sphere.cpp and sphere_forces.cpp (internal).
+// Small 3-vector helpers shared by sphere.cpp and sphere_forces.cpp (internal),
+// on top of the 3D sources' vector type.
 #pragma once
 
 #include "tessera/voronoi3d.h"
+
+#include "vec3_detail.h"
 
 #include <cmath>
 
 namespace tessera {
 namespace sphere_detail {
 
-struct V {
-  double x, y, z;
-};
-inline V operator+(V a, V b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline V operator-(V a, V b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline V operator*(double s, V a) { return {s * a.x, s * a.y, s * a.z}; }
-inline double dot(V a, V b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline V cross(V a, V b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
+// The vector type and its basic operations are the 3D sources' own
+// (vec3_detail.h); the operators are found through V3's namespace.
+using V = detail3::V3;
+using detail3::cross;
+using detail3::dot;
 inline double norm(V a) { return std::sqrt(dot(a, a)); }
-inline V vv(const Vec3 &a) { return {a.x, a.y, a.z}; }
+using detail3::vv;
 inline Vec3 to3(V a) { return Vec3{a.x, a.y, a.z}; }
 inline void add_to(V &a, V b) { a = a + b; }
 

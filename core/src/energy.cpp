@@ -422,6 +422,12 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
             double ax, ay, al, bx, by, bl;
             spoke_dir(spokes[s - 1], ax, ay, al);
             spoke_dir(spokes[s], bx, by, bl);
+            // The cell's in- and out-edges at V take the directions their
+            // other ends use (the same up to the round-off of V, which far
+            // from the origin is not small), so that the cell's gradients
+            // add up to zero and the forces sum to zero.
+            if (s == 1 && el[wrap(k - 1)] > 0.0) ax = in_x, ay = in_y;
+            if (s == M && el[wrap(run_end)] > 0.0) unit(wrap(run_end), bx, by);
             double gx = (dEdP + al) * ax - (dEdP + bl) * bx;
             double gy = (dEdP + al) * ay - (dEdP + bl) * by;
             if (s == 1) {

@@ -254,3 +254,70 @@ TEST(Rosettes, SeededFuzz) {
               "origin / allowed %.3g\n",
               cases, worst_sum, worst_shift);
 }
+
+// The tolerance does not swallow real short edges: a square lattice (every
+// vertex four-fold) with one centre moved by d along x opens edges of length
+// d / sqrt(2) or d / 2 at its four corners.  They stay edges wherever they
+// are resolvable: at x = 1e7 (coordinates rounded to 2e-9; the error bounds
+// of the two circumcentres sum to 1.3e-7) from d = 1e-6, at the origin from
+// d = 1e-9 (bounds 1e-13; 1e-10 of the radius is 7e-11).  Below that they
+// are one multifold vertex, as the grouping says.
+TEST(Rosettes, RealShortEdgesAreKept) {
+  struct Case {
+    double X, d;
+    bool kept;
+  };
+  for (const Case c : {Case{1e7, 1e-6, true}, Case{1e7, 1e-5, true}, Case{1e7, 1e-8, false},
+                       Case{0.0, 1e-9, true}, Case{0.0, 1e-7, true}, Case{0.0, 1e-12, false},
+                       Case{-3e4, 1e-8, true}}) {
+    const int side = 4;
+    std::vector<double> xy;
+    for (int j = 0; j < side; ++j)
+      for (int i = 0; i < side; ++i) {
+        xy.push_back(c.X + i + 0.5);
+        xy.push_back(j + 0.5);
+      }
+    const int moved = side + 1;
+    xy[2 * moved] += c.d;
+    const Box box = Box::rect(c.X, c.X + side, 0.0, side);
+    const Tessellation t = tessellate_periodic(box, Points{xy.data(), side * side, 2});
+    // Each edge is listed by its two cells.  The lattice's 16 four-fold
+    // vertices have one zero-length edge each; the moved centre's 4 corners
+    // lose theirs to a short edge if it is kept.
+    int zero = 0, short_edges = 0;
+    for (int k = 0; k < t.cell_offset[side * side]; ++k) {
+      const double l = t.edge_length[k];
+      zero += l == 0.0;
+      short_edges += l > 0.45 * c.d && l < 0.75 * c.d;
+    }
+    bool in_group = false;
+    for (int g = 0; g + 1 < static_cast<int>(t.group_offset.size()); ++g)
+      for (int j = t.group_offset[g]; j < t.group_offset[g + 1]; ++j)
+        in_group = in_group || t.origin[t.group_point[j]] == moved;
+    std::ostringstream where;
+    where << "x " << c.X << ", d " << c.d;
+    EXPECT_EQ(short_edges, c.kept ? 8 : 0) << where.str();
+    EXPECT_EQ(zero, c.kept ? 24 : 32) << where.str();
+    EXPECT_EQ(in_group, !c.kept) << where.str();
+    // The forces sum to zero either way.
+    std::vector<int> type(side * side, 0);
+    for (int i = 0; i < side * side; i += 3) type[i] = 1;
+    Model m(2);
+    m.types[0].K = 1.0;
+    m.types[0].A0 = 1.1;
+    m.types[0].Gamma = 0.1;
+    m.types[1] = m.types[0];
+    m.set_lambda(0, 0, -0.2);
+    m.set_lambda(1, 1, -0.3);
+    m.set_lambda(0, 1, 0.4);
+    std::vector<double> f;
+    periodic_forces(box, Points{xy.data(), side * side, 2}, type.data(), m, f);
+    double sx = 0.0, sy = 0.0, sa = 0.0;
+    for (int i = 0; i < side * side; ++i) {
+      sx += f[2 * i];
+      sy += f[2 * i + 1];
+      sa += std::fabs(f[2 * i]) + std::fabs(f[2 * i + 1]);
+    }
+    EXPECT_LT(std::hypot(sx, sy), 1e-12 * (sa + side * side)) << where.str();
+  }
+}

@@ -12,6 +12,7 @@
 #include "test_util.h"
 
 #include "tessera/energy.h"
+#include "tessera/mesh.h"
 #include "tessera/tessellation.h"
 
 #include <gtest/gtest.h>
@@ -19,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <set>
 #include <sstream>
 #include <string>
@@ -320,4 +322,61 @@ TEST(Rosettes, RealShortEdgesAreKept) {
     }
     EXPECT_LT(std::hypot(sx, sy), 1e-12 * (sa + side * side)) << where.str();
   }
+}
+
+// The per-step path (Mesh::advance) and its oracle (update + cells) make the
+// same grouping, bit for bit, at a rounded rosette far from the origin: 23
+// owned cells on a circle of radius 1.8 around (1e7, -3e6), two rings of
+// ghosts around them, steps alternating between the rounded rosette and
+// jitter of 1e-9 (half an ulp at 1e7) to 1e-7.
+TEST(Rosettes, AdvanceGroupsAsTheFullPath) {
+  const double X = 1e7, Y = -3e6;
+  const int k = 23;
+  std::vector<double> base;
+  auto ring = [&](int n, double rad, double phase) {
+    for (int i = 0; i < n; ++i) {
+      base.push_back(X + rad * std::cos(phase + 2 * kPi * i / n));
+      base.push_back(Y + rad * std::sin(phase + 2 * kPi * i / n));
+    }
+  };
+  ring(k, 1.8, 0.0);
+  ring(30, 3.5, 0.1);
+  ring(40, 5.0, 0.0);
+  const int n = static_cast<int>(base.size() / 2);
+  tessera::Mesh fast, slow;
+  Tessellation tf, ts;
+  std::vector<double> xy = base;
+  fast.build(Points{xy.data(), n, 2});
+  slow.build(Points{xy.data(), n, 2});
+  fast.cells(Points{xy.data(), n, 2}, k, tf);
+  slow.cells(Points{xy.data(), n, 2}, k, ts);
+  testutil::Rng rng(7);
+  int incremental = 0, grouped = 0;
+  for (int step = 0; step < 40; ++step) {
+    xy = base;
+    const double amp = step % 3 == 0 ? 0.0 : (step % 3 == 1 ? 1e-9 : 1e-7);
+    for (int i = 0; i < 2 * k; ++i) xy[i] += amp * rng.uniform(-1.0, 1.0);
+    const Points pts{xy.data(), n, 2};
+    ASSERT_TRUE(fast.advance(pts, k, nullptr, nullptr, tf)) << "step " << step;
+    incremental += fast.incremental();
+    ASSERT_TRUE(slow.update(pts));
+    slow.cells(pts, k, ts);
+    auto same = [](const auto &a, const auto &b) {
+      return a.size() == b.size() &&
+             (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(a[0])) == 0);
+    };
+    EXPECT_TRUE(same(tf.vertices, ts.vertices)) << "step " << step;
+    EXPECT_TRUE(same(tf.edge_length, ts.edge_length)) << "step " << step;
+    EXPECT_TRUE(same(tf.triangle_group, ts.triangle_group)) << "step " << step;
+    EXPECT_TRUE(same(tf.group_point, ts.group_point)) << "step " << step;
+    EXPECT_TRUE(same(tf.group_centre, ts.group_centre)) << "step " << step;
+    // The rounded rosette is one vertex of 23.
+    if (amp == 0.0) {
+      ASSERT_EQ(tf.group_offset.size(), 2u) << "step " << step;
+      EXPECT_EQ(tf.group_offset[1], k) << "step " << step;
+      ++grouped;
+    }
+  }
+  EXPECT_GT(incremental, 20);
+  EXPECT_GT(grouped, 10);
 }

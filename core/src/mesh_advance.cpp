@@ -229,7 +229,8 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
           seeds_.push_back(m);
       }
     }
-    cell_geometry(pts, t.triangles.data(), pts.x(cc), pts.y(cc), cv, len, H, RAD, EL + o, t.area[cc], t.perimeter[cc]);
+    cell_geometry(pts, t.triangles.data(), pts.x(cc), pts.y(cc), cv, len, H, RAD, EL + o,
+                  t.area[cc], t.perimeter[cc]);
     if (observer && (cc + 1 - block_start == kBlock || cc + 1 == n_owned)) {
       observer->cells(t, block_start, cc + 1);
       block_start = cc + 1;

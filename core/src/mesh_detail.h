@@ -38,9 +38,10 @@ using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, Tds>;
 using CPoint = Kernel::Point_2;
 
-// Voronoi edges shorter than this fraction of the adjacent circumradius are
-// the zero-length edges of a multifold vertex whose circumcentres differ only
-// by round-off; they get length exactly 0.
+// Voronoi edges shorter than this fraction of the adjacent circumradius (or
+// than the circumcentres' error bounds, see zero_edge) are the zero-length
+// edges of a multifold vertex whose circumcentres differ only by round-off;
+// they get length exactly 0.
 constexpr double kZeroEdge = 1e-10;
 
 // Input limits (doc/model.md, "Limits of the input").  Two centres closer

@@ -113,6 +113,8 @@ class PairVertexVoronoi : public Pair {
   // per-cell A0 ('fix property/atom d_area0').
   void prepare_atoms();
   void bind_cell_area0();
+  // Per-cell KA, KP, P0 ('fix property/atom d_ka d_kp d_perim0').
+  void bind_cell_params();
   // The shared tail of every unit: the constant of the quadratic forms, the
   // per-atom energy and virial, the global energy and the f dot r virial.
   // cell_w holds nw values per cell (4 in 2d, 9 in 3d) when vflag_atom.

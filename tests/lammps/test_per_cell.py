@@ -9,7 +9,8 @@ d_kp d_perim0 (with d_area0), in the quadratic form's units.
   d_perim0)^2 written from compute vertex/atom's areas and perimeters (2d,
   3d), and the thesis form gets the same forces without the constant;
 * per-atom values equal to the types' give the types' forces (1e-13);
-* restart files keep the values (fix property/atom defined again);
+* restart files keep the values (fix property/atom defined again), and
+  fix cell/divide's daughters keep their mother's;
 * bad values stop with an error naming the atom;
 * examples/heterogeneous runs (short) and cells of the larger p0 end up
   with the larger shape index."""
@@ -267,6 +268,34 @@ thermo_modify norm no format float %.17g
         plain = self.run_lmp(model_script("confluent") + dyn + "run 20\n"
                              + end.replace(" d_perim0 d_kp d_ka", ""))
         self.assertGreater(abs(printed(plain, "E")[0][0] - ea), 1e-3)
+
+
+class PerCellDivision(LammpsTestCase):
+
+    def test_daughters_keep_the_mothers_values(self):
+        """fix cell/divide: every cell has its own d_perim0 (all different);
+        after divisions each value is held by its cell or by its descendants."""
+        script = model_script("confluent") + PER_CELL_2D.replace("3.4+0.15*(id%6)", "3.4+0.001*id") + """
+fix b all brownian 1.0 1 gamma_t 1.0 rng none
+fix div all cell/divide rate 20.0 seed 4821 axis random separation 0.1 max 110
+timestep 0.005
+thermo_style custom step atoms pe
+write_dump all custom start.dump id d_perim0 d_kp modify format float %.17g
+run 4
+write_dump all custom end.dump id d_perim0 d_kp modify format float %.17g
+"""
+        run = self.run_lmp(script)
+        a, b = run.dump("start.dump")[0], run.dump("end.dump")[0]
+        n0, n1 = len(a["id"]), len(b["id"])
+        self.assertGreater(n1, n0)
+        start = dict(zip(np.round(a["d_perim0"], 9), a["d_kp"]))
+        self.assertEqual(len(start), n0)
+        values, counts = np.unique(np.round(b["d_perim0"], 9), return_counts=True)
+        self.assertEqual(len(values), n0)
+        self.assertTrue(set(values) <= set(start))
+        self.assertEqual(int((counts - 1).sum()), n1 - n0)    # (a daughter may divide again)
+        for p0, kp in zip(np.round(b["d_perim0"], 9), b["d_kp"]):
+            self.assertEqual(kp, start[p0])
 
 
 class PerCellErrors(LammpsTestCase):

@@ -312,6 +312,7 @@ void PairVertexVoronoi::reinit()
     if (!(adapt_area0[i][i] > 0.0) || !std::isfinite(adapt_area0[i][i]))
       error->all(FLERR, "pair_style vertex/voronoi (fix adapt): area0 of type {} must be > 0, got {}",
                  i, adapt_area0[i][i]);
+    const bool kappa_changed = adapt_kappa[i][i] != kappa[i];
     kappa[i] = adapt_kappa[i][i];
     if (adapt_area0[i][i] != area0[i] && !warned_area0) {
       int flag = -1, cols = -1;
@@ -326,6 +327,17 @@ void PairVertexVoronoi::reinit()
       }
     }
     area0[i] = adapt_area0[i][i];
+    // The same for the per-cell stiffnesses (d_ka, d_kp replace K, Gamma).
+    const char *changed = kappa_changed ? "ka" : adapt_gamma[i][i] != gamma[i] ? "kp" : nullptr;
+    int flag = -1, cols = -1;
+    if (changed && !warned_percell && atom->find_custom(changed, flag, cols) >= 0) {
+      if (comm->me == 0)
+        error->warning(FLERR,
+                       "pair_style vertex/voronoi (fix adapt): {} of type {} changed, but each "
+                       "cell's value comes from its per-atom d_{}, which this does not change",
+                       changed[1] == 'a' ? "kappa" : "gamma", i, changed);
+      warned_percell = 1;
+    }
     gamma[i] = adapt_gamma[i][i];
   }
   // fix adapt writes the upper triangle (j >= i).

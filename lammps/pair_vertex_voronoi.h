@@ -90,6 +90,7 @@ class PairVertexVoronoi : public Pair {
   double **adapt_kappa, **adapt_area0, **adapt_gamma;  // type-pair views of the per-type values
   double **lambda_built;  // lambda as build_model() left it: what fix adapt changed since
   int warned_area0 = 0;   // fix adapt changed area0 while d_area0 exists (warned once)
+  int warned_percell = 0; // fix adapt changed kappa/gamma while d_ka/d_kp exists (once)
   void build_model();
   int read_restart_settings_version(FILE *);
   void print_model() const;

@@ -298,6 +298,21 @@ write_dump all custom end.dump id d_perim0 d_kp modify format float %.17g
             self.assertEqual(kp, start[p0])
 
 
+class PerCellAdapt(LammpsTestCase):
+
+    def test_adapt_of_kappa_does_not_override_d_ka(self):
+        """With d_ka on every cell, fix adapt of kappa changes no energy and
+        says once why."""
+        base = model_script("confluent") + "fix pc all property/atom d_ka\nset atom * d_ka 0.9\n"
+        out = "thermo_style custom step pe\nthermo_modify norm no format float %.17g\nrun 0\nprint \"E $(pe:%.17g)\"\n"
+        plain = self.run_lmp(base + out)
+        adapted = self.run_lmp(base + "variable v equal 3.0\n"
+                               "fix ad all adapt 1 pair vertex/voronoi kappa 1 1 v_v reset no\n" + out)
+        self.assertEqual(printed(plain, "E")[0][0], printed(adapted, "E")[0][0])
+        warnings = [l for l in adapted.output.splitlines() if "WARNING" in l and "per-atom d_ka" in l]
+        self.assertEqual(len(warnings), 1, adapted.output[-2000:])
+
+
 class PerCellErrors(LammpsTestCase):
 
     def test_unset_value_is_named(self):

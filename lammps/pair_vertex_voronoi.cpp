@@ -482,9 +482,10 @@ void PairVertexVoronoi::bind_cell_params()
       if (!(gamma[type[i]] > 0.0))
         error->one(FLERR,
                    "pair_style vertex/voronoi: atom {} has a per-atom d_kp, but its type {} has "
-                   "perimeter modulus 0 (Gamma = 2 KP), which defines no preferred {}: also "
-                   "define d_perim0 (fix property/atom d_perim0) and set it",
-                   atom->tag[i], type[i], three ? "surface" : "perimeter");
+                   "{} modulus 0 (Gamma = 2 {}), which defines no preferred {}: also define "
+                   "d_perim0 (fix property/atom d_perim0) and set it",
+                   atom->tag[i], type[i], three ? "surface" : "perimeter", three ? "KS" : "KP",
+                   three ? "surface" : "perimeter");
   }
 }
 

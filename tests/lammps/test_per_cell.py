@@ -341,7 +341,7 @@ run 0
 set atom * d_kp 0.1
 run 0
 """, ok=False)
-        self.assertLammpsError(run, "has perimeter modulus 0", "also define d_perim0")
+        self.assertLammpsError(run, "has perimeter modulus 0 (Gamma = 2 KP)", "also define d_perim0")
 
 
 class HeterogeneousExample(LammpsTestCase):

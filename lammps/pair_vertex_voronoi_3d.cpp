@@ -204,7 +204,9 @@ bool Vertex3d::tessellate()
   // a lattice in a tilted box) get exact circumcentres inside Mesh3::cells,
   // as in tessellate_local_3d: the repaired mesh's cells are those of a
   // rebuild (incremental check).
-  if (pair->incremental == 2 && !fresh && nlocal > 0) check_against_scratch(pts, sub, w);
+  // incremental check: every step's cells, repaired or built (both come
+  // from Mesh3::cells), against tessellate_local_3d.
+  if (pair->incremental == 2 && nlocal > 0) check_against_scratch(pts, sub, w);
   tessera::Coverage cov;
   if (fresh) cov = tessera::check_coverage_3d(tess3, sub, w);
   if (!pair->ghost_shell_complete(cov.needed_margin)) return true;

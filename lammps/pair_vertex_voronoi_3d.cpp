@@ -46,6 +46,24 @@ void Vertex3d::init()
   mesh_ncalls = -1;
 }
 
+/* check_coverage_3d(t, lo, hi).ok, visiting each tetrahedron once instead
+   of once per face corner (about 13 times fewer): every tetrahedron of t is
+   a corner of an owned cell's face (a sliver dropped from the polygons
+   carries the sphere of a neighbour that is). */
+
+static bool spheres_inside(const tessera::Tessellation3 &t, const double lo[3], const double hi[3])
+{
+  if (t.unbounded_cell >= 0) return false;
+  const size_t nt = t.vertices.size();
+  const tessera::Vec3 *h = t.vertices.data();
+  const double *r = t.radius.data();
+  bool ok = true;
+  for (size_t v = 0; v < nt; v++)
+    ok &= (h[v].x - r[v] >= lo[0]) & (h[v].x + r[v] <= hi[0]) & (h[v].y - r[v] >= lo[1]) &
+        (h[v].y + r[v] <= hi[1]) & (h[v].z - r[v] >= lo[2]) & (h[v].z + r[v] <= hi[2]);
+  return ok;
+}
+
 /* incremental check: the repaired mesh's cells against a from-scratch
    tetrahedralisation of the same atoms: the same neighbours across faces
    larger than a round-off threshold, the same volumes and surfaces. */
@@ -196,7 +214,7 @@ bool Vertex3d::tessellate()
     build();
   } else if (mesh.advance(pts, nlocal, lo, hi, tess3)) {
     pair->stats[3] += mesh.flips_last_update();
-    if (!tessera::check_coverage_3d(tess3, lo, hi).ok) build();
+    if (!spheres_inside(tess3, lo, hi)) build();
   } else {
     build();
   }

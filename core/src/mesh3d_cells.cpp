@@ -78,13 +78,18 @@ void measure_cell(Tessellation3 &t, const Points3 &pts, int i) {
   double vol = 0.0, sur = 0.0;
   for (int f = t.cell_offset[i]; f < t.cell_offset[i + 1]; ++f) {
     const int o = t.face_offset[f], len = t.face_offset[f + 1] - o;
+    const int *ring = t.face_vertex.data() + o;
     V3 av{0, 0, 0}, qs{0, 0, 0};
+    V3 uu = vv(t.vertices[ring[len - 1]]) - xi;
     for (int k = 0; k < len; ++k) {
-      const V3 uu = vv(t.vertices[t.face_vertex[o + k]]) - xi;
-      const V3 ww = vv(t.vertices[t.face_vertex[o + (k + 1) % len]]) - xi;
-      av = av + 0.5 * cross(uu, ww);
-      qs = qs + uu;
+      // Summed from the last corner round: the same terms as voronoi3d.cpp's
+      // measure(), in a rotated order (round-off only).
+      const V3 ww = vv(t.vertices[ring[k]]) - xi;
+      av = av + cross(uu, ww);
+      qs = qs + ww;
+      uu = ww;
     }
+    av = 0.5 * av;
     qs = (1.0 / len) * qs;
     const V3 dj = load(pts, t.face_neighbor[f]) - xi;
     const double area = dot(av, dj) / std::sqrt(dot(dj, dj));
@@ -179,16 +184,6 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
   const int n = n_points_;
   t.n_points = n;
   t.n_owned = n_owned;
-  t.tets.clear();
-  t.vertices.clear();
-  t.radius.clear();
-  t.cell_offset.assign(1, 0);
-  t.face_neighbor.clear();
-  t.face_area.clear();
-  t.face_offset.assign(1, 0);
-  t.face_vertex.clear();
-  t.volume.assign(n_owned, 0.0);
-  t.surface.assign(n_owned, 0.0);
   t.unbounded_cell = -1;
   t.origin.clear();
   t.position.clear();
@@ -202,73 +197,89 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
     }
   } reset{*this};
 
-  std::vector<int> slivers;  // mesh tetrahedra (rare: no allocation without)
-  auto tet_of = [&](int m) {
-    if (skip_[m])
-      throw Error("tessera: Mesh3::cells(): a tetrahedron of an owned cell lies outside the "
-                  "region of interest of the last update()");
-    if (tmap_[m] >= 0) return tmap_[m];
-    const int id = static_cast<int>(t.tets.size());
-    tmap_[m] = id;
-    tused_.push_back(m);
-    const int *q = &tv_[4 * m];
-    t.tets.push_back({q[0], q[1], q[2], q[3]});
-    const V3 p0 = load(pts, q[0]);
-    bool sliver;
-    const V3 h = centre_of(p0, load(pts, q[1]), load(pts, q[2]), load(pts, q[3]), &sliver);
-    if (sliver) slivers.push_back(m);
-    t.vertices.push_back({h.x, h.y, h.z});
-    const V3 dd = h - p0;
-    t.radius.push_back(std::sqrt(dot(dd, dd)));
-    return id;
-  };
-
-  // A cell whose star no flip touched since the last cells() keeps its
-  // faces and rings (in mesh numbering); the others walk their star again.
+  // Pass 1, topology: the faces and rings of every owned cell in mesh
+  // numbering (nx_*).  A cell whose star no flip touched since the last
+  // cells() keeps its faces and rings; the others walk their star again.
   const bool reuse = cache_ok_ && cache_owned_ == n_owned;
   nx_off_.assign(1, 0);
   nx_nb_.clear();
   nx_foff_.assign(1, 0);
   nx_tet_.clear();
   for (int i = 0; i < n_owned; ++i) {
-    bool bounded = true;
     if (reuse && !dirty_[i] && c_off_[i + 1] > c_off_[i]) {
-      const int base = static_cast<int>(nx_tet_.size()) - c_foff_[c_off_[i]];
-      for (int f = c_off_[i]; f < c_off_[i + 1]; ++f) {
-        nx_nb_.push_back(c_nb_[f]);
-        nx_foff_.push_back(c_foff_[f + 1] + base);
+      const int f0 = c_off_[i], f1 = c_off_[i + 1];
+      const int base = static_cast<int>(nx_tet_.size()) - c_foff_[f0];
+      const size_t nf = nx_nb_.size();
+      nx_nb_.resize(nf + (f1 - f0));
+      nx_foff_.resize(nf + 1 + (f1 - f0));
+      for (int f = f0; f < f1; ++f) {
+        nx_nb_[nf + (f - f0)] = c_nb_[f];
+        nx_foff_[nf + 1 + (f - f0)] = c_foff_[f + 1] + base;
       }
-      nx_tet_.insert(nx_tet_.end(), c_tet_.begin() + c_foff_[c_off_[i]],
-                     c_tet_.begin() + c_foff_[c_off_[i + 1]]);
+      nx_tet_.insert(nx_tet_.end(), c_tet_.begin() + c_foff_[f0], c_tet_.begin() + c_foff_[f1]);
     } else {
       const size_t nf = nx_nb_.size(), nr = nx_tet_.size();
-      bounded = walk_cell(i, ids);
-      if (!bounded) {
+      if (!walk_cell(i, ids)) {
         nx_nb_.resize(nf);
         nx_foff_.resize(nf + 1);
         nx_tet_.resize(nr);
+        if (throw_if_unbounded) {
+          throw Error("tessera: the cell of " + point_name(i, ids) +
+                      " is unbounded (on the convex hull): the ghost shell is missing");
+        }
+        t.unbounded_cell = i;
       }
     }
     nx_off_.push_back(static_cast<int>(nx_nb_.size()));
-    if (!bounded) {
-      if (throw_if_unbounded) {
-        throw Error("tessera: the cell of " + point_name(i, ids) +
-                    " is unbounded (on the convex hull): the ghost shell is missing");
-      }
-      t.unbounded_cell = i;
-      t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
-      continue;
-    }
-    // The cell's faces, then their geometry.
-    for (int f = nx_off_[i]; f < nx_off_[i + 1]; ++f) {
-      for (int r = nx_foff_[f]; r < nx_foff_[f + 1]; ++r) t.face_vertex.push_back(tet_of(nx_tet_[r]));
-      t.face_offset.push_back(static_cast<int>(t.face_vertex.size()));
-      t.face_neighbor.push_back(nx_nb_[f]);
-      t.face_area.push_back(0.0);
-    }
-    t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
-    measure_cell(t, pts, i);
   }
+
+  // Pass 2: number the tetrahedra of the rings in order of first use (as
+  // before: the Tessellation3's numbering), and the polygons in that
+  // numbering.  The faces are nx_*'s, in the same order.
+  const size_t n_faces = nx_nb_.size(), n_ring = nx_tet_.size();
+  t.cell_offset.assign(nx_off_.begin(), nx_off_.end());
+  t.face_neighbor.assign(nx_nb_.begin(), nx_nb_.end());
+  t.face_offset.assign(nx_foff_.begin(), nx_foff_.end());
+  t.face_area.resize(n_faces);
+  t.face_vertex.resize(n_ring);
+  int *fv = t.face_vertex.data();
+  const int *ring = nx_tet_.data();
+  int n_tet = 0;
+  for (size_t r = 0; r < n_ring; ++r) {
+    const int m = ring[r];
+    int id = tmap_[m];
+    if (id < 0) {
+      if (skip_[m])
+        throw Error("tessera: Mesh3::cells(): a tetrahedron of an owned cell lies outside the "
+                    "region of interest of the last update()");
+      id = tmap_[m] = n_tet++;
+      tused_.push_back(m);
+    }
+    fv[r] = id;
+  }
+
+  // Pass 3: the tetrahedra's corners, circumcentres and radii.
+  t.tets.resize(n_tet);
+  t.vertices.resize(n_tet);
+  t.radius.resize(n_tet);
+  std::vector<int> slivers;  // mesh tetrahedra (rare: no allocation without)
+  for (int id = 0; id < n_tet; ++id) {
+    const int m = tused_[id];
+    const int *q = &tv_[4 * m];
+    t.tets[id] = {q[0], q[1], q[2], q[3]};
+    const V3 p0 = load(pts, q[0]);
+    bool sliver;
+    const V3 h = centre_of(p0, load(pts, q[1]), load(pts, q[2]), load(pts, q[3]), &sliver);
+    if (sliver) slivers.push_back(m);
+    t.vertices[id] = {h.x, h.y, h.z};
+    const V3 dd = h - p0;
+    t.radius[id] = std::sqrt(dot(dd, dd));
+  }
+
+  // Pass 4: areas, volumes, surfaces.
+  t.volume.assign(n_owned, 0.0);
+  t.surface.assign(n_owned, 0.0);
+  for (int i = 0; i < n_owned; ++i) measure_cell(t, pts, i);
   if (!slivers.empty()) {
     // As voronoi3d.cpp's drop_slivers: a sliver is dropped from the
     // polygons when a well-shaped facet neighbour among t's tetrahedra has

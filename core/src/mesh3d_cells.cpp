@@ -71,6 +71,22 @@ V3 centre_of(V3 p0, V3 p1, V3 p2, V3 p3, bool *sliver) {
   return p0 + s * (dot(e1, e1) * c23 + dot(e2, e2) * c31 + dot(e3, e3) * c12);
 }
 
+// Resizes v to n, growing its storage by a small margin rather than the
+// library's doubling (the arrays are kept from step to step and their sizes
+// change by a few per cent at most).
+template <class Vec>
+void fit(Vec &v, size_t n) {
+  if (v.capacity() < n) v.reserve(n + n / 32);
+  v.resize(n);
+}
+
+// Releases the storage of v beyond a quarter above its size (after the first
+// call, whose arrays grew by doubling).
+template <class Vec>
+void trim(Vec &v) {
+  if (v.capacity() > v.size() + v.size() / 4 + 64) v.shrink_to_fit();
+}
+
 // Face areas, volume and surface of owned cell i from t.vertices (the
 // formulas of voronoi3d.cpp's measure()).
 void measure_cell(Tessellation3 &t, const Points3 &pts, int i) {
@@ -205,6 +221,9 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
   nx_nb_.clear();
   nx_foff_.assign(1, 0);
   nx_tet_.clear();
+  if (nx_nb_.capacity() < c_nb_.size()) nx_nb_.reserve(c_nb_.size() + c_nb_.size() / 32);
+  if (nx_foff_.capacity() < c_foff_.size()) nx_foff_.reserve(c_foff_.size() + c_foff_.size() / 32);
+  if (nx_tet_.capacity() < c_tet_.size()) nx_tet_.reserve(c_tet_.size() + c_tet_.size() / 32);
   for (int i = 0; i < n_owned; ++i) {
     if (reuse && !dirty_[i] && c_off_[i + 1] > c_off_[i]) {
       const int f0 = c_off_[i], f1 = c_off_[i + 1];
@@ -240,8 +259,8 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
   t.cell_offset.assign(nx_off_.begin(), nx_off_.end());
   t.face_neighbor.assign(nx_nb_.begin(), nx_nb_.end());
   t.face_offset.assign(nx_foff_.begin(), nx_foff_.end());
-  t.face_area.resize(n_faces);
-  t.face_vertex.resize(n_ring);
+  fit(t.face_area, n_faces);
+  fit(t.face_vertex, n_ring);
   int *fv = t.face_vertex.data();
   const int *ring = nx_tet_.data();
   int n_tet = 0;
@@ -259,9 +278,9 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
   }
 
   // Pass 3: the tetrahedra's corners, circumcentres and radii.
-  t.tets.resize(n_tet);
-  t.vertices.resize(n_tet);
-  t.radius.resize(n_tet);
+  fit(t.tets, n_tet);
+  fit(t.vertices, n_tet);
+  fit(t.radius, n_tet);
   std::vector<int> slivers;  // mesh tetrahedra (rare: no allocation without)
   for (int id = 0; id < n_tet; ++id) {
     const int m = tused_[id];
@@ -344,6 +363,9 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
   c_nb_.swap(nx_nb_);
   c_foff_.swap(nx_foff_);
   c_tet_.swap(nx_tet_);
+  trim(c_nb_);
+  trim(c_foff_);
+  trim(c_tet_);
   for (const int v : dirty_list_) dirty_[v] = 0;
   dirty_list_.clear();
   cache_ok_ = true;

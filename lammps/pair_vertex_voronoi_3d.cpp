@@ -218,12 +218,9 @@ bool Vertex3d::tessellate()
   } else {
     build();
   }
-  // Flat tetrahedra (slivers of co-spherical points given with round-off, as
-  // a lattice in a tilted box) get exact circumcentres inside Mesh3::cells,
-  // as in tessellate_local_3d: the repaired mesh's cells are those of a
-  // rebuild (incremental check).
   // incremental check: every step's cells, repaired or built (both come
-  // from Mesh3::cells), against tessellate_local_3d.
+  // from Mesh3::cells, which treats slivers of co-spherical points as
+  // tessellate_local_3d does), against tessellate_local_3d.
   if (pair->incremental == 2 && nlocal > 0) check_against_scratch(pts, sub, w);
   tessera::Coverage cov;
   if (fresh) cov = tessera::check_coverage_3d(tess3, sub, w);
@@ -265,16 +262,21 @@ void Vertex3d::compute(int eflag, int vflag)
     // atoms, then the cells; value 6) and the yardstick, a plain CGAL
     // Delaunay_triangulation_3 of the owned atoms alone (value 8).  Run
     // one after the other, so that they never coexist in memory.
-    {
-      const double r0 = MPI_Wtime();
-      tessera::Mesh3 scratch;
-      tessera::Tessellation3 t;
-      scratch.build(pts);
-      scratch.cells(pts, nlocal, t, nullptr, false);
-      pair->stats[5] += MPI_Wtime() - r0;
-      pair->stats[6] += 1.0;
+    try {
+      {
+        const double r0 = MPI_Wtime();
+        tessera::Mesh3 scratch;
+        tessera::Tessellation3 t;
+        scratch.build(pts);
+        scratch.cells(pts, nlocal, t, nullptr, false);
+        pair->stats[5] += MPI_Wtime() - r0;
+        pair->stats[6] += 1.0;
+      }
+      pair->stats[7] += tessera::time_plain_delaunay_3d(pts, nlocal);
+    } catch (tessera::Error &e) {
+      error->one(FLERR, "pair_style vertex/voronoi 'reference' at step {}: {}", update->ntimestep,
+                 e.what());
     }
-    pair->stats[7] += tessera::time_plain_delaunay_3d(pts, nlocal);
   }
   pair->accumulate(out.energy, 9);
 }

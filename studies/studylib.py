@@ -129,6 +129,9 @@ class Study:
                                               "instead of studies/<name>/out[/quick] (used by ctest)")
         parser.add_argument("--analyse-only", action="store_true",
                             help="reuse the LAMMPS output already in out/ (no runs)")
+        parser.add_argument("--resume", action="store_true",
+                            help="do not repeat a run whose input script in out/ is unchanged: reuse its "
+                                 "log if it completed, report it as failed again if it failed")
         if extra_args:
             extra_args(parser)
         self.args = parser.parse_args(argv)
@@ -157,7 +160,18 @@ class Study:
         log_path = os.path.join(workdir, log)
         if self.args.analyse_only:
             return log_path
-        with open(os.path.join(workdir, "in.lmp"), "w") as f:
+        in_path = os.path.join(workdir, "in.lmp")
+        if getattr(self.args, "resume", False) and os.path.exists(in_path) and os.path.exists(log_path):
+            with open(in_path) as f:
+                same = f.read() == script
+            if same:
+                with open(log_path, errors="replace") as f:
+                    lines = f.readlines()
+                if any(line.startswith("Total wall time") for line in lines):
+                    return log_path
+                raise RuntimeError(f"LAMMPS failed in {workdir} (earlier run, reused by --resume):\n"
+                                   + "".join(lines[-15:]))
+        with open(in_path, "w") as f:
             f.write(script)
         cmd = [self.lmp, "-in", "in.lmp", "-log", log, "-screen", "none", "-nocite"]
         for key, value in (variables or {}).items():

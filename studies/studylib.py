@@ -131,7 +131,8 @@ class Study:
                             help="reuse the LAMMPS output already in out/ (no runs)")
         parser.add_argument("--resume", action="store_true",
                             help="do not repeat a run whose input script in out/ is unchanged: reuse its "
-                                 "log if it completed, report it as failed again if it failed")
+                                 "log if it completed, report it as failed again if LAMMPS stopped on an "
+                                 "error (interrupted runs are run again)")
         if extra_args:
             extra_args(parser)
         self.args = parser.parse_args(argv)
@@ -169,8 +170,10 @@ class Study:
                     lines = f.readlines()
                 if any(line.startswith("Total wall time") for line in lines):
                     return log_path
-                raise RuntimeError(f"LAMMPS failed in {workdir} (earlier run, reused by --resume):\n"
-                                   + "".join(lines[-15:]))
+                if any(line.startswith("ERROR") for line in lines):
+                    raise RuntimeError(f"LAMMPS failed in {workdir} (earlier run, reused by --resume):\n"
+                                       + "".join(lines[-15:]))
+                # neither finished nor failed (interrupted): run it again
         with open(in_path, "w") as f:
             f.write(script)
         cmd = [self.lmp, "-in", "in.lmp", "-log", log, "-screen", "none", "-nocite"]

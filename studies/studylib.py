@@ -129,6 +129,10 @@ class Study:
                                               "instead of studies/<name>/out[/quick] (used by ctest)")
         parser.add_argument("--analyse-only", action="store_true",
                             help="reuse the LAMMPS output already in out/ (no runs)")
+        parser.add_argument("--resume", action="store_true",
+                            help="do not repeat a run whose input script in out/ is unchanged: reuse its "
+                                 "log if it completed, report it as failed again if LAMMPS stopped on an "
+                                 "error (interrupted runs are run again)")
         if extra_args:
             extra_args(parser)
         self.args = parser.parse_args(argv)
@@ -157,7 +161,20 @@ class Study:
         log_path = os.path.join(workdir, log)
         if self.args.analyse_only:
             return log_path
-        with open(os.path.join(workdir, "in.lmp"), "w") as f:
+        in_path = os.path.join(workdir, "in.lmp")
+        if getattr(self.args, "resume", False) and os.path.exists(in_path) and os.path.exists(log_path):
+            with open(in_path) as f:
+                same = f.read() == script
+            if same:
+                with open(log_path, errors="replace") as f:
+                    lines = f.readlines()
+                if any(line.startswith("Total wall time") for line in lines):
+                    return log_path
+                if any(line.startswith("ERROR") for line in lines):
+                    raise RuntimeError(f"LAMMPS failed in {workdir} (earlier run, reused by --resume):\n"
+                                       + "".join(lines[-15:]))
+                # neither finished nor failed (interrupted): run it again
+        with open(in_path, "w") as f:
             f.write(script)
         cmd = [self.lmp, "-in", "in.lmp", "-log", log, "-screen", "none", "-nocite"]
         for key, value in (variables or {}).items():
@@ -304,3 +321,52 @@ def fit_power(x, y):
 def copy_if_exists(src, dst):
     if os.path.exists(src):
         shutil.copy(src, dst)
+
+
+# ------------------------------------------------------------ shared analysis
+def msd_curve(pos, every, max_fraction=0.5):
+    """Time-origin averaged mean squared displacement of unwrapped positions ``pos`` (frames x
+    atoms x dims), centre-of-mass drift removed, at lags of 1 .. max_fraction * frames frames
+    ``every`` time units apart; returns (lag times, MSD)."""
+    pos = np.asarray(pos, float)
+    pos = pos - pos.mean(axis=1, keepdims=True)
+    f = len(pos)
+    lags = np.arange(1, max(2, int(f * max_fraction)) + 1)
+    lags = lags[lags < f]
+    msd = np.array([np.mean(np.sum((pos[l:] - pos[:-l]) ** 2, axis=2)) for l in lags])
+    return lags * every, msd
+
+
+def fit_diffusivity(tau, msd, from_fraction=0.25):
+    """D from a straight-line fit MSD = a + 2 d D tau (d = 2) over lags >= from_fraction * the
+    longest lag."""
+    tau, msd = np.asarray(tau, float), np.asarray(msd, float)
+    sel = tau >= from_fraction * tau[-1]
+    slope, _ = np.polyfit(tau[sel], msd[sel], 1)
+    return float(slope / 4.0)
+
+
+def msd_exponent(tau, msd, from_fraction=0.25):
+    """Log-log slope of the MSD over lags >= from_fraction * the longest (1: diffusive, 0: caged)."""
+    tau, msd = np.asarray(tau, float), np.asarray(msd, float)
+    sel = tau >= from_fraction * tau[-1]
+    slope, _ = np.polyfit(np.log(tau[sel]), np.log(np.maximum(msd[sel], 1e-300)), 1)
+    return float(slope)
+
+
+def rise_through(x, y, level, log_x=False, log_y=True):
+    """x where y rises through ``level`` for good: the last upward crossing (y[i] < level <= y[j]
+    for every j > i), interpolated linearly in (log) x and (log) y; nan when y never stays above
+    ``level`` or is above it everywhere."""
+    x, y = list(x), list(y)
+    for i in range(len(y) - 2, -1, -1):
+        if y[i] < level:
+            if not all(v >= level for v in y[i + 1:]):
+                return float("nan")
+            fx = (lambda v: np.log(v)) if log_x else (lambda v: v)
+            fy = (lambda v: np.log(max(v, 1e-300))) if log_y else (lambda v: v)
+            a, b = fy(y[i]), fy(y[i + 1])
+            t = (fy(level) - a) / (b - a)
+            xi = fx(x[i]) + t * (fx(x[i + 1]) - fx(x[i]))
+            return float(np.exp(xi)) if log_x else float(xi)
+    return float("nan")

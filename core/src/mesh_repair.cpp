@@ -78,7 +78,7 @@ bool Mesh::repair_one(const Points &pts, double sep2, int f) {
   };
   std::vector<int> X(v_.begin() + 3 * f, v_.begin() + 3 * f + 3);  // points whose stars are taken
   std::vector<int> C;                                               // cavity triangles (sorted)
-  std::vector<int> verts, B, inner;
+  std::vector<int> verts, B, inner, added;
   struct Outside {
     int p, q, tri, edge;  // boundary edge p -> q (cavity on its left), the triangle across
   };
@@ -131,15 +131,15 @@ bool Mesh::repair_one(const Points &pts, double sep2, int f) {
         // Folded (a frozen triangle too: it is mended with the rest).
         if (frozen_[t] || orient(v[0], v[1], v[2]) <= 0) {
           for (int k = 0; k < 3; ++k)
-            if (!has(X, v[k])) {
-              X.push_back(v[k]);
-              grew = true;
-            }
+            if (!has(X, v[k])) added.push_back(v[k]);  // X stays sorted for has()
         }
       }
-      if (grew) {
+      if (!bad && !added.empty()) {
+        X.insert(X.end(), added.begin(), added.end());
+        added.clear();
         std::sort(X.begin(), X.end());
         X.erase(std::unique(X.begin(), X.end()), X.end());
+        grew = true;
       }
     }
     if (bad)

@@ -12,6 +12,9 @@
 // and cells) and compute_forces(), and the slow path update() + cells() on a
 // second mesh for comparison.
 //
+// Then a step with forced folds (k cells jump): advance() with the local fold
+// repair against the rebuild from scratch that every fold cost before.
+//
 //   bench_core [max_N] [--steps-only]     (default 1000000)
 #include "tessera/energy.h"
 #include "tessera/mesh.h"
@@ -27,6 +30,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <ctime>
 #include <vector>
 
 namespace {
@@ -37,6 +41,13 @@ using DT = CGAL::Delaunay_triangulation_2<Kernel>;
 double now_seconds() {
   using clock = std::chrono::steady_clock;
   return std::chrono::duration<double>(clock::now().time_since_epoch()).count();
+}
+
+// This thread's CPU time in seconds.
+double cpu_seconds() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 double median(std::vector<double> v) {
@@ -52,31 +63,28 @@ uint64_t splitmix(uint64_t &s) {
   return z ^ (z >> 31);
 }
 
-// The per-step table (see the top of the file).
-double incremental_steps(long max_n, const tessera::Model &model) {
-  std::printf("\nPer step of a moving tissue (hexagonal lattice, jitter 0.2, steps of 0.012, "
-              "images within 3): microseconds per cell, median over the steps\n\n");
-  std::printf("%9s %6s %12s %12s %12s %16s %10s %9s\n", "N", "steps", "advance", "forces",
-              "sum", "update+cells", "flips", "rebuilds");
-  double checksum = 0.0;
-  for (long target : {1000L, 10000L, 100000L, 1000000L}) {
-    if (target > max_n) break;
+// A jittered hexagonal tissue of about `target` cells at density 1 in lattice
+// order (spatially sorted, as LAMMPS keeps atoms), with its periodic images
+// within `margin` as ghosts (xy: owned, then images; fill() after moving own).
+struct HexTissue {
+  std::vector<double> own, shift, xy;
+  std::vector<int> origin;
+  int n = 0;
+  double lx = 0, ly = 0, margin = 3.0;
+  uint64_t seed;  // the random stream, after the jitter (the steps go on with it)
+  explicit HexTissue(long target) : seed(777 + static_cast<uint64_t>(target)) {
     const int ny = std::max(1, static_cast<int>(std::lround(std::sqrt(target / (2 * std::sqrt(3.0))))));
     const int nx = std::max(1, static_cast<int>(std::lround(target / (2.0 * ny))));
     const double a = std::sqrt(2.0 / std::sqrt(3.0));  // density 1
-    const double lx = nx * a, ly = ny * a * std::sqrt(3.0);
-    uint64_t seed = 777 + static_cast<uint64_t>(target);
+    lx = nx * a;
+    ly = ny * a * std::sqrt(3.0);
     auto uni = [&]() { return static_cast<double>(splitmix(seed) >> 11) * 0x1.0p-53; };
-    std::vector<double> own;
     for (int j = 0; j < 2 * ny; ++j)
       for (int i = 0; i < nx; ++i) {
         own.push_back((i + 0.5 * (j % 2)) * a + 0.2 * (2 * uni() - 1));
         own.push_back(j * a * std::sqrt(3.0) / 2 + 0.2 * (2 * uni() - 1));
       }
-    const int n = static_cast<int>(own.size() / 2);
-    const double margin = 3.0;
-    std::vector<int> origin;
-    std::vector<double> shift;
+    n = static_cast<int>(own.size() / 2);
     for (int sj = -1; sj <= 1; ++sj)
       for (int si = -1; si <= 1; ++si)
         for (int p = 0; p < n; ++p) {
@@ -87,15 +95,33 @@ double incremental_steps(long max_n, const tessera::Model &model) {
           shift.push_back(si * lx);
           shift.push_back(sj * ly);
         }
-    std::vector<double> xy;
-    auto fill = [&]() {
-      xy.assign(own.begin(), own.end());
-      for (size_t k = 0; k < origin.size(); ++k) {
-        xy.push_back(own[2 * origin[k]] + shift[2 * k]);
-        xy.push_back(own[2 * origin[k] + 1] + shift[2 * k + 1]);
-      }
-    };
     fill();
+  }
+  void fill() {
+    xy.assign(own.begin(), own.end());
+    for (size_t k = 0; k < origin.size(); ++k) {
+      xy.push_back(own[2 * origin[k]] + shift[2 * k]);
+      xy.push_back(own[2 * origin[k] + 1] + shift[2 * k + 1]);
+    }
+  }
+};
+
+// The per-step table (see the top of the file).
+double incremental_steps(long max_n, const tessera::Model &model) {
+  std::printf("\nPer step of a moving tissue (hexagonal lattice, jitter 0.2, steps of 0.012, "
+              "images within 3): microseconds per cell, median over the steps\n\n");
+  std::printf("%9s %6s %12s %12s %12s %16s %10s %9s\n", "N", "steps", "advance", "forces",
+              "sum", "update+cells", "flips", "rebuilds");
+  double checksum = 0.0;
+  for (long target : {1000L, 10000L, 100000L, 1000000L}) {
+    if (target > max_n) break;
+    HexTissue tissue(target);
+    std::vector<double> &own = tissue.own, &xy = tissue.xy;
+    const int n = tissue.n;
+    const double margin = tissue.margin, lx = tissue.lx, ly = tissue.ly;
+    uint64_t &seed = tissue.seed;
+    auto uni = [&]() { return static_cast<double>(splitmix(seed) >> 11) * 0x1.0p-53; };
+    auto fill = [&]() { tissue.fill(); };
     const int nall = static_cast<int>(xy.size() / 2);
     const tessera::Points pts{xy.data(), nall, 2};
     const double lo[2] = {-0.6 * margin, -0.6 * margin}, hi[2] = {lx + 0.6 * margin, ly + 0.6 * margin};
@@ -138,6 +164,81 @@ double incremental_steps(long max_n, const tessera::Model &model) {
                 median(t_force) * us, (median(t_adv) + median(t_force)) * us, median(t_slow) * us,
                 static_cast<double>(flips) / steps, rebuilds);
     std::fflush(stdout);
+  }
+  return checksum;
+}
+
+// A step with forced folds: the tissue of incremental_steps() takes its small
+// random steps and, in addition, k owned cells (k = 1, 10, 100) jump by 1 (one
+// cell size) in a random direction, which folds triangles around each of them.
+// Per step: Mesh::advance() with the local fold repair, and on a second mesh
+// the same step with the repair off (advance() refuses, then build() + cells()
+// from scratch, what every fold cost before).  CPU milliseconds per step (this
+// thread's CPU time, steadier than wall time on a shared machine), median.
+double fold_steps(long max_n) {
+  std::printf("\nA step with k cells jumping (folds): CPU milliseconds per step (advance with "
+              "local repair | repair off: advance refuses, build + cells), median over the "
+              "steps\n\n");
+  std::printf("%9s %5s %6s %12s %14s %10s %10s %9s %9s\n", "N", "k", "steps", "repair ms",
+              "rebuild ms", "ratio", "repairs", "tri/rep", "rebuilds");
+  double checksum = 0.0;
+  for (long target : {10000L, 100000L, 1000000L}) {
+    if (target > max_n) break;
+    for (int k : {1, 10, 100}) {
+      HexTissue tissue(target);
+      uint64_t &seed = tissue.seed;
+      auto uni = [&]() { return static_cast<double>(splitmix(seed) >> 11) * 0x1.0p-53; };
+      const int n = tissue.n;
+      const tessera::Points pts{tissue.xy.data(), static_cast<int>(tissue.xy.size() / 2), 2};
+      const double m = 0.6 * tissue.margin;
+      const double lo[2] = {-m, -m}, hi[2] = {tissue.lx + m, tissue.ly + m};
+      tessera::Mesh fast, slow;
+      slow.set_fold_repair(false);
+      tessera::Tessellation tf, ts;
+      fast.build(pts);
+      fast.cells(pts, n, tf);
+      slow.build(pts);
+      slow.cells(pts, n, ts);
+      const int steps = target >= 1000000 ? 5 : 15;
+      std::vector<double> t_fast, t_slow;
+      long repairs = 0, repaired = 0, rebuilds = 0;
+      for (int step = 0; step < steps; ++step) {
+        for (double &c : tissue.own) c += 0.012 * (2 * uni() - 1) * std::sqrt(3.0);
+        // jumpers away from the box's edges (their images would jump too)
+        for (int j = 0; j < k; ++j) {
+          const int p = static_cast<int>(uni() * n);
+          const double x = tissue.own[2 * p], y = tissue.own[2 * p + 1];
+          if (std::min({x, y, tissue.lx - x, tissue.ly - y}) < 4.0) continue;
+          const double phi = 6.283185307179586 * uni();  // a jump of one cell size
+          tissue.own[2 * p] += std::cos(phi);
+          tissue.own[2 * p + 1] += std::sin(phi);
+        }
+        tissue.fill();
+        double t0 = cpu_seconds();
+        if (!fast.advance(pts, n, lo, hi, tf)) {
+          ++rebuilds;
+          fast.build(pts);
+          fast.cells(pts, n, tf);
+        }
+        double t1 = cpu_seconds();
+        repairs += fast.repairs_last_update();
+        repaired += fast.repaired_triangles_last_update();
+        if (!slow.advance(pts, n, lo, hi, ts)) {
+          slow.build(pts);
+          slow.cells(pts, n, ts);
+        }
+        double t2 = cpu_seconds();
+        checksum += tf.area[0] + ts.area[0];
+        t_fast.push_back(t1 - t0);
+        t_slow.push_back(t2 - t1);
+      }
+      if (t_fast.empty()) continue;
+      std::printf("%9d %5d %6zu %12.3f %14.3f %10.3f %10.1f %9.1f %9ld\n", n, k, t_fast.size(),
+                  median(t_fast) * 1e3, median(t_slow) * 1e3, median(t_fast) / median(t_slow),
+                  static_cast<double>(repairs) / t_fast.size(),
+                  repairs ? static_cast<double>(repaired) / repairs : 0.0, rebuilds);
+      std::fflush(stdout);
+    }
   }
   return checksum;
 }
@@ -217,6 +318,7 @@ int main(int argc, char **argv) {
   }
   }
   checksum += incremental_steps(max_n, model);
+  checksum += fold_steps(max_n);
   std::printf("\n(checksum %.6g)\n", checksum);
   return 0;
 }

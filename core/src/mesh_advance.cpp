@@ -57,8 +57,12 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
     const bool certain = D > 3.3306690738754716e-16 * sum_lr;  // the sign of D is exact
     if (!certain && orientation(ax, ay, bx, by, cx, cy) <= 0) {
       if (!outside_region(ax, ay, bx, by, cx, cy, roi_lo, roi_hi)) {
-        valid_ = false;
-        return false;
+        if (!fold_repair_) {
+          valid_ = false;
+          return false;
+        }
+        folded_.push_back(m);  // repaired after the pass, as update() does
+        continue;
       }
       frozen_[m] = 1;
       continue;
@@ -114,6 +118,10 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
   for (int m = nft0; m < nt; ++m)
     if (!stack_edges(pts, m, sep2))
       return false;
+  // Folded regions re-triangulated (their triangles join flipped_, their
+  // points dirty_, so that they are read again below).
+  if (!folded_.empty() && !repair_folds(pts, sep2))
+    return false;
   if (!flip_pass(pts, sep2))
     return false;
 

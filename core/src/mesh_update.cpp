@@ -122,8 +122,11 @@ void Mesh::restore_partition() {
 // it), the separation limit for it in sep2, frozen_ and stack_ reset.
 bool Mesh::start_update(const Points &pts, double &sep2) {
   flips_ = 0;
+  repairs_ = 0;
+  repaired_triangles_ = 0;
   stamp_ = 0;
   flipped_.clear();
+  folded_.clear();
   for (const int p : dirty_list_)
     dirty_[p] = 0;
   dirty_list_.clear();
@@ -183,10 +186,12 @@ bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi)
     return false;
   const int nt = static_cast<int>(v_.size() / 3);
   // One pass over the triangles: a finite triangle that is no longer
-  // counter-clockwise has folded over, which flips cannot repair (outside the
-  // region of interest it is frozen instead); every edge is tested once, and
-  // the ones to flip are stacked (edges of frozen triangles are dropped when
-  // popped, as frozenness of the far side is not known yet here).
+  // counter-clockwise has folded over, which flips cannot repair: its region
+  // is re-triangulated after the pass (outside the region of interest it is
+  // frozen instead); every edge is tested once, and the ones to flip are
+  // stacked (edges of frozen triangles are dropped when popped, as
+  // frozenness of the far side is not known yet here; entries of triangles
+  // that a repair rewrites are tested again when popped).
   for (int t = 0; t < nt; ++t) {
     const int a = v_[3 * t], b = v_[3 * t + 1], c = v_[3 * t + 2];
     if (a != kInfinite && b != kInfinite && c != kInfinite) {
@@ -194,8 +199,12 @@ bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi)
                    cy = pts.y(c);
       if (orientation(ax, ay, bx, by, cx, cy) <= 0) {
         if (!outside_region(ax, ay, bx, by, cx, cy, roi_lo, roi_hi)) {
-          valid_ = false;
-          return false;
+          if (!fold_repair_) {
+            valid_ = false;
+            return false;
+          }
+          folded_.push_back(t);
+          continue;
         }
         frozen_[t] = 1;
         continue;
@@ -204,6 +213,8 @@ bool Mesh::update(const Points &pts, const double *roi_lo, const double *roi_hi)
     if (!stack_edges(pts, t, sep2))
       return false;
   }
+  if (!folded_.empty() && !repair_folds(pts, sep2))
+    return false;
   return flip_pass(pts, sep2);
 }
 

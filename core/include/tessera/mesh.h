@@ -9,7 +9,13 @@
 // small constant; only when a triangle folds over (a point crossed an edge)
 // does the caller need build() again, which triangulates from scratch with
 // CGAL.  The point at infinity closes the convex hull, so hull changes are
-// flips too.  CGAL stays inside mesh.cpp.
+// flips too.  A triangle that folds over (a point crossed an edge) is
+// repaired locally: the folded region and its ring are re-triangulated
+// (exact predicates), and the flips then restore the Delaunay property
+// there; only when that fails (the region touches the hull or a frozen
+// triangle, or grows past a bound) does the caller need build() again,
+// which triangulates from scratch with CGAL.  CGAL stays inside the
+// mesh_*.cpp sources.
 #pragma once
 
 #include "tessera/tessellation.h"
@@ -30,8 +36,10 @@ public:
   void build(const Points &pts, const long *ids = nullptr, const int *report = nullptr);
 
   // The same points (same number, same order) at new positions: restores the
-  // Delaunay property by flips.  Returns false when the mesh cannot follow
-  // (a triangle folded over, or the point count changed) or the input is bad
+  // Delaunay property by flips, after re-triangulating the regions where a
+  // triangle folded over (see set_fold_repair).  Returns false when the mesh
+  // cannot follow (a fold that the local repair could not mend, or the point
+  // count changed) or the input is bad
   // (non-finite or out-of-range coordinates, two points joined by an edge
   // closer than the separation limit); the mesh is then invalid and build()
   // must be called, which names the bad points.
@@ -69,6 +77,15 @@ public:
   bool collinear() const { return collinear_; }
   int n_points() const { return n_points_; }
   long flips_last_update() const { return flips_; }
+  // Regions re-triangulated by the last update()/advance() because a
+  // triangle folded over, and the triangles they held.
+  long repairs_last_update() const { return repairs_; }
+  long repaired_triangles_last_update() const { return repaired_triangles_; }
+  // Local fold repair on (the default) or off (a fold then makes update()
+  // and advance() return false, as a from-scratch rebuild is needed): for
+  // tests and benchmarks that compare the two.
+  void set_fold_repair(bool on) { fold_repair_ = on; }
+  bool fold_repair() const { return fold_repair_; }
   // Whether the last cells() or advance() call took advance()'s per-step path.
   bool incremental() const { return last_incremental_; }
 
@@ -78,6 +95,10 @@ private:
   bool collinear_ = false;
   int n_points_ = 0;
   long flips_ = 0;
+  long repairs_ = 0;
+  long repaired_triangles_ = 0;
+  bool fold_repair_ = true;
+  std::vector<int> folded_;  // triangles found folded (inside the region) by the scan
   // Triangles [0, nft_) are finite, [nft_, n) have the point at infinity as
   // a corner; build() numbers them so and update()/advance() keep it (flips
   // only turn infinite triangles finite; they are then moved to nft_), so
@@ -115,6 +136,10 @@ private:
                      double &area, double &perimeter) const;
   bool stack_edges(const Points &pts, int t, double sep2);
   bool flip_pass(const Points &pts, double sep2);
+  // Local repair of the triangles in folded_ (mesh_repair.cpp): false when a
+  // region cannot be mended (the mesh is then invalid).
+  bool repair_folds(const Points &pts, double sep2);
+  bool repair_one(const Points &pts, double sep2, int f);
   template <class Compact, class MeshOf>
   void find_groups(const Points &pts, Tessellation &t, Compact compact, MeshOf mesh_of) const;
   bool flip_needed(const Points &pts, int p, int q, int r, int s) const;

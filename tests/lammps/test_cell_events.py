@@ -554,7 +554,17 @@ timestep 0.02
         np.testing.assert_array_equal(fw["f_div[2]"], fs["f_div[2]"])
         for col in ("f_div[1]", "f_div[3]", "f_div[4]", "d_area0"):
             np.testing.assert_allclose(fs[col], fw[col], rtol=0, atol=1e-12, err_msg=col)
-        np.testing.assert_allclose(fs["x"], fw["x"], rtol=0, atol=1e-8)
+        # Positions: 20 steps after the split they agree to round-off; the
+        # dividing active tissue then amplifies round-off fast (a kick of
+        # 1e-15 to every atom at step 100 grows to ~2e-4 by step 140, and the
+        # continued run's mesh, numbered afresh, sums forces in another order:
+        # ~3e-8 by step 140), so at step 140 the bound is far below that
+        # growth of a round-off kick, not round-off itself.
+        mid_w, mid_s = whole.dump("out.dump")[-2], second.dump("out.dump")[-2]
+        self.assertEqual(mid_w["step"], 120)
+        np.testing.assert_array_equal(mid_w["id"], mid_s["id"])
+        np.testing.assert_allclose(mid_s["x"], mid_w["x"], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(fs["x"], fw["x"], rtol=0, atol=1e-6)
 
 
 class GrowthContinues(LammpsTestCase):

@@ -91,21 +91,30 @@ class Collision(LammpsTestCase):
         self.assertNotIn("more than a cell diameter", run.output)
 
     def test_grooves_reproducers(self):
-        # examples/grooves at the thesis's dt with J_S = 1, J_G = 0: seeds 81
-        # and 2023 used to end in "Lost atoms" (at steps 106 and 16)
+        # examples/grooves at the thesis's dt with J_S = 1, J_G = 0: some seeds
+        # end with two centres colliding (seeds 81 and 2023 used to end in
+        # "Lost atoms").  Which seeds collide is chaotic (round-off, e.g. the
+        # order in which a repaired mesh sums forces, moves it), so a handful
+        # of seeds that collided in some build is run: every collision must
+        # be the step guard's message, never "Lost atoms", and at least two
+        # must collide.
         path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples",
                             "grooves", "in.grooves")
         with open(path) as f:
             script = "\n".join(l for l in f.read().splitlines() if not l.startswith("dump"))
-        # (the steps are those of this build; another compiler's round-off may
-        # move them, so only the form of the message is checked)
-        for seed in (81, 2023):
-            run = self.run_lmp(script, variables={"JS": 1, "JG": 0, "seed": seed}, ok=False)
-            self.assertLammpsError(run, "it would be lost", "closest Voronoi neighbour")
-            line = [l for l in run.output.splitlines() if "ERROR" in l][0]
-            self.assertRegex(line, r"atom \d+ moved by \S+ in the step from \d+ to \d+")
-            self.assertRegex(line, r"atom \d+, was \S+ away")
+        collided = 0
+        for seed in (31, 81, 92, 102, 141, 2023):
+            run = self.run_lmp(script, variables={"JS": 1, "JG": 0, "seed": seed}, ok=None)
             self.assertNotIn("Lost atoms", run.output)
+            errors = [l for l in run.output.splitlines() if "ERROR" in l]
+            if not errors:
+                self.assertEqual(run.returncode, 0, run.output[-3000:])
+                continue
+            collided += 1
+            self.assertLammpsError(run, "it would be lost", "closest Voronoi neighbour")
+            self.assertRegex(errors[0], r"atom \d+ moved by \S+ in the step from \d+ to \d+")
+            self.assertRegex(errors[0], r"atom \d+, was \S+ away")
+        self.assertGreaterEqual(collided, 2)
 
     def test_stiff_parameters(self):
         # K = 1e200: every atom would leave; the error says why, not "need at

@@ -18,7 +18,7 @@
 using namespace LAMMPS_NS;
 
 /* ----------------------------------------------------------------------
-   pair_style vertex/voronoi cutoff [tension edge|cell]
+   pair_style vertex/voronoi cutoff [tension edge|cell] [... surface sphere cx cy cz R]
 ------------------------------------------------------------------------- */
 
 void PairVertexVoronoi::settings(int narg, char **arg)
@@ -89,10 +89,12 @@ void PairVertexVoronoi::settings(int narg, char **arg)
       if (!(radius > 0.0) || !std::isfinite(radius))
         error->all(FLERR, "pair_style vertex/voronoi: radius must be > 0, got {}", arg[iarg + 1]);
       iarg += 2;
+    } else if (strcmp(arg[iarg], "surface") == 0) {
+      iarg = parse_surface(iarg, narg, arg);
     } else {
       error->all(FLERR,
                  "pair_style vertex/voronoi: unknown keyword '{}' (known: tension, incremental, "
-                 "grow, reference, radius)",
+                 "grow, reference, radius, surface)",
                  arg[iarg]);
     }
   }

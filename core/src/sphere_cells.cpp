@@ -41,6 +41,7 @@ void SphereCells::bind(const SphereTessellation &t, const std::vector<int> &owne
 
 void SphereCells::build(const std::vector<int> &index) {
   const SphereTessellation &t = *t_;
+  index_ = index;
   const int n = static_cast<int>(owned_.size());
   missing_.clear();
   auto mapped = [&](int p) {
@@ -64,6 +65,23 @@ void SphereCells::build(const std::vector<int> &index) {
     offset_.push_back(static_cast<int>(neighbor_.size()));
   }
   // Multifold vertices: triangles joined by zero-length edges share a pole.
+  std::vector<std::vector<int>> found;
+  clusters(0.0, 2, found);
+  ring_offset_.assign(1, 0);
+  ring_.clear();
+  for (const auto &mm : found) {
+    if (mm.size() < 4) continue;
+    for (int p : mm) ring_.push_back(mapped(p));
+    ring_offset_.push_back(static_cast<int>(ring_.size()));
+  }
+  std::sort(missing_.begin(), missing_.end());
+  missing_.erase(std::unique(missing_.begin(), missing_.end()), missing_.end());
+}
+
+void SphereCells::clusters(double below, int min_triangles,
+                           std::vector<std::vector<int>> &out) const {
+  const SphereTessellation &t = *t_;
+  out.clear();
   const int nt = static_cast<int>(t.triangles.size());
   std::vector<int> parent(nt);
   std::iota(parent.begin(), parent.end(), 0);
@@ -74,37 +92,46 @@ void SphereCells::build(const std::vector<int> &index) {
   bool any = false;
   for (int g = 0; g < t.n_points; ++g) {
     const int o = t.cell_offset[g], m = t.cell_size(g);
-    for (int k = o; k < o + m; ++k)
-      if (t.edge_length[k] == 0.0) {
-        const int a = root(t.cell_vertex[k]), b = root(t.cell_vertex[o + (k - o + 1) % m]);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
-        any = true;
-      }
-  }
-  ring_offset_.assign(1, 0);
-  ring_.clear();
-  if (any) {
-    // Clusters at a vertex of an owned cell, each once (by its root).
-    std::vector<char> wanted(nt, 0);
-    for (int c = 0; c < n; ++c)
-      for (int k = offset_[c]; k < offset_[c + 1]; ++k) wanted[root(v0_[k])] = 1;
-    std::vector<std::vector<int>> members(nt);
-    for (int tri = 0; tri < nt; ++tri) {
-      const int r = root(tri);
-      if (!wanted[r]) continue;
-      for (int p : t.triangles[tri]) members[r].push_back(p);
-    }
-    for (int r = 0; r < nt; ++r) {
-      std::vector<int> &mm = members[r];
-      std::sort(mm.begin(), mm.end());
-      mm.erase(std::unique(mm.begin(), mm.end()), mm.end());
-      if (mm.size() < 4) continue;
-      for (int p : mm) ring_.push_back(mapped(p));
-      ring_offset_.push_back(static_cast<int>(ring_.size()));
+    for (int k = o; k < o + m; ++k) {
+      const double l = t.edge_length[k];
+      if (below > 0.0 ? !(l < below) : l != 0.0) continue;
+      const int a = root(t.cell_vertex[k]), b = root(t.cell_vertex[o + (k - o + 1) % m]);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+      any = true;
     }
   }
-  std::sort(missing_.begin(), missing_.end());
-  missing_.erase(std::unique(missing_.begin(), missing_.end()), missing_.end());
+  if (!any) return;
+  std::vector<char> wanted(nt, 0);
+  for (size_t k = 0; k < v0_.size(); ++k) wanted[root(v0_[k])] = 1;
+  std::vector<int> count(nt, 0);
+  std::vector<std::vector<int>> members(nt);
+  for (int tri = 0; tri < nt; ++tri) {
+    const int r = root(tri);
+    if (!wanted[r]) continue;
+    ++count[r];
+    for (int p : t.triangles[tri]) members[r].push_back(p);
+  }
+  for (int r = 0; r < nt; ++r) {
+    if (count[r] < min_triangles) continue;
+    std::vector<int> &mm = members[r];
+    std::sort(mm.begin(), mm.end());
+    mm.erase(std::unique(mm.begin(), mm.end()), mm.end());
+    out.push_back(std::move(mm));
+  }
+}
+
+bool SphereCells::short_edge_clusters(double min_length, std::vector<int> &offset,
+                                      std::vector<int> &members) const {
+  std::vector<std::vector<int>> found;
+  clusters(min_length, 2, found);
+  offset.assign(1, 0);
+  members.clear();
+  for (const auto &mm : found) {
+    for (int p : mm)
+      if (index_[p] >= 0) members.push_back(index_[p]);
+    offset.push_back(static_cast<int>(members.size()));
+  }
+  return true;
 }
 
 int SphereCells::piece_corners(int k, std::vector<double> &xyz) const {

@@ -199,6 +199,22 @@ TEST(SphereCells, CubeHasSixFourfoldRings) {
   for (int i = 0; i < 8; ++i) EXPECT_EQ(v.coordination_number(i), 3);
 }
 
+// Rosettes: clusters of vertices joined by edges shorter than L.
+TEST(SphereCells, ShortEdgeClusters) {
+  const Vec3 c{0, 0, 0};
+  const auto xyz = on_sphere(c, 1.0, icosahedron());
+  const tessera::SphereTessellation t = tessera::tessellate_sphere(c, 1.0, {xyz.data(), 12, 3});
+  tessera::SphereCells v;
+  v.bind(t);
+  std::vector<int> offset, members;
+  const double edge = t.edge_length[0];
+  ASSERT_TRUE(v.short_edge_clusters(0.99 * edge, offset, members));
+  EXPECT_EQ(offset.size(), 1u);  // no edge is shorter: no cluster
+  ASSERT_TRUE(v.short_edge_clusters(1.01 * edge, offset, members));
+  ASSERT_EQ(offset.size(), 2u);  // every vertex joined: one cluster of all 12 points
+  EXPECT_EQ(offset[1], 12);
+}
+
 // A caller that owns some cells and lacks some points: indices translated,
 // the lacking ones reported.
 TEST(SphereCells, CallersIndicesAndMissingPoints) {

@@ -58,6 +58,11 @@ public:
   Contacts contacts() const override;
   int multifold_count() const override;
   void multifold_ring(int g, std::vector<int> &ring) const override;
+  // Clusters of Voronoi vertices joined by edges shorter than min_length
+  // around the owned cells (two or more triangles each), as in the plane;
+  // points the caller lacks are left out of a cluster.
+  bool short_edge_clusters(double min_length, std::vector<int> &offset,
+                           std::vector<int> &members) const override;
 
   void centroid(int c, double *x) const override;
   void second_moments(int c, double *m) const override;
@@ -80,6 +85,11 @@ private:
   // Multifold vertices around the owned cells: rings of caller's indices.
   std::vector<int> ring_offset_, ring_;
   std::vector<int> missing_;
+  std::vector<int> index_;  // the caller's index of each point of t
+  // Clusters of triangles joined by edges of length < below (or == 0 when
+  // below is 0) that touch an owned cell and have at least min_triangles
+  // triangles; each one's points (t's indices, ascending).
+  void clusters(double below, int min_triangles, std::vector<std::vector<int>> &out) const;
   void build(const std::vector<int> &point_index);
   // Second moments of cell c's gnomonic image in its tangent basis (e1, e2).
   bool planar_moments(int c, double m2[3], double e1[3], double e2[3]) const;

@@ -84,6 +84,7 @@ void FixVertexSphere::project(bool transport)
   if (!pair || !pair->on_sphere()) return;
   const double *c = pair->sphere_centre();
   const double R = pair->sphere_radius();
+  pair->check_sphere_box(R);
   double **x = atom->x;
   double **mu = atom->mu_flag ? atom->mu : nullptr;
   for (int i = 0; i < atom->nlocal; i++) {

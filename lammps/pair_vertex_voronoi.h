@@ -79,6 +79,8 @@ class PairVertexVoronoi : public Pair {
   bool on_sphere() const { return sphere_on != 0; }
   const double *sphere_centre() const { return sphere_c; }
   double sphere_radius();
+  // Stops with an error when the sphere of radius R reaches past the box.
+  void check_sphere_box(double R) const;
 
  protected:
   double cut_global;

@@ -151,6 +151,29 @@ void PairVertexVoronoi::add_sphere_fix()
   if (fix) fix->pair = this;
 }
 
+/* The sphere must lie inside the box along every direction that does not
+   shrink-wrap: past a periodic boundary its atoms would be wrapped to the
+   other side (and past a fixed one lost). */
+
+void PairVertexVoronoi::check_sphere_box(double R) const
+{
+  const double *centre = sphere_c;
+  const double lo[3] = {domain->boxlo[0], domain->boxlo[1], domain->boxlo[2]};
+  const double hi[3] = {domain->boxhi[0], domain->boxhi[1], domain->boxhi[2]};
+  static const char *axis = "xyz";
+  for (int d = 0; d < 3; d++) {
+    if (domain->boundary[d][0] >= 2 && domain->boundary[d][1] >= 2) continue;    // s or m
+    if (centre[d] - R < lo[d] || centre[d] + R > hi[d])
+      error->all(FLERR,
+                 "pair_style vertex/voronoi: the sphere (centre {} {} {}, radius {}) at step {} "
+                 "reaches past the box along {} ({} to {}); enlarge the box (the sphere must lie "
+                 "inside it) or use shrink-wrapped boundaries ('boundary s s s')",
+                 centre[0], centre[1], centre[2], R, update->ntimestep, axis[d], lo[d], hi[d]);
+  }
+  if (domain->triclinic)
+    error->all(FLERR, "pair_style vertex/voronoi: 'surface sphere' needs an orthogonal box");
+}
+
 /* ---- the unit ---- */
 
 void VertexSphere::init()
@@ -171,28 +194,6 @@ void VertexSphere::init()
     error->all(FLERR, "pair_style vertex/voronoi: too many cells on a sphere ({})", atom->natoms);
   // The virial is the style's own (about the centre), not f dot r.
   pair->no_virial_fdotr_compute = 1;
-}
-
-/* The sphere must lie inside the box along every direction that does not
-   shrink-wrap: past a periodic boundary its atoms would be wrapped to the
-   other side (and past a fixed one lost). */
-
-void VertexSphere::check_box() const
-{
-  const double lo[3] = {domain->boxlo[0], domain->boxlo[1], domain->boxlo[2]};
-  const double hi[3] = {domain->boxhi[0], domain->boxhi[1], domain->boxhi[2]};
-  static const char *axis = "xyz";
-  for (int d = 0; d < 3; d++) {
-    if (domain->boundary[d][0] >= 2 && domain->boundary[d][1] >= 2) continue;    // s or m
-    if (centre[d] - R < lo[d] || centre[d] + R > hi[d])
-      error->all(FLERR,
-                 "pair_style vertex/voronoi: the sphere (centre {} {} {}, radius {}) at step {} "
-                 "reaches past the box along {} ({} to {}); enlarge the box (the sphere must lie "
-                 "inside it) or use shrink-wrapped boundaries ('boundary s s s')",
-                 centre[0], centre[1], centre[2], R, update->ntimestep, axis[d], lo[d], hi[d]);
-  }
-  if (domain->triclinic)
-    error->all(FLERR, "pair_style vertex/voronoi: 'surface sphere' needs an orthogonal box");
 }
 
 /* Every cell's ID, type, position and A0 on every rank, sorted by ID. */
@@ -298,7 +299,7 @@ void VertexSphere::compute(int eflag, int vflag)
   const double *c = pair->sphere_centre();
   for (int d = 0; d < 3; d++) centre[d] = c[d];
   R = pair->sphere_radius();
-  check_box();
+  pair->check_sphere_box(R);
   for (int pass = 0; tessellate(); pass++) {
     if (pass == 8) error->all(FLERR, "pair_style vertex/voronoi: the ghost shell did not converge");
     pair->ev_init(eflag, vflag);

@@ -42,7 +42,6 @@ class VertexSphere : public VertexModel {
   bool has_a0 = false;
   void gather();
   bool tessellate();    // true if the ghost shell had to grow
-  void check_box() const;
 };
 
 }    // namespace LAMMPS_NS

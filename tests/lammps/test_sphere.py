@@ -215,8 +215,9 @@ undump d
 
     def test_virial_about_the_centre(self):
         script = head(self.R) + self.coeffs + """compute p all pressure NULL virial
+compute s all stress/atom NULL virial
 thermo_style custom step pe vol c_p[1] c_p[2] c_p[3] c_p[4] c_p[5] c_p[6]
-dump d all custom 1 f.dump id x y z fx fy fz
+dump d all custom 1 f.dump id x y z fx fy fz c_s[1] c_s[2] c_s[3] c_s[4] c_s[5] c_s[6]
 dump_modify d format float %.17g
 run 0
 print "P $(vol:%.17g) $(c_p[1]:%.17g) $(c_p[2]:%.17g) $(c_p[3]:%.17g) $(c_p[4]:%.17g) $(c_p[5]:%.17g) $(c_p[6]:%.17g)"
@@ -233,6 +234,13 @@ print "P $(vol:%.17g) $(c_p[1]:%.17g) $(c_p[2]:%.17g) $(c_p[3]:%.17g) $(c_p[4]:%
         np.testing.assert_allclose(W, W.T, atol=1e-11 * np.abs(W).max())
         self.assertAlmostEqual(np.trace(W), 0.0, delta=1e-11 * np.abs(W).max())
         self.assertGreater(np.abs(W).max(), 1e-3)
+        # per atom: -(r_i - c) (x) F_i (compute stress/atom's sign), symmetrised
+        per = -np.column_stack([r[:, 0] * F[:, 0], r[:, 1] * F[:, 1], r[:, 2] * F[:, 2],
+                                0.5 * (r[:, 0] * F[:, 1] + r[:, 1] * F[:, 0]),
+                                0.5 * (r[:, 0] * F[:, 2] + r[:, 2] * F[:, 0]),
+                                0.5 * (r[:, 1] * F[:, 2] + r[:, 2] * F[:, 1])])
+        got = np.column_stack([f[f"c_s[{k}]"] for k in range(1, 7)])
+        np.testing.assert_allclose(got, per, atol=1e-12 * np.abs(W).max())
 
 
 class PolarityAlignment(LammpsTestCase):

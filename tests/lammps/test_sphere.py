@@ -403,6 +403,31 @@ run {steps}
         self.assertGreater(len(frames[-1]["id"]), len(frames[0]["id"]))
 
 
+class Minimise(LammpsTestCase):
+    """minimize (fire) lowers pe and the force norm; the next run puts the
+    atoms back on the sphere (minimize moves them along tangent forces)."""
+
+    def test_fire(self):
+        R = 8.0
+        a0 = 4 * math.pi * R * R / 200
+        script = head(R, cut=3 * math.sqrt(a0)) + tissue_coeffs(a0) + """thermo_style custom step pe fnorm
+thermo_modify norm no format float %.17g
+run 0
+print "A $(pe:%.17g) $(fnorm:%.17g)"
+min_style fire
+minimize 0 1e-6 300 3000
+run 0
+print "B $(pe:%.17g) $(fnorm:%.17g)"
+write_dump all custom end.dump id x y z modify format float %.17g
+"""
+        run = self.run_lmp(script, files={"cells.data": tissue(200, R)})
+        (e0, f0), (e1, f1) = printed(run, "A")[0], printed(run, "B")[0]
+        self.assertLess(e1, e0)
+        self.assertLess(f1, 0.05 * f0)
+        r = np.linalg.norm(positions(run.dump("end.dump")[0]) - C, axis=1)
+        np.testing.assert_allclose(r, R, rtol=1e-12)
+
+
 class Errors(LammpsTestCase):
     def test_dimension_2(self):
         run = self.run_lmp("dimension 2\n" + head(5.0).replace("boundary f f f", "boundary p p p")

@@ -34,6 +34,9 @@ void PairVertexVoronoi::settings(int narg, char **arg)
                "cell diameters",
                arg[0]);
   int iarg = 1;
+  // A pair_style line without 'surface' puts the cells back in the plane
+  // (or in space), also when it repeats the style of a sphere.
+  sphere_on = 0;
   while (iarg < narg) {
     if (strcmp(arg[iarg], "tension") == 0) {
       if (iarg + 2 > narg)

@@ -446,6 +446,13 @@ class Errors(LammpsTestCase):
                            files={"cells.data": data_file(icosahedron(), 5.0, ntypes=1)}, ok=False)
         self.assertLammpsError(run, "'groove' alignment has no meaning for cells on a sphere")
 
+    def test_pair_style_again_without_surface(self):
+        # the same style again without 'surface': 3d polyhedra, which need a periodic box
+        run = self.run_lmp(head(5.0) + "pair_coeff * * 1 1 0.1 0\nrun 0\npair_style vertex/voronoi 8.0\n"
+                           "run 0\n", files={"cells.data": data_file(icosahedron(), 5.0, ntypes=1)},
+                           ok=False)
+        self.assertLammpsError(run, "requires periodic x, y and z boundaries")
+
     def test_radius(self):
         for r, msg in (("-1", "sphere radius R must be > 0"), ("v_nope", "variable 'nope' does not exist")):
             run = self.run_lmp(head(r) + "pair_coeff * * 1 1 0.1 0\nrun 0\n",

@@ -290,6 +290,14 @@ void PairVertexVoronoi::print_model() const
     if (finite) msg += fmt::format(" {:10.4g}", free_tension[i]);
     msg += "\n";
   }
+  // Per-cell values that replace the types' (fix property/atom).
+  std::string per_cell;
+  for (const char *name : {"area0", "ka", "kp", "perim0"}) {
+    int flag = -1, cols = -1;
+    if (atom->find_custom(name, flag, cols) >= 0) per_cell += fmt::format(" d_{}", name);
+  }
+  if (!per_cell.empty())
+    msg += fmt::format("  per-cell values (fix property/atom) replace the types':{}\n", per_cell);
   msg += "  effective junction tension Lambda_IJ:\n      ";
   for (int j = 1; j <= n; j++) msg += fmt::format(" {:>10d}", j);
   msg += "\n";
@@ -316,6 +324,7 @@ void PairVertexVoronoi::reinit()
     if (!(adapt_area0[i][i] > 0.0) || !std::isfinite(adapt_area0[i][i]))
       error->all(FLERR, "pair_style vertex/voronoi (fix adapt): area0 of type {} must be > 0, got {}",
                  i, adapt_area0[i][i]);
+    const bool kappa_changed = adapt_kappa[i][i] != kappa[i];
     kappa[i] = adapt_kappa[i][i];
     if (adapt_area0[i][i] != area0[i] && !warned_area0) {
       int flag = -1, cols = -1;
@@ -330,6 +339,17 @@ void PairVertexVoronoi::reinit()
       }
     }
     area0[i] = adapt_area0[i][i];
+    // The same for the per-cell stiffnesses (d_ka, d_kp replace K, Gamma).
+    const char *changed = kappa_changed ? "ka" : adapt_gamma[i][i] != gamma[i] ? "kp" : nullptr;
+    int flag = -1, cols = -1;
+    if (changed && !warned_percell && atom->find_custom(changed, flag, cols) >= 0) {
+      if (comm->me == 0)
+        error->warning(FLERR,
+                       "pair_style vertex/voronoi (fix adapt): {} of type {} changed, but each "
+                       "cell's value comes from its per-atom d_{}, which this does not change",
+                       changed[1] == 'a' ? "kappa" : "gamma", i, changed);
+      warned_percell = 1;
+    }
     gamma[i] = adapt_gamma[i][i];
   }
   // fix adapt writes the upper triangle (j >= i).
@@ -404,6 +424,7 @@ void PairVertexVoronoi::prepare_atoms()
   for (int i = 0; i < nall; i++) type0[i] = type[i] - 1;
   cell_e.resize(atom->nlocal);
   bind_cell_area0();
+  bind_cell_params();
 }
 
 /* Per-cell preferred areas (volumes in 3d) from 'fix property/atom
@@ -427,6 +448,59 @@ void PairVertexVoronoi::bind_cell_area0()
   model.cell_area0 = a0;
 }
 
+/* Per-cell stiffnesses and preferred perimeter (surface in 3d) from 'fix
+   property/atom d_ka d_kp d_perim0', each when defined, in the quadratic
+   form's units for every model: the cell's energy is d_ka (A - A0)^2 +
+   d_kp (P - d_perim0)^2 in place of its type's (see tessera::Model).  A
+   zero (what fix property/atom leaves unset) is an error naming the atom.
+   Without any of them the model's pointers stay null and the force loops
+   take their types-only path. */
+
+void PairVertexVoronoi::bind_cell_params()
+{
+  const bool three = domain->dimension == 3;
+  const char *names[3] = {"ka", "kp", "perim0"};
+  const char *what[3] = {three ? "volume modulus KV" : "area modulus KA",
+                         three ? "surface modulus KS" : "perimeter modulus KP",
+                         three ? "preferred surface S0" : "preferred perimeter P0"};
+  const double *v[3] = {nullptr, nullptr, nullptr};
+  const int nlocal = atom->nlocal;
+  for (int k = 0; k < 3; k++) {
+    int flag = -1, cols = -1;
+    const int index = atom->find_custom(names[k], flag, cols);
+    if (index < 0) continue;
+    if (flag != 1 || cols != 0)
+      error->all(FLERR,
+                 "pair_style vertex/voronoi: the per-atom property '{}' must be a double "
+                 "vector (fix property/atom d_{}), not an integer or an array",
+                 names[k], names[k]);
+    v[k] = atom->dvector[index];
+    for (int i = 0; i < nlocal; i++)
+      if (!(v[k][i] > 0.0) || !std::isfinite(v[k][i]))
+        error->one(FLERR,
+                   "pair_style vertex/voronoi: per-atom {} d_{} of atom {} is {}; it must be > "
+                   "0 (set it for every atom, e.g. 'set group all d_{} value', after 'fix "
+                   "property/atom d_{}')",
+                   what[k], names[k], atom->tag[i], v[k][i], names[k], names[k]);
+  }
+  model.cell_KA = v[0];
+  model.cell_KP = v[1];
+  model.cell_P0 = v[2];
+  // A per-cell KP keeps the type's preferred perimeter -w Lambda_II / Gamma_I,
+  // which a type with Gamma = 0 does not define.
+  if (v[1] && !v[2]) {
+    const int *type = atom->type;
+    for (int i = 0; i < nlocal; i++)
+      if (!(gamma[type[i]] > 0.0))
+        error->one(FLERR,
+                   "pair_style vertex/voronoi: atom {} has a per-atom d_kp, but its type {} has "
+                   "{} modulus 0 (Gamma = 2 {}), which defines no preferred {}: also define "
+                   "d_perim0 (fix property/atom d_perim0) and set it",
+                   atom->tag[i], type[i], three ? "surface" : "perimeter", three ? "KS" : "KP",
+                   three ? "surface" : "perimeter");
+  }
+}
+
 /* The shared tail of every model unit: cell_e holds each owned cell's
    energy and energy their sum (the forces are in atom->f); cell_w the
    per-cell virials (nw each) when per-atom virials are wanted.  The
@@ -436,10 +510,19 @@ void PairVertexVoronoi::accumulate(double energy, int nw)
 {
   const int nlocal = atom->nlocal;
   const int *type = atom->type;
-  for (int i = 0; i < nlocal; i++) {
-    const double e0 = energy0[type[i]];
-    cell_e[i] += e0;
-    energy += e0;
+  if (model.has_cell_params()) {
+    // KP_c P0_c^2 from each cell's values in use (types in the quadratic form).
+    for (int i = 0; i < nlocal; i++) {
+      const double e0 = quad_set[type[i]] ? model.quadratic_constant(i, type[i] - 1) : 0.0;
+      cell_e[i] += e0;
+      energy += e0;
+    }
+  } else {
+    for (int i = 0; i < nlocal; i++) {
+      const double e0 = energy0[type[i]];
+      cell_e[i] += e0;
+      energy += e0;
+    }
   }
   if (!std::isfinite(energy))
     error->one(FLERR,

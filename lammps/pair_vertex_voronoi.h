@@ -99,6 +99,7 @@ class PairVertexVoronoi : public Pair {
   double **adapt_kappa, **adapt_area0, **adapt_gamma;  // type-pair views of the per-type values
   double **lambda_built;  // lambda as build_model() left it: what fix adapt changed since
   int warned_area0 = 0;   // fix adapt changed area0 while d_area0 exists (warned once)
+  int warned_percell = 0; // fix adapt changed kappa/gamma while d_ka/d_kp exists (once)
   void build_model();
   int read_restart_settings_version(FILE *);
   void print_model() const;
@@ -122,6 +123,8 @@ class PairVertexVoronoi : public Pair {
   // per-cell A0 ('fix property/atom d_area0').
   void prepare_atoms();
   void bind_cell_area0();
+  // Per-cell KA, KP, P0 ('fix property/atom d_ka d_kp d_perim0').
+  void bind_cell_params();
   // The shared tail of every unit: the constant of the quadratic forms, the
   // per-atom energy and virial, the global energy and the f dot r virial.
   // cell_w holds nw values per cell (4 in 2d, 9 in 3d) when vflag_atom.

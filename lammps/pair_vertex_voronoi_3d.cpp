@@ -11,7 +11,8 @@
    from scratch after a neighbor-list build and repaired by flips in between
    (tessera::Mesh3); every circumsphere of an owned cell must lie inside the
    ghost shell, checked every step, and the shell grows as in 2D when it
-   does not.
+   does not.  'reference N' times from-scratch triangulations every N steps
+   (compute pair values 6-8), as in 2D, with CGAL's Delaunay_triangulation_3.
 ------------------------------------------------------------------------- */
 
 #include "pair_vertex_voronoi_3d.h"
@@ -42,33 +43,25 @@ void Vertex3d::init()
     error->all(FLERR,
                "pair_style vertex/voronoi: finite cells ('radius') are for 2d tissues; in 3d "
                "the cells are confluent Voronoi polyhedra");
-  if (pair->reference_every > 0)
-    error->all(FLERR,
-               "pair_style vertex/voronoi: 'reference' times the 2d triangulation; in 3d every "
-               "step is a from-scratch triangulation already");
   mesh_ncalls = -1;
 }
 
-/* Whether a tetrahedron of this step's cells is flatter than 1e-6 (|det| of
-   its edge vectors over the cube of its longest edge component), the limit
-   below which the core computes circumcentres exactly. */
+/* check_coverage_3d(t, lo, hi).ok, visiting each tetrahedron once instead
+   of once per face corner (about 13 times fewer): every tetrahedron of t is
+   a corner of an owned cell's face (a sliver dropped from the polygons
+   carries the sphere of a neighbour that is). */
 
-bool Vertex3d::has_sliver(const tessera::Points3 &pts) const
+static bool spheres_inside(const tessera::Tessellation3 &t, const double lo[3], const double hi[3])
 {
-  for (const auto &q : tess3.tets) {
-    const double *p0 = pts.p(q[0]);
-    double e[3][3], l = 0.0;
-    for (int k = 0; k < 3; k++)
-      for (int d = 0; d < 3; d++) {
-        e[k][d] = pts.p(q[k + 1])[d] - p0[d];
-        l = MAX(l, std::fabs(e[k][d]));
-      }
-    const double det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) -
-        e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
-        e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
-    if (!(std::fabs(det) >= 1e-6 * l * l * l)) return true;
-  }
-  return false;
+  if (t.unbounded_cell >= 0) return false;
+  const size_t nt = t.vertices.size();
+  const tessera::Vec3 *h = t.vertices.data();
+  const double *r = t.radius.data();
+  bool ok = true;
+  for (size_t v = 0; v < nt; v++)
+    ok &= (h[v].x - r[v] >= lo[0]) & (h[v].x + r[v] <= hi[0]) & (h[v].y - r[v] >= lo[1]) &
+        (h[v].y + r[v] <= hi[1]) & (h[v].z - r[v] >= lo[2]) & (h[v].z + r[v] <= hi[2]);
+  return ok;
 }
 
 /* incremental check: the repaired mesh's cells against a from-scratch
@@ -221,24 +214,14 @@ bool Vertex3d::tessellate()
     build();
   } else if (mesh.advance(pts, nlocal, lo, hi, tess3)) {
     pair->stats[3] += mesh.flips_last_update();
-    if (!tessera::check_coverage_3d(tess3, lo, hi).ok) build();
+    if (!spheres_inside(tess3, lo, hi)) build();
   } else {
     build();
   }
-  // Flat tetrahedra (slivers of co-spherical points given with round-off, as
-  // a lattice in a tilted box) have ill-conditioned circumcentres: the
-  // from-scratch path computes those exactly and leaves them out of the
-  // faces (tessellate_local_3d); the repaired mesh does not, so such steps
-  // take that path.
-  if (nlocal > 0 && has_sliver(pts)) {
-    try {
-      tess3 = tessera::tessellate_local_3d(pts, nlocal, nullptr, false);
-    } catch (tessera::Error &e) {
-      error->one(FLERR, "pair_style vertex/voronoi at step {}: {}", update->ntimestep, e.what());
-    }
-    fresh = true;
-  }
-  if (pair->incremental == 2 && !fresh && nlocal > 0) check_against_scratch(pts, sub, w);
+  // incremental check: every step's cells, repaired or built (both come
+  // from Mesh3::cells, which treats slivers of co-spherical points as
+  // tessellate_local_3d does), against tessellate_local_3d.
+  if (pair->incremental == 2 && nlocal > 0) check_against_scratch(pts, sub, w);
   tessera::Coverage cov;
   if (fresh) cov = tessera::check_coverage_3d(tess3, sub, w);
   if (!pair->ghost_shell_complete(cov.needed_margin)) return true;
@@ -273,6 +256,28 @@ void Vertex3d::compute(int eflag, int vflag)
   pair->stats[0] += t1 - t0;
   pair->stats[1] += MPI_Wtime() - t1;
   pair->stats[4] += 1.0;
+  if (pair->reference_every > 0 && update->ntimestep % pair->reference_every == 0 && nlocal > 0) {
+    // Timed from-scratch triangulations of the same points for benchmarks
+    // (bench/run3d): the style's own rebuild (CGAL of owned and ghost
+    // atoms, then the cells; value 6) and the yardstick, a plain CGAL
+    // Delaunay_triangulation_3 of the owned atoms alone (value 8).  Run
+    // one after the other, so that they never coexist in memory.
+    try {
+      {
+        const double r0 = MPI_Wtime();
+        tessera::Mesh3 scratch;
+        tessera::Tessellation3 t;
+        scratch.build(pts);
+        scratch.cells(pts, nlocal, t, nullptr, false);
+        pair->stats[5] += MPI_Wtime() - r0;
+        pair->stats[6] += 1.0;
+      }
+      pair->stats[7] += tessera::time_plain_delaunay_3d(pts, nlocal);
+    } catch (tessera::Error &e) {
+      error->one(FLERR, "pair_style vertex/voronoi 'reference' at step {}: {}", update->ntimestep,
+                 e.what());
+    }
+  }
   pair->accumulate(out.energy, 9);
 }
 

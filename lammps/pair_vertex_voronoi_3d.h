@@ -32,7 +32,6 @@ class Vertex3d : public VertexModel {
   bool tessellate();    // true if the ghost shell had to grow
   tessera::Region3 subdomain() const;
   void check_against_scratch(const tessera::Points3 &, const tessera::Region3 &, double);
-  bool has_sliver(const tessera::Points3 &) const;
 };
 
 }    // namespace LAMMPS_NS

@@ -42,6 +42,31 @@ void Model::validate() const {
       }
 }
 
+void Model::validate_cells(int n_owned) const {
+  auto check = [&](const double *v, const char *what, bool zero_ok) {
+    if (!v) return;
+    for (int c = 0; c < n_owned; ++c)
+      if (!std::isfinite(v[c]) || v[c] < 0.0 || (v[c] == 0.0 && !zero_ok)) {
+        std::ostringstream s;
+        s.precision(17);
+        s << "tessera: cell " << c << ": per-cell " << what << " must be "
+          << (zero_ok ? ">= 0" : "> 0") << " and finite, got " << v[c];
+        throw Error(s.str());
+      }
+  };
+  check(cell_area0, "preferred area A0", false);
+  check(cell_KA, "area modulus KA", false);
+  check(cell_KP, "perimeter modulus KP", true);
+  if (cell_P0)
+    for (int c = 0; c < n_owned; ++c)
+      if (!std::isfinite(cell_P0[c])) {
+        std::ostringstream s;
+        s << "tessera: cell " << c << ": per-cell preferred perimeter P0 must be finite, got "
+          << cell_P0[c];
+        throw Error(s.str());
+      }
+}
+
 CellType cell_type_from_quadratic(const QuadraticParams &q) {
   return CellType{2.0 * q.KA, q.A0, 2.0 * q.KP};
 }
@@ -55,13 +80,13 @@ double lambda_from_quadratic(const QuadraticParams &q, Tension tension) {
 namespace {
 
 inline double cell_energy_of(const Tessellation &t, int c, const int *type, const Model &m) {
-  const CellType &ct = m.types[type[c]];
-  const double dA = t.area[c] - m.area0_of(c, type[c]);
-  double e = 0.5 * ct.K * dA * dA + 0.5 * ct.Gamma * t.perimeter[c] * t.perimeter[c];
+  const Model::CellParams p = m.cell_params(c, type[c]);
+  const double dA = t.area[c] - p.A0;
+  double e = 0.5 * p.K * dA * dA + 0.5 * p.Gamma * t.perimeter[c] * t.perimeter[c];
   double tension = 0.0;
   for (int k = t.cell_offset[c]; k < t.cell_offset[c + 1]; ++k)
     tension += m.lambda_of(type[c], type[t.cell_neighbor[k]]) * t.edge_length[k];
-  return e + m.tension_weight() * tension;
+  return e + m.tension_weight() * tension + p.shift * t.perimeter[c];
 }
 
 }  // namespace
@@ -127,9 +152,12 @@ inline void note_pair(const Points &pts, int c, double cx, double cy, int q, dou
 // The lean per-cell loop (no multifold vertex, no per-cell virial) over
 // cells [c0, c1): each cell's energy and dE/dh added into grad, the energy
 // sum and the closest pair of Voronoi neighbours carried in the references.
-void lean_cells(const Tessellation &t, const Points &pts, const int *type, const Model &model,
-                double *cell_energy, Vec2 *grad, int c0, int c1, double &energy, double &best2,
-                int &best_c, int &best_q) {
+// PerCell: the model has per-cell KA, KP or P0 (Model::has_cell_params());
+// without them the loop reads the types' values only (chosen once per call).
+template <bool PerCell>
+void lean_cells_t(const Tessellation &t, const Points &pts, const int *type, const Model &model,
+                  double *cell_energy, Vec2 *grad, int c0, int c1, double &energy,
+                  double &best2, int &best_c, int &best_q) {
   const double w = model.tension_weight();
   const int ntypes = model.ntypes();
   auto near_pair = [&](int c, double cx, double cy, int q) {
@@ -139,10 +167,23 @@ void lean_cells(const Tessellation &t, const Points &pts, const int *type, const
     for (int c = c0; c < c1; ++c) {
       const int o = t.cell_offset[c], m = t.cell_offset[c + 1] - o;
       const int tc = type[c];
-      const CellType &ct = model.types[tc];
-      const double dA = t.area[c] - model.area0_of(c, tc);
-      const double dEdA = ct.K * dA;
-      const double dEdP = ct.Gamma * t.perimeter[c];
+      double K, A0, Gamma, shift = 0.0;
+      if constexpr (PerCell) {
+        const Model::CellParams p = model.cell_params(c, tc);
+        K = p.K;
+        A0 = p.A0;
+        Gamma = p.Gamma;
+        shift = p.shift;
+      } else {
+        const CellType &ct = model.types[tc];
+        K = ct.K;
+        A0 = model.area0_of(c, tc);
+        Gamma = ct.Gamma;
+      }
+      const double dA = t.area[c] - A0;
+      const double dEdA = K * dA;
+      double dEdP = Gamma * t.perimeter[c];
+      if constexpr (PerCell) dEdP += shift;
       const double *lam_row = &model.lambda[static_cast<size_t>(tc) * ntypes];
       double tension = 0.0;
       if (m > 0) {
@@ -185,13 +226,24 @@ void lean_cells(const Tessellation &t, const Points &pts, const int *type, const
           in_lam = out_lam;
         }
       }
-      const double ec = 0.5 * ct.K * dA * dA +
-                        0.5 * ct.Gamma * t.perimeter[c] * t.perimeter[c] +
-                        (m > 0 ? w * tension : 0.0);
+      double ec = 0.5 * K * dA * dA + 0.5 * Gamma * t.perimeter[c] * t.perimeter[c] +
+                  (m > 0 ? w * tension : 0.0);
+      if constexpr (PerCell) ec += shift * t.perimeter[c];
       if (cell_energy) cell_energy[c] = ec;
       energy += ec;
     }
   }
+
+void lean_cells(const Tessellation &t, const Points &pts, const int *type, const Model &model,
+                double *cell_energy, Vec2 *grad, int c0, int c1, double &energy, double &best2,
+                int &best_c, int &best_q) {
+  if (model.has_cell_params())
+    lean_cells_t<true>(t, pts, type, model, cell_energy, grad, c0, c1, energy, best2, best_c,
+                       best_q);
+  else
+    lean_cells_t<false>(t, pts, type, model, cell_energy, grad, c0, c1, energy, best2, best_c,
+                        best_q);
+}
 
 }  // namespace
 
@@ -321,13 +373,16 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
     }
     const int o = t.cell_offset[c], m = t.cell_size(c);
     const int tc = type[c];
-    const CellType &ct = model.types[tc];
-    const double dA = t.area[c] - model.area0_of(c, tc);
+    // (without per-cell KA, KP, P0: the types' values and shift 0, which
+    // leaves every sum below bit for bit as without it)
+    const Model::CellParams ct = model.cell_params(c, tc);
+    const double dA = t.area[c] - ct.A0;
     const double dEdA = ct.K * dA;
-    const double dEdP = ct.Gamma * t.perimeter[c];
+    const double dEdP = ct.Gamma * t.perimeter[c] + ct.shift;
     const double *lam_row = &model.lambda[static_cast<size_t>(tc) * ntypes];
     if (m == 0) {
-      const double ec = 0.5 * ct.K * dA * dA + 0.5 * ct.Gamma * t.perimeter[c] * t.perimeter[c];
+      const double ec = 0.5 * ct.K * dA * dA + 0.5 * ct.Gamma * t.perimeter[c] * t.perimeter[c] +
+                        ct.shift * t.perimeter[c];
       if (cell_energy) cell_energy[c] = ec;
       energy += ec;
       continue;
@@ -422,6 +477,12 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
             double ax, ay, al, bx, by, bl;
             spoke_dir(spokes[s - 1], ax, ay, al);
             spoke_dir(spokes[s], bx, by, bl);
+            // The cell's in- and out-edges at V take the directions their
+            // other ends use (the same up to the round-off of V, which far
+            // from the origin is not small), so that the cell's gradients
+            // add up to zero and the forces sum to zero.
+            if (s == 1 && el[wrap(k - 1)] > 0.0) ax = in_x, ay = in_y;
+            if (s == M && el[wrap(run_end)] > 0.0) unit(wrap(run_end), bx, by);
             double gx = (dEdP + al) * ax - (dEdP + bl) * bx;
             double gy = (dEdP + al) * ay - (dEdP + bl) * by;
             if (s == 1) {
@@ -442,7 +503,7 @@ ForceOutput compute_forces(const Tessellation &t, const Points &pts, const int *
       in_lam = out_lam;
     }
     const double ec = 0.5 * ct.K * dA * dA + 0.5 * ct.Gamma * t.perimeter[c] * t.perimeter[c] +
-                      w * tension;
+                      w * tension + ct.shift * t.perimeter[c];
     if (cell_energy) cell_energy[c] = ec;
     energy += ec;
   }

@@ -463,9 +463,10 @@ namespace {
 
 double cell_energy_of(const FiniteTessellation &t, int c, const int *type, const Model &m,
                       const double *free_tension) {
-  const CellType &ct = m.types[type[c]];
-  const double dA = t.area[c] - m.area0_of(c, type[c]);
-  double e = 0.5 * ct.K * dA * dA + 0.5 * ct.Gamma * t.perimeter[c] * t.perimeter[c];
+  const Model::CellParams ct = m.cell_params(c, type[c]);
+  const double dA = t.area[c] - ct.A0;
+  double e = 0.5 * ct.K * dA * dA + 0.5 * ct.Gamma * t.perimeter[c] * t.perimeter[c] +
+             ct.shift * t.perimeter[c];
   double tension = 0.0;
   for (int k = t.cell_offset[c]; k < t.cell_offset[c + 1]; ++k) {
     const FinitePiece &p = t.pieces[k];
@@ -510,9 +511,11 @@ ForceOutput finite_forces(const FiniteTessellation &t, const Points &pts, const 
     if (m <= 1) continue;  // a whole disc: its energy does not depend on its position
 
     const Vec2 xc{pts.x(c), pts.y(c)};
-    const CellType &ct = model.types[type[c]];
-    const double wA = ct.K * (t.area[c] - model.area0_of(c, type[c]));
-    const double wP = ct.Gamma * t.perimeter[c];
+    // Per-cell KA, KP, P0 (Model::cell_params): shift_c P over the whole
+    // perimeter, so contact edges and free arcs both carry it.
+    const Model::CellParams ct = model.cell_params(c, type[c]);
+    const double wA = ct.K * (t.area[c] - ct.A0);
+    const double wP = ct.Gamma * t.perimeter[c] + ct.shift;
     const double wF = wP + (free_tension ? free_tension[type[c]] : 0.0);
     u.resize(m);
     G.assign(m, Vec2{});

@@ -42,12 +42,13 @@ double energy_3d(const Tessellation3 &t, const int *type, const Model &model, do
   const double w = model.tension_weight();
   double total = 0.0;
   for (int c = 0; c < t.n_owned; ++c) {
-    const CellType &ct = model.types[type[c]];
+    const Model::CellParams ct = model.cell_params(c, type[c]);
     double tension = 0.0;
     for (int f = t.cell_offset[c]; f < t.cell_offset[c + 1]; ++f)
       tension += model.lambda_of(type[c], type[t.face_neighbor[f]]) * t.face_area[f];
-    const double dv = t.volume[c] - model.area0_of(c, type[c]);
-    const double e = 0.5 * ct.K * dv * dv + 0.5 * ct.Gamma * t.surface[c] * t.surface[c] + w * tension;
+    const double dv = t.volume[c] - ct.A0;
+    const double e = 0.5 * ct.K * dv * dv + 0.5 * ct.Gamma * t.surface[c] * t.surface[c] +
+                     w * tension + ct.shift * t.surface[c];
     if (!std::isfinite(e)) throw_overflow_3d(t, c, "energy", e);
     if (cell_energy) cell_energy[c] = e;
     total += e;
@@ -106,9 +107,10 @@ ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const
   if (cell_virial) gc.assign(t.tets.size(), V3{0, 0, 0});
   for (int c = 0; c < t.n_owned; ++c) {
     own.clear();
-    const CellType &ct = model.types[type[c]];
-    const double dedv = ct.K * (t.volume[c] - model.area0_of(c, type[c]));
-    const double deds = ct.Gamma * t.surface[c];
+    // (per-cell KV, KS, S0: Model::cell_params, shift_c S)
+    const Model::CellParams ct = model.cell_params(c, type[c]);
+    const double dedv = ct.K * (t.volume[c] - ct.A0);
+    const double deds = ct.Gamma * t.surface[c] + ct.shift;
     const V3 xc = load(pts, c);
     for (int f = t.cell_offset[c]; f < t.cell_offset[c + 1]; ++f) {
       const int o = t.face_offset[f], m = t.face_offset[f + 1] - o;

@@ -214,7 +214,9 @@ void compute_hessian(const Tessellation &t, const Points &pts, const int *type,
     }
 
     const int tc = type[c];
-    const CellType &ct = model.types[tc];
+    // The cell's K, A0, Gamma in use and the per-cell shift of its linear
+    // perimeter term (Model::cell_params; 0 without per-cell KA, KP, P0).
+    const Model::CellParams ct = model.cell_params(c, tc);
     He.assign(static_cast<size_t>(dim) * dim, 0.0);
     gP.assign(dim, 0.0);
     double P = 0.0;
@@ -294,7 +296,7 @@ void compute_hessian(const Tessellation &t, const Points &pts, const int *type,
               Hl[static_cast<size_t>(2 * pidx[u] + b) * dim + 2 * pidx[v] + g] +=
                   sgn[u] * sgn[v] * val;
             }
-      const double coef = ct.Gamma * P + w * model.lambda_of(tc, type[cn[k]]);
+      const double coef = ct.Gamma * P + ct.shift + w * model.lambda_of(tc, type[cn[k]]);
       for (size_t ij = 0; ij < He.size(); ++ij) He[ij] += coef * Hl[ij];
       for (int i = 0; i < dim; ++i) gP[i] += gl[i];
     }

@@ -117,6 +117,18 @@ int insphere_raw(const double *p0, const double *p1, const double *p2, const dou
 }
 
 
+// Capacity for size() plus 1/32 (and `unit` whole elements' worth of 64
+// more), reallocated if it has less or more than a quarter above that.
+template <class Vec>
+void with_margin(Vec &v, std::size_t unit) {
+  const std::size_t want = v.size() + v.size() / 32 + 64 * unit;
+  if (v.capacity() >= want && v.capacity() <= want + want / 4) return;
+  Vec w;
+  w.reserve(want);
+  w.assign(v.begin(), v.end());
+  v.swap(w);
+}
+
 inline void sort3(int *f) {
   if (f[0] > f[1]) std::swap(f[0], f[1]);
   if (f[1] > f[2]) std::swap(f[1], f[2]);
@@ -255,6 +267,14 @@ void Mesh3::build(const Points3 &pts, const long *ids, const int *report) {
   tmark_.assign(nt, 0);
   pmark_.assign(n + 8, 0);
   tmap_.assign(nt, -1);
+  // Room for a few per cent more tetrahedra (2-3 flips add one), so that the
+  // first flips do not double the per-tetrahedron arrays (as push_back and
+  // resize would), and no slack from an earlier, larger mesh.
+  with_margin(tv_, 4);
+  with_margin(tn_, 4);
+  with_margin(skip_, 1);
+  with_margin(tmark_, 1);
+  with_margin(tmap_, 1);
   stamp_ = 0;
   flips_ = f23_ = f32_ = f44_ = exact_ = 0;
   valid_ = true;

@@ -7,6 +7,14 @@
 // permutation of its positively oriented corners: the ring then runs
 // counter-clockwise about x_j - x_i, as the Tessellation3 convention wants.
 // Areas, volumes and surfaces by the formulas of voronoi3d.cpp.
+//
+// Slivers (tetrahedra flatter than 1e-6: four nearly co-spherical, nearly
+// coplanar points, as round-off makes of a lattice in a tilted box) are
+// treated as tessellate_local_3d treats them: their circumcentres are
+// computed exactly, and a sliver whose four points lie on the circumsphere
+// of a well-shaped facet neighbour (one of the owned cells' tetrahedra)
+// with the same centre is dropped from the face polygons (voronoi3d.cpp,
+// drop_slivers).  Both are rare; the common path only measures flatness.
 
 #include "tessera/mesh3d.h"
 
@@ -14,6 +22,9 @@
 
 #include "point_name.h"
 
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -22,6 +33,89 @@ namespace tessera {
 namespace {
 
 using namespace detail3;
+
+// The thresholds of voronoi3d.cpp: tetrahedra flatter than kSliver (|det|
+// of the edge vectors from the first corner over the cube of their largest
+// component) get exact circumcentres; kCoSpherical: a point within this
+// fraction of a sphere's radius counts as on it.
+constexpr double kSliver = 1e-6;
+constexpr double kCoSpherical = 1e-8;
+
+// The circumcentre of a sliver to the nearest double (CGAL's exact
+// construction; the formula of vec3_detail.h loses about eps/q of the
+// radius at flatness q).
+V3 exact_circumcentre(V3 p0, V3 p1, V3 p2, V3 p3) {
+  using E = CGAL::Exact_predicates_exact_constructions_kernel;
+  const E::Point_3 c = CGAL::circumcenter(E::Point_3(p0.x, p0.y, p0.z), E::Point_3(p1.x, p1.y, p1.z),
+                                          E::Point_3(p2.x, p2.y, p2.z), E::Point_3(p3.x, p3.y, p3.z));
+  return {CGAL::to_double(CGAL::exact(c.x())), CGAL::to_double(CGAL::exact(c.y())),
+          CGAL::to_double(CGAL::exact(c.z()))};
+}
+
+// Circumcentre of tetrahedron p0..p3 (exact for a sliver); *sliver says
+// which.  The same flatness as voronoi3d.cpp's.
+V3 centre_of(V3 p0, V3 p1, V3 p2, V3 p3, bool *sliver) {
+  const V3 e1 = p1 - p0, e2 = p2 - p0, e3 = p3 - p0;
+  const V3 c23 = cross(e2, e3), c31 = cross(e3, e1), c12 = cross(e1, e2);
+  const double det = dot(e1, c23);
+  double l = std::max({std::fabs(e1.x), std::fabs(e1.y), std::fabs(e1.z), std::fabs(e2.x),
+                       std::fabs(e2.y), std::fabs(e2.z), std::fabs(e3.x), std::fabs(e3.y),
+                       std::fabs(e3.z)});
+  const double q = l > 0.0 ? std::fabs(det) / (l * l * l) : 0.0;
+  if (!(q >= kSliver)) {
+    *sliver = true;
+    return exact_circumcentre(p0, p1, p2, p3);
+  }
+  *sliver = false;
+  const double s = 0.5 / det;
+  return p0 + s * (dot(e1, e1) * c23 + dot(e2, e2) * c31 + dot(e3, e3) * c12);
+}
+
+// Resizes v to n, growing its storage by a small margin rather than the
+// library's doubling (the arrays are kept from step to step and their sizes
+// change by a few per cent at most).
+template <class Vec>
+void fit(Vec &v, size_t n) {
+  if (v.capacity() < n) v.reserve(n + n / 32);
+  v.resize(n);
+}
+
+// Releases the storage of v beyond a quarter above its size (after the first
+// call, whose arrays grew by doubling).
+template <class Vec>
+void trim(Vec &v) {
+  if (v.capacity() > v.size() + v.size() / 4 + 64) v.shrink_to_fit();
+}
+
+// Face areas, volume and surface of owned cell i from t.vertices (the
+// formulas of voronoi3d.cpp's measure()).
+void measure_cell(Tessellation3 &t, const Points3 &pts, int i) {
+  const V3 xi = load(pts, i);
+  double vol = 0.0, sur = 0.0;
+  for (int f = t.cell_offset[i]; f < t.cell_offset[i + 1]; ++f) {
+    const int o = t.face_offset[f], len = t.face_offset[f + 1] - o;
+    const int *ring = t.face_vertex.data() + o;
+    V3 av{0, 0, 0}, qs{0, 0, 0};
+    V3 uu = vv(t.vertices[ring[len - 1]]) - xi;
+    for (int k = 0; k < len; ++k) {
+      // Summed from the last corner round: the same terms as voronoi3d.cpp's
+      // measure(), in a rotated order (round-off only).
+      const V3 ww = vv(t.vertices[ring[k]]) - xi;
+      av = av + cross(uu, ww);
+      qs = qs + ww;
+      uu = ww;
+    }
+    av = 0.5 * av;
+    qs = (1.0 / len) * qs;
+    const V3 dj = load(pts, t.face_neighbor[f]) - xi;
+    const double area = dot(av, dj) / std::sqrt(dot(dj, dj));
+    t.face_area[f] = area;
+    sur += area;
+    vol += dot(av, qs) / 3.0;
+  }
+  t.volume[i] = vol;
+  t.surface[i] = sur;
+}
 
 }  // namespace
 
@@ -106,16 +200,6 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
   const int n = n_points_;
   t.n_points = n;
   t.n_owned = n_owned;
-  t.tets.clear();
-  t.vertices.clear();
-  t.radius.clear();
-  t.cell_offset.assign(1, 0);
-  t.face_neighbor.clear();
-  t.face_area.clear();
-  t.face_offset.assign(1, 0);
-  t.face_vertex.clear();
-  t.volume.assign(n_owned, 0.0);
-  t.surface.assign(n_owned, 0.0);
   t.unbounded_cell = -1;
   t.origin.clear();
   t.position.clear();
@@ -129,92 +213,159 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
     }
   } reset{*this};
 
-  auto tet_of = [&](int m) {
-    if (skip_[m])
-      throw Error("tessera: Mesh3::cells(): a tetrahedron of an owned cell lies outside the "
-                  "region of interest of the last update()");
-    if (tmap_[m] >= 0) return tmap_[m];
-    const int id = static_cast<int>(t.tets.size());
-    tmap_[m] = id;
-    tused_.push_back(m);
-    const int *q = &tv_[4 * m];
-    t.tets.push_back({q[0], q[1], q[2], q[3]});
-    const V3 p0 = load(pts, q[0]);
-    const V3 h = circumcentre(p0, load(pts, q[1]), load(pts, q[2]), load(pts, q[3]));
-    t.vertices.push_back({h.x, h.y, h.z});
-    const V3 dd = h - p0;
-    t.radius.push_back(std::sqrt(dot(dd, dd)));
-    return id;
-  };
-
-  // A cell whose star no flip touched since the last cells() keeps its
-  // faces and rings (in mesh numbering); the others walk their star again.
+  // Pass 1, topology: the faces and rings of every owned cell in mesh
+  // numbering (nx_*).  A cell whose star no flip touched since the last
+  // cells() keeps its faces and rings; the others walk their star again.
   const bool reuse = cache_ok_ && cache_owned_ == n_owned;
   nx_off_.assign(1, 0);
   nx_nb_.clear();
   nx_foff_.assign(1, 0);
   nx_tet_.clear();
+  if (nx_nb_.capacity() < c_nb_.size()) nx_nb_.reserve(c_nb_.size() + c_nb_.size() / 32);
+  if (nx_foff_.capacity() < c_foff_.size()) nx_foff_.reserve(c_foff_.size() + c_foff_.size() / 32);
+  if (nx_tet_.capacity() < c_tet_.size()) nx_tet_.reserve(c_tet_.size() + c_tet_.size() / 32);
   for (int i = 0; i < n_owned; ++i) {
-    bool bounded = true;
     if (reuse && !dirty_[i] && c_off_[i + 1] > c_off_[i]) {
-      const int base = static_cast<int>(nx_tet_.size()) - c_foff_[c_off_[i]];
-      for (int f = c_off_[i]; f < c_off_[i + 1]; ++f) {
-        nx_nb_.push_back(c_nb_[f]);
-        nx_foff_.push_back(c_foff_[f + 1] + base);
+      const int f0 = c_off_[i], f1 = c_off_[i + 1];
+      const int base = static_cast<int>(nx_tet_.size()) - c_foff_[f0];
+      const size_t nf = nx_nb_.size();
+      nx_nb_.resize(nf + (f1 - f0));
+      nx_foff_.resize(nf + 1 + (f1 - f0));
+      for (int f = f0; f < f1; ++f) {
+        nx_nb_[nf + (f - f0)] = c_nb_[f];
+        nx_foff_[nf + 1 + (f - f0)] = c_foff_[f + 1] + base;
       }
-      nx_tet_.insert(nx_tet_.end(), c_tet_.begin() + c_foff_[c_off_[i]],
-                     c_tet_.begin() + c_foff_[c_off_[i + 1]]);
+      nx_tet_.insert(nx_tet_.end(), c_tet_.begin() + c_foff_[f0], c_tet_.begin() + c_foff_[f1]);
     } else {
       const size_t nf = nx_nb_.size(), nr = nx_tet_.size();
-      bounded = walk_cell(i, ids);
-      if (!bounded) {
+      if (!walk_cell(i, ids)) {
         nx_nb_.resize(nf);
         nx_foff_.resize(nf + 1);
         nx_tet_.resize(nr);
+        if (throw_if_unbounded) {
+          throw Error("tessera: the cell of " + point_name(i, ids) +
+                      " is unbounded (on the convex hull): the ghost shell is missing");
+        }
+        t.unbounded_cell = i;
       }
     }
     nx_off_.push_back(static_cast<int>(nx_nb_.size()));
-    if (!bounded) {
-      if (throw_if_unbounded) {
-        throw Error("tessera: the cell of " + point_name(i, ids) +
-                    " is unbounded (on the convex hull): the ghost shell is missing");
-      }
-      t.unbounded_cell = i;
-      t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
-      continue;
+  }
+
+  // Pass 2: number the tetrahedra of the rings in order of first use (as
+  // before: the Tessellation3's numbering), and the polygons in that
+  // numbering.  The faces are nx_*'s, in the same order.
+  const size_t n_faces = nx_nb_.size(), n_ring = nx_tet_.size();
+  t.cell_offset.assign(nx_off_.begin(), nx_off_.end());
+  t.face_neighbor.assign(nx_nb_.begin(), nx_nb_.end());
+  t.face_offset.assign(nx_foff_.begin(), nx_foff_.end());
+  fit(t.face_area, n_faces);
+  fit(t.face_vertex, n_ring);
+  int *fv = t.face_vertex.data();
+  const int *ring = nx_tet_.data();
+  int n_tet = 0;
+  for (size_t r = 0; r < n_ring; ++r) {
+    const int m = ring[r];
+    int id = tmap_[m];
+    if (id < 0) {
+      if (skip_[m])
+        throw Error("tessera: Mesh3::cells(): a tetrahedron of an owned cell lies outside the "
+                    "region of interest of the last update()");
+      id = tmap_[m] = n_tet++;
+      tused_.push_back(m);
     }
-    // Geometry of the cell's faces.
-    const V3 xi = load(pts, i);
-    double vol = 0.0, sur = 0.0;
-    for (int f = nx_off_[i]; f < nx_off_[i + 1]; ++f) {
-      const int j = nx_nb_[f];
-      const int o = static_cast<int>(t.face_vertex.size());
-      for (int r = nx_foff_[f]; r < nx_foff_[f + 1]; ++r) t.face_vertex.push_back(tet_of(nx_tet_[r]));
-      t.face_offset.push_back(static_cast<int>(t.face_vertex.size()));
-      t.face_neighbor.push_back(j);
-      const int len = nx_foff_[f + 1] - nx_foff_[f];
-      V3 av{0, 0, 0}, qs{0, 0, 0};
-      for (int k = 0; k < len; ++k) {
-        const V3 uu = vv(t.vertices[t.face_vertex[o + k]]) - xi;
-        const V3 ww = vv(t.vertices[t.face_vertex[o + (k + 1) % len]]) - xi;
-        av = av + 0.5 * cross(uu, ww);
-        qs = qs + uu;
+    fv[r] = id;
+  }
+
+  // Pass 3: the tetrahedra's corners, circumcentres and radii.
+  fit(t.tets, n_tet);
+  fit(t.vertices, n_tet);
+  fit(t.radius, n_tet);
+  std::vector<int> slivers;  // mesh tetrahedra (rare: no allocation without)
+  for (int id = 0; id < n_tet; ++id) {
+    const int m = tused_[id];
+    const int *q = &tv_[4 * m];
+    t.tets[id] = {q[0], q[1], q[2], q[3]};
+    const V3 p0 = load(pts, q[0]);
+    bool sliver;
+    const V3 h = centre_of(p0, load(pts, q[1]), load(pts, q[2]), load(pts, q[3]), &sliver);
+    if (sliver) slivers.push_back(m);
+    t.vertices[id] = {h.x, h.y, h.z};
+    const V3 dd = h - p0;
+    t.radius[id] = std::sqrt(dot(dd, dd));
+  }
+
+  // Pass 4: areas, volumes, surfaces.
+  t.volume.assign(n_owned, 0.0);
+  t.surface.assign(n_owned, 0.0);
+  for (int i = 0; i < n_owned; ++i) measure_cell(t, pts, i);
+  if (!slivers.empty()) {
+    // As voronoi3d.cpp's drop_slivers: a sliver is dropped from the
+    // polygons when a well-shaped facet neighbour among t's tetrahedra has
+    // its four points on its circumsphere and the same centre (a sliver
+    // inside a cluster of co-spherical points); it takes that neighbour's
+    // centre and radius.
+    std::vector<char> drop(t.tets.size(), 0);
+    std::vector<char> is_sliver(t.tets.size(), 0);
+    for (const int m : slivers) is_sliver[tmap_[m]] = 1;
+    bool any = false;
+    for (const int m : slivers) {
+      const int v = tmap_[m];
+      for (int k = 0; k < 4; ++k) {
+        const int nb = tn_[4 * m + k];
+        if (nb < 0 || tmap_[nb] < 0) continue;
+        const int w = tmap_[nb];
+        if (is_sliver[w]) continue;
+        const V3 h = vv(t.vertices[w]);
+        const double r = t.radius[w];
+        if (!std::isfinite(r)) continue;
+        bool on = true;
+        for (int c = 0; c < 4 && on; ++c) {
+          const V3 d = load(pts, t.tets[v][c]) - h;
+          on = std::fabs(std::sqrt(dot(d, d)) - r) <= kCoSpherical * r;
+        }
+        if (!on) continue;
+        const V3 dh = vv(t.vertices[v]) - h;
+        if (!(std::sqrt(dot(dh, dh)) <= kCoSpherical * r)) continue;
+        t.vertices[v] = t.vertices[w];
+        t.radius[v] = t.radius[w];
+        drop[v] = 1;
+        any = true;
+        break;
       }
-      qs = (1.0 / len) * qs;
-      const V3 dj = load(pts, j) - xi;
-      const double area = dot(av, dj) / std::sqrt(dot(dj, dj));
-      t.face_area.push_back(area);
-      sur += area;
-      vol += dot(av, qs) / 3.0;
     }
-    t.volume[i] = vol;
-    t.surface[i] = sur;
-    t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
+    if (any) {
+      // Rewrite the polygons without the dropped slivers (a face of
+      // slivers only keeps them: an area-0 face) and measure the cells
+      // that had one again.
+      std::vector<int> fv, fo(1, 0);
+      fv.reserve(t.face_vertex.size());
+      const int nf = static_cast<int>(t.face_offset.size()) - 1;
+      for (int f = 0; f < nf; ++f) {
+        const size_t start = fv.size();
+        for (int k = t.face_offset[f]; k < t.face_offset[f + 1]; ++k)
+          if (!drop[t.face_vertex[k]]) fv.push_back(t.face_vertex[k]);
+        if (fv.size() == start)
+          for (int k = t.face_offset[f]; k < t.face_offset[f + 1]; ++k) fv.push_back(t.face_vertex[k]);
+        fo.push_back(static_cast<int>(fv.size()));
+      }
+      std::vector<char> touched(n_owned, 0);
+      for (int i = 0; i < n_owned; ++i)
+        for (int f = t.cell_offset[i]; f < t.cell_offset[i + 1] && !touched[i]; ++f)
+          touched[i] = fo[f + 1] - fo[f] != t.face_offset[f + 1] - t.face_offset[f];
+      t.face_vertex.swap(fv);
+      t.face_offset.swap(fo);
+      for (int i = 0; i < n_owned; ++i)
+        if (touched[i]) measure_cell(t, pts, i);
+    }
   }
   c_off_.swap(nx_off_);
   c_nb_.swap(nx_nb_);
   c_foff_.swap(nx_foff_);
   c_tet_.swap(nx_tet_);
+  trim(c_nb_);
+  trim(c_foff_);
+  trim(c_tet_);
   for (const int v : dirty_list_) dirty_[v] = 0;
   dirty_list_.clear();
   cache_ok_ = true;

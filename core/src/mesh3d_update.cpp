@@ -145,7 +145,9 @@ bool Mesh3::repair(const Points3 &pts) {
       break;
     }
     flipped_this_round = false;
-    stack_.swap(pending_);
+    // Copied, not swapped: the waiting triangles are few, and a swap would
+    // give pending_ the stack's capacity (every triangle of the region).
+    stack_.assign(pending_.begin(), pending_.end());
     pending_.clear();
   }
   return true;

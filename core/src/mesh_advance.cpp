@@ -202,7 +202,7 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
 
   // Lengths, areas, perimeters and the seeds of multifold vertices, in the
   // order cells() finds them.
-  auto same_vertex = [&](int a, int b) { return same_centre(t, a, b); };
+  auto same_vertex = [&](int a, int b) { return same_centre(pts, t, a, b); };
   seeds_.clear();
   t.edge_length.resize(used);
   t.area.resize(n_owned);
@@ -229,7 +229,8 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
           seeds_.push_back(m);
       }
     }
-    cell_geometry(pts.x(cc), pts.y(cc), cv, len, H, RAD, EL + o, t.area[cc], t.perimeter[cc]);
+    cell_geometry(pts, t.triangles.data(), pts.x(cc), pts.y(cc), cv, len, H, RAD, EL + o,
+                  t.area[cc], t.perimeter[cc]);
     if (observer && (cc + 1 - block_start == kBlock || cc + 1 == n_owned)) {
       observer->cells(t, block_start, cc + 1);
       block_start = cc + 1;

@@ -14,8 +14,9 @@ unsigned long next_stamp() {
 }
 }  // namespace detail
 
-void Mesh::cell_geometry(double cx, double cy, const int *cv, int len, const Vec2 *H,
-                         const double *RAD, double *el, double &area, double &perimeter) const {
+void Mesh::cell_geometry(const Points &pts, const std::array<int, 3> *TRI, double cx, double cy,
+                         const int *cv, int len, const Vec2 *H, const double *RAD, double *el,
+                         double &area, double &perimeter) const {
   double area2 = 0.0, perim = 0.0;
   // In chunks: the squared lengths (and the area), then their square roots
   // two at a time, then the lengths.
@@ -33,7 +34,7 @@ void Mesh::cell_geometry(double cx, double cy, const int *cv, int len, const Vec
     for (int k = k0; k < k1; ++k) {
       const int t0 = cv[k], t1 = cv[k + 1 == len ? 0 : k + 1];
       const double d = q[k - k0];
-      const double l = d > kZeroEdge * std::min(RAD[t0], RAD[t1]) ? d : 0.0;
+      const double l = zero_edge(d, t0, t1, RAD, pts, TRI) ? 0.0 : d;
       el[k] = l;
       perim += l;
       if (l == 0.0)
@@ -76,7 +77,7 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
   t.radius.resize(nft);
   mesh_of.resize(nft);
 
-  auto same_vertex = [&](int a, int b) { return same_centre(t, a, b); };
+  auto same_vertex = [&](int a, int b) { return same_centre(pts, t, a, b); };
   // Multifold vertices (triangles sharing one circumcentre) are seeded while
   // the cells are read: a zero-length edge of an owned cell marks two such
   // triangles.  The one case an owned cell's polygon cannot show is the
@@ -134,8 +135,8 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
     }
     const int len = static_cast<int>(used - o);
     t.cell_offset[c + 1] = static_cast<int>(used);
-    cell_geometry(pts.x(c), pts.y(c), &t.cell_vertex[o], len, t.vertices.data(),
-                  t.radius.data(), &t.edge_length[o], t.area[c], t.perimeter[c]);
+    cell_geometry(pts, t.triangles.data(), pts.x(c), pts.y(c), &t.cell_vertex[o], len,
+                  t.vertices.data(), t.radius.data(), &t.edge_length[o], t.area[c], t.perimeter[c]);
   }
   t.cell_vertex.resize(used);
   t.cell_neighbor.resize(used);

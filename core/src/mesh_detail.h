@@ -20,6 +20,7 @@
 #endif
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -37,9 +38,10 @@ using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, Tds>;
 using CPoint = Kernel::Point_2;
 
-// Voronoi edges shorter than this fraction of the adjacent circumradius are
-// the zero-length edges of a multifold vertex whose circumcentres differ only
-// by round-off; they get length exactly 0.
+// Voronoi edges shorter than this fraction of the adjacent circumradius (or
+// than the circumcentres' error bounds, see zero_edge) are the zero-length
+// edges of a multifold vertex whose circumcentres differ only by round-off;
+// they get length exactly 0.
 constexpr double kZeroEdge = 1e-10;
 
 // Input limits (doc/model.md, "Limits of the input").  Two centres closer
@@ -134,17 +136,81 @@ inline bool outside_region(double ax, double ay, double bx, double by, double cx
                     std::max({ay, by, cy}) < roi_lo[1] || std::min({ay, by, cy}) > roi_hi[1]);
 }
 
-// Whether triangles a and b of t have one circumcentre (a multifold
-// vertex): closer than kZeroEdge times the smaller circumradius.  The
-// tolerance is a fraction of the smaller one: a nearly flat triangle (on the
-// hull of a ghost shell, or a row of collinear images) has a huge or
-// infinite radius, and with the larger one its tolerance would swallow its
-// neighbours into one "vertex" with an infinite centre.  A vertex that is not
-// finite is never the same as another (the comparisons are false for NaN).
-inline bool same_centre(const Tessellation &t, int a, int b) {
+// A bound on the error of the computed circumcentre of (a, b, c) (r: its
+// computed radius), counting the input as known only to eps times its
+// largest coordinate magnitude S: a periodic image or a ghost is a rounded
+// translate, and coordinates far from the origin carry that rounding (see
+// kMinSeparation).  With b' = b - a, c' = c - a, u = N / D the circumcentre
+// relative to a (N = (c'y |b'|^2 - b'y |c'|^2, b'x |c'|^2 - c'x |b'|^2),
+// D = 2 b' x c'), moving every corner coordinate by at most e moves u to
+// first order by at most (in the 1-norm)
+//   4 e (|b'|^2 + |c'|^2 + 2 |b'|_1 |c'|_1 + |u|_1 (|b'|_1 + |c'|_1)) / |D|,
+// which grows with S and with 1 / flatness (|D| is twice the area).  The
+// bound takes twice that with e = eps (S + 8 (|b'|_1 + |c'|_1)) (the second
+// term covers the rounding of the arithmetic itself), plus the rounding of
+// h = a + u.  |u|_1 <= sqrt(2) r.
+inline double centre_error(double ax, double ay, double bx, double by, double cx, double cy,
+                           double r) {
+  constexpr double eps = 2.220446049250313e-16;
+  const double bpx = bx - ax, bpy = by - ay, cpx = cx - ax, cpy = cy - ay;
+  const double b1 = std::fabs(bpx) + std::fabs(bpy), c1 = std::fabs(cpx) + std::fabs(cpy);
+  const double b2 = bpx * bpx + bpy * bpy, c2 = cpx * cpx + cpy * cpy;
+  const double iD = std::fabs(0.5 / (bpx * cpy - bpy * cpx));
+  const double S = std::max({std::fabs(ax), std::fabs(ay), std::fabs(bx), std::fabs(by),
+                             std::fabs(cx), std::fabs(cy)});
+  const double R1 = 1.5 * r;
+  const double e = eps * (S + 8.0 * (b1 + c1));
+  return 8.0 * e * (b2 + c2 + 2.0 * b1 * c1 + R1 * (b1 + c1)) * iD + 4.0 * eps * (S + R1);
+}
+
+// A circumcentre whose error bound exceeds this fraction of its radius (half
+// of it, for rounding) is not trusted to be grouped by that bound (only by
+// kZeroEdge).  Such a triangle is flat at the round-off level (the hull of a
+// ghost shell, a row of collinear images): its centre is far away and
+// undetermined, and its bound would swallow its neighbours.  With trusted
+// bounds two triangles sharing an edge are grouped only if their radii agree
+// to about kTrust, i.e. they lie on nearly one circle.  It also bounds the
+// tolerance: err_a + err_b <= kTrust max(r_a, r_b), which lets the common
+// case (an edge longer than that) skip the bounds.
+constexpr double kTrust = 1e-3;
+
+inline double trusted_error(const Points &pts, const std::array<int, 3> &tri, double r) {
+  const int a = tri[0], b = tri[1], c = tri[2];
+  const double err = centre_error(pts.x(a), pts.y(a), pts.x(b), pts.y(b), pts.x(c), pts.y(c), r);
+  // false for NaN and infinity (r infinite: a triangle flat in floating point)
+  return err <= 0.5 * kTrust * r && err <= std::numeric_limits<double>::max() ? err : 0.0;
+}
+
+// Whether the Voronoi edge of length d between the circumcentres of
+// triangles t0 and t1 (RAD: radii, TRI: corners) is a zero-length edge of a
+// multifold vertex, i.e. the two circumcentres are one point within what
+// floating point can tell: d <= kZeroEdge times the smaller radius (round-off
+// of well-placed points near the origin), or d <= err_0 + err_1, the sum of
+// the two circumcentres' error bounds (coordinates far from the origin,
+// nearly flat triangles).  The tolerance is a fraction of the smaller radius:
+// a nearly flat triangle (on the hull of a ghost shell, or a row of collinear
+// images) has a huge or infinite radius, and with the larger one its
+// tolerance would swallow its neighbours into one "vertex" with an infinite
+// centre (kTrust keeps the error bounds from doing the same).  A NaN length
+// is zero (as the comparison d > tol is false).  The one predicate of both
+// the cells' edge lengths and the grouping, so that the two agree.
+TESSERA_ALWAYS_INLINE bool zero_edge(double d, int t0, int t1, const double *RAD,
+                                     const Points &pts, const std::array<int, 3> *TRI) {
+  const double r0 = RAD[t0], r1 = RAD[t1];
+  if (!(d > kZeroEdge * std::min(r0, r1)))
+    return true;
+  if (d > kTrust * std::max(r0, r1))
+    return false;  // the common case: longer than any trusted bound
+  return d <= trusted_error(pts, TRI[t0], r0) + trusted_error(pts, TRI[t1], r1);
+}
+
+// Whether triangles a and b of t have one circumcentre (a multifold vertex):
+// zero_edge() of the distance between them.  A vertex that is not finite is
+// never the same as another.
+inline bool same_centre(const Points &pts, const Tessellation &t, int a, int b) {
   const double dx = t.vertices[a].x - t.vertices[b].x, dy = t.vertices[a].y - t.vertices[b].y;
-  const double tol = kZeroEdge * std::min(t.radius[a], t.radius[b]);
-  return dx * dx + dy * dy <= tol * tol;
+  const double d = root(dx * dx + dy * dy);
+  return std::isfinite(d) && zero_edge(d, a, b, t.radius.data(), pts, t.triangles.data());
 }
 
 } // namespace
@@ -162,7 +228,7 @@ unsigned long next_stamp();
 template <class Compact, class MeshOf>
 void Mesh::find_groups(const Points &pts, Tessellation &t, Compact compact, MeshOf mesh_of) const {
   const int nft = static_cast<int>(t.triangles.size());
-  auto same_vertex = [&](int a, int b) { return same_centre(t, a, b); };
+  auto same_vertex = [&](int a, int b) { return same_centre(pts, t, a, b); };
   t.triangle_group.assign(nft, -1);
   t.group_offset.assign(1, 0);
   t.group_point.clear();
@@ -200,6 +266,9 @@ void Mesh::find_groups(const Points &pts, Tessellation &t, Compact compact, Mesh
       centre.x += t.vertices[mm].x / members.size();
       centre.y += t.vertices[mm].y / members.size();
     }
+    // The members' circumcentres differ by round-off: they all become the
+    // one vertex, so that every cell at it sees one position.
+    for (int mm : members) t.vertices[mm] = centre;
     ring.clear();
     for (int mm : members)
       for (int p : t.triangles[mm])

@@ -53,6 +53,12 @@ double cell_energy_of(const SphereTessellation &t, int c, const int *type, const
 
 void check_types(const SphereTessellation &t, const int *type, const Model &model) {
   model.validate();
+  // The sphere's energy reads the types' K, Gamma and tensions only (and
+  // cell_area0): refuse per-cell KA, KP, P0 rather than ignore them.
+  if (model.has_cell_params())
+    throw Error("tessera: per-cell KA, KP or P0 (LAMMPS: d_ka, d_kp, d_perim0) are not "
+                "supported for cells on a sphere; give these parameters per type (pair_coeff) "
+                "or leave out the per-atom properties (d_area0 works)");
   for (int p = 0; p < t.n_points; ++p)
     if (type[p] < 0 || type[p] >= model.ntypes()) {
       std::ostringstream s;

@@ -2,8 +2,8 @@
 //
 // Reliability of the 3D path on co-spherical lattices (SC, FCC) in tilted
 // boxes (slivers), what 3D does at four-fold Voronoi edges, and overflow;
-// at the end a disabled reproducer of a known 2D (confluent) failure at
-// rounded co-circular rosettes.
+// at the end the 2D (confluent) rounded co-circular rosette far from the
+// origin.
 
 #include "reference3d.h"
 #include "test_util.h"
@@ -384,19 +384,18 @@ TEST(Reliability3D, MultifoldEdgesForceIsTheBranchGradient) {
   EXPECT_LT(err, 1e-6 * testutil::max_abs(f));
 }
 
-// Confluent 2D, known failure (not fixed here; it needs a change to the
-// multifold-vertex grouping of the mesh).  23 centres on a circle of radius
-// 1.8 around x = 1e7: the coordinates are rounded to 2e-9, and the
-// circumcentres of the fan triangles (three neighbouring points of the
-// circle: nearly collinear) scatter by up to 2e-8, far beyond the grouping
-// tolerance (1e-10 of the circumradius).  Only some triangles are grouped
-// (rings of 4 and 8 instead of one of 23, 13 triangles left alone), so the
-// cells around the vertex use different branches: the mean over the fans of
-// a partial ring for some, the round-off directions of edges 1e-9..1e-8
-// long for others.  The forces are then not a gradient, and do not sum to
-// zero (about 5e-4 of sum |F|).  At x = 0 the same rosette is one group of
-// 23 and the forces sum to 1e-14.
-TEST(Confluent2D, DISABLED_RoundedRosetteForcesSumToZero) {
+// Confluent 2D: 23 centres on a circle of radius 1.8 around x = 1e7.  The
+// coordinates are rounded to 2e-9, and the circumcentres of the fan
+// triangles (three neighbouring points of the circle: nearly collinear)
+// scatter by up to 2e-8, far beyond 1e-10 of the circumradius.  The
+// multifold-vertex tolerance counts each circumcentre's error bound (which
+// grows with the coordinates' magnitude and the triangle's flatness), so
+// the whole ring is one vertex and every cell around it takes the same
+// branches; the forces then sum to zero.  (With the tolerance 1e-10 of the
+// radius alone only some triangles were grouped, rings of 4 and 8 instead
+// of one of 23, and the forces summed to 5e-4 of sum |F|.)  More in
+// test_rosettes.cpp.
+TEST(Confluent2D, RoundedRosetteForcesSumToZero) {
   for (double X : {0.0, 1e5, 1e7})
     for (int k : {7, 12, 23}) {
       const double R = 1.8, pi = 3.141592653589793;

@@ -532,6 +532,53 @@ print "F $(fx[5]:%.17g) $(fy[5]:%.17g) $(fz[5]:%.17g)"
             self.assertAlmostEqual(force[k], -(ep[0] - em[0]) / (2 * h), delta=2e-5 * (abs(force[k]) + 1))
         self.assertNotAlmostEqual(printed(same, "E")[0][0], printed(run, "EP")[0][0], places=3)
 
+    def check_percell(self, model):
+        # Per-cell KA, KP, P0 (d_ka, d_kp, d_perim0; 3d: KV, KS, S0): the
+        # types' values given per atom give the types' pe, and random values
+        # give forces = central differences of pe.
+        three = model.startswith("3d")
+        coeffs = {"3d": COEFFS_3D, "3d_tri": COEFFS_3D, "finite_open": COEFFS_FINITE,
+                  "finite_per": COEFFS_FINITE}.get(model, COEFFS_2D)
+        base = model_script(model)
+        setv = "fix pc all property/atom d_ka d_kp d_perim0\n"
+        for line in coeffs.splitlines():
+            w = line.split()
+            if w[1] == w[2]:
+                setv += (f"set type {w[1]} d_ka {w[4]}\nset type {w[1]} d_kp {w[6]}\n"
+                         f"set type {w[1]} d_perim0 {w[7]}\n")
+        out = "thermo_style custom step pe\nrun 0\nprint \"E $(pe:%.17g)\"\n"
+        same, plain = self.run_lmp(base + setv + out), self.run_lmp(base + out)
+        e0 = printed(plain, "E")[0][0]
+        self.assertAlmostEqual(printed(same, "E")[0][0], e0, delta=1e-12 * abs(e0))
+        p0 = "5.3+0.1*(id%6)" if three else "3.4+0.15*(id%6)"
+        kp = "0.03+0.01*(id%4)" if three else "0.06+0.02*(id%4)"
+        script = base + f"""fix pc all property/atom d_ka d_kp d_perim0
+variable ka atom 0.8+0.1*(id%5)
+variable kp atom {kp}
+variable p0 atom {p0}
+set atom * d_ka v_ka
+set atom * d_kp v_kp
+set atom * d_perim0 v_p0
+thermo_style custom step pe
+run 0
+group a5 id 5
+print "F $(fx[5]:%.17g) $(fy[5]:%.17g) $(fz[5]:%.17g)"
+"""
+        h = 1e-5
+        for k in range(dim_of(model)):
+            v = ["0", "0", "0"]
+            v[k] = repr(h)
+            script += f"displace_atoms a5 move {' '.join(v)} units box\nrun 0\nprint \"EP $(pe:%.17g)\"\n"
+            v[k] = repr(-2 * h)
+            script += f"displace_atoms a5 move {' '.join(v)} units box\nrun 0\nprint \"EM $(pe:%.17g)\"\n"
+            v[k] = repr(h)
+            script += f"displace_atoms a5 move {' '.join(v)} units box\n"
+        run = self.run_lmp(script)
+        force = printed(run, "F")[0]
+        for k, (ep, em) in enumerate(zip(printed(run, "EP"), printed(run, "EM"))):
+            self.assertAlmostEqual(force[k], -(ep[0] - em[0]) / (2 * h), delta=2e-5 * (abs(force[k]) + 1))
+        self.assertNotAlmostEqual(e0, printed(run, "EP")[0][0], places=3)
+
     def check_adapt(self, model):
         # fix adapt to a new value gives the energy of pair_coeff with that value.
         base = self.thesis_form(model)

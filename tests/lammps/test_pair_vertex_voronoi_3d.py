@@ -549,11 +549,17 @@ class Errors(LammpsTestCase):
                            + "run 0\n", ok=False)
         self.assertLammpsError(run, "finite cells ('radius') are for 2d")
 
-    def test_2d_only_keywords(self):
-        for kw, msg in (("reference 10", "'reference' times the 2d"),):
-            run = self.run_lmp(tissue3d().replace("vertex/voronoi 3.0", "vertex/voronoi 3.0 " + kw)
-                               + "run 0\n", ok=False)
-            self.assertLammpsError(run, msg)
+    def test_reference_times_in_3d(self):
+        # 'reference N' times, every N steps, a rebuild (value 6) and a plain
+        # CGAL Delaunay_triangulation_3 (value 8); value 7 counts them.
+        run = self.run_lmp(tissue3d().replace("vertex/voronoi 3.0", "vertex/voronoi 3.0 reference 5")
+                           + "compute pr all pair vertex/voronoi\n"
+                           + "thermo_style custom step c_pr[6] c_pr[7] c_pr[8]\n"
+                           + "thermo_modify norm no\nthermo 10\nrun 10\n")
+        row = [l.split() for l in run.stdout.splitlines() if l.strip().startswith("10 ")][-1]
+        self.assertEqual(float(row[2]), 3.0)    # steps 0, 5 and 10
+        self.assertGreater(float(row[1]), 0.0)
+        self.assertGreater(float(row[3]), 0.0)
 
     def test_non_periodic_z(self):
         run = self.run_lmp(tissue3d().replace("boundary p p p", "boundary p p f") + "run 0\n",

@@ -34,6 +34,23 @@ struct Model {
   // point; only owned cells' entries are read).  When set they replace the
   // types' A0; the caller keeps the array alive and valid (> 0, finite).
   const double *cell_area0 = nullptr;
+  // Optional per-cell stiffnesses and preferred perimeter (LAMMPS: d_ka,
+  // d_kp, d_perim0), indexed like cell_area0, in the quadratic form's units
+  // (in 3D: KV, KS and the preferred surface S0).  Any of them may be set;
+  // each replaces the type's value for every cell:
+  //   K_c = 2 cell_KA[c]            (else the type's K)
+  //   Gamma_c = 2 cell_KP[c]        (else the type's Gamma)
+  //   s_c = -Gamma_c P0_c           (the cell's own linear perimeter coefficient)
+  // with P0_c = cell_P0[c], else the type's P0_t = -w Lambda_tt / Gamma_t
+  // (w = tension_weight(); a type with Gamma_t = 0 has no P0: its cells keep
+  // s_c = w Lambda_tt).  Cell c's energy is then
+  //   K_c/2 (A - A0_c)^2 + Gamma_c/2 P^2 + shift_c P + w sum_k Lambda_{t t_k} l_k
+  // with shift_c = s_c - w Lambda_tt: in a tissue of one type, with the
+  // constant Gamma_c/2 P0_c^2 added, KA_c (A - A0_c)^2 + KP_c (P - P0_c)^2;
+  // the junction tensions' heterotypic parts stay per type pair.
+  const double *cell_KA = nullptr;
+  const double *cell_KP = nullptr;
+  const double *cell_P0 = nullptr;
 
   explicit Model(int ntypes = 1);
   int ntypes() const { return static_cast<int>(types.size()); }
@@ -43,6 +60,36 @@ struct Model {
   // Edge (so the two cells add up to one junction), 1 for Cell.
   double area0_of(int c, int tc) const { return cell_area0 ? cell_area0[c] : types[tc].A0; }
   double tension_weight() const { return tension == Tension::Edge ? 0.5 : 1.0; }
+  // Whether any of cell_KA, cell_KP, cell_P0 is set (cell_area0 is not
+  // counted: the type-parameter paths read it themselves).
+  bool has_cell_params() const { return cell_KA || cell_KP || cell_P0; }
+  // Cell c's (type tc) parameters in use: K_c, A0_c, Gamma_c, shift_c.
+  struct CellParams {
+    double K, A0, Gamma, shift;
+  };
+  CellParams cell_params(int c, int tc) const {
+    const CellType &ct = types[tc];
+    CellParams p{cell_KA ? 2.0 * cell_KA[c] : ct.K, area0_of(c, tc),
+                 cell_KP ? 2.0 * cell_KP[c] : ct.Gamma, 0.0};
+    const double wl = tension_weight() * lambda_of(tc, tc);
+    if (cell_P0)
+      p.shift = -p.Gamma * cell_P0[c] - wl;
+    else if (ct.Gamma > 0.0)
+      p.shift = (p.Gamma - ct.Gamma) * (wl / ct.Gamma);  // exactly 0 when Gamma_c = Gamma_t
+    return p;
+  }
+  // The constant that completes the quadratic form of cell c's perimeter
+  // term, Gamma_c/2 P0_c^2 = s_c^2 / (2 Gamma_c) (0 when Gamma_c = 0), from
+  // the values in use: LAMMPS adds it to pe for types given in that form.
+  double quadratic_constant(int c, int tc) const {
+    const CellParams p = cell_params(c, tc);
+    const double s = cell_P0 ? -p.Gamma * cell_P0[c] : tension_weight() * lambda_of(tc, tc) + p.shift;
+    return p.Gamma > 0.0 ? s * s / (2.0 * p.Gamma) : 0.0;
+  }
+  // Throws Error naming the cell and the value unless every owned cell's
+  // per-cell values (of the n_owned first entries) are finite with KA > 0,
+  // KP >= 0 (cell_area0: > 0).
+  void validate_cells(int n_owned) const;
   // Throws Error naming the type and the value if K <= 0, A0 <= 0 or anything
   // is non-finite.  Gamma may be zero; Lambda may have either sign.
   void validate() const;

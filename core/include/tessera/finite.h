@@ -15,6 +15,8 @@
 // with P_i the whole perimeter (contact edges and arcs), L_i the length of
 // the free arcs, w = Model::tension_weight() and F_I the per-type tension of
 // the cell-medium boundary ("free").  doc/model.md derives the forces.
+// Per-cell KA, KP, P0 (Model::cell_params) add shift_c P_i over the whole
+// perimeter, so contact edges and free arcs both see the cell's own P0.
 #pragma once
 
 #include "tessera/energy.h"

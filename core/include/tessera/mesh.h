@@ -110,8 +110,9 @@ private:
   void swap_slots(int a, int b);
   void restore_partition();
   bool start_update(const Points &pts, double &sep2);
-  void cell_geometry(double cx, double cy, const int *cv, int len, const Vec2 *H,
-                     const double *RAD, double *el, double &area, double &perimeter) const;
+  void cell_geometry(const Points &pts, const std::array<int, 3> *TRI, double cx, double cy,
+                     const int *cv, int len, const Vec2 *H, const double *RAD, double *el,
+                     double &area, double &perimeter) const;
   bool stack_edges(const Points &pts, int t, double sep2);
   bool flip_pass(const Points &pts, double sep2);
   template <class Compact, class MeshOf>

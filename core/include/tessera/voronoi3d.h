@@ -5,6 +5,8 @@
 // their volumes, surfaces and faces, and the energy
 //
 //   E = sum_i [ K_i/2 (V_i - V0_i)^2 + Gamma_i/2 S_i^2 ] + sum_faces Lambda_IJ a_f
+// (per-cell KV, KS, S0 through Model::cell_KA, cell_KP, cell_P0 as in 2D,
+// with the volume, surface and face areas for area, perimeter and lengths)
 //
 // (the 2D model with area -> volume, perimeter -> surface, junction length ->
 // face area; tessera::Model is reused, CellType::A0 holding V0) with its exact

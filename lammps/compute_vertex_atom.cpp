@@ -142,7 +142,7 @@ void ComputeVertexAtom::init()
                "compute vertex/atom {}: 'rosette' needs the confluent tessellation; finite "
                "cells (pair_style vertex/voronoi ... radius r) have no Voronoi vertex clusters",
                id);
-  if (domain->dimension == 3 && rosette > 0.0)
+  if (domain->dimension == 3 && rosette > 0.0 && !pair->on_sphere())
     error->all(FLERR, "compute vertex/atom: keyword 'rosette' is for 2d tissues only");
 }
 
@@ -239,7 +239,7 @@ void ComputeVertexAtom::compute_peratom()
 
   communicate_velocities();
   const tessera::CellView &v = pair->cells();
-  const int dim = v.dimension();
+  const int dim = v.space_dimension();    // 3 for cells on a sphere
   const int nlocal = atom->nlocal;
   // Velocity coordination and orientation (tessera::velocity_observables in
   // 2d; the same definitions with 3d unit vectors in 3d).

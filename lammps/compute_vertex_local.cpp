@@ -87,7 +87,8 @@ void ComputeVertexLocal::compute_local()
                id, update->ntimestep);
 
   const tessera::CellView &v = pair->cells();
-  const int dim = v.dimension();
+  // Cells on a sphere: edges (2d cells) with corners in space: 3d rows.
+  const int dim = v.space_dimension();
   const int ncols = dim == 3 ? NCOLS_3D : NCOLS_2D;
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
@@ -128,8 +129,9 @@ void ComputeVertexLocal::compute_local()
       if (!(v.piece_size(k) > floor)) continue;
       xyz.clear();
       const int m = v.piece_corners(k, xyz);
+      const int nrows = m == 2 ? 1 : m;    // an edge (sphere) is one row, a face m
       const double jd = static_cast<double>(tag[v.piece_neighbor(k)]);
-      for (int q = 0; q < m; q++) {
+      for (int q = 0; q < nrows; q++) {
         const double *a = &xyz[3 * q], *b = &xyz[3 * ((q + 1) % m)];
         // Repeated corners (several tetrahedra with one circumcentre) are
         // one corner of the polygon.

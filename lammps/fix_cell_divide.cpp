@@ -361,6 +361,27 @@ void FixCellDivide::cell_axis(int i, double *u) const
     if (pair->cells().principal_axis(i, axis == LONG, a))
       for (int d = 0; d < 3; d++) u[d] = a[d];
   }
+  // Cells on a sphere: the daughters sit along the tangent part of the axis
+  // (the pair style then puts them on the sphere).
+  if (pair && pair->on_sphere()) {
+    const double *c = pair->sphere_centre();
+    double n[3] = {atom->x[i][0] - c[0], atom->x[i][1] - c[1], atom->x[i][2] - c[2]};
+    const double ln = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (ln > 0.0) {
+      for (int d = 0; d < 3; d++) n[d] /= ln;
+      const double un = u[0] * n[0] + u[1] * n[1] + u[2] * n[2];
+      double t[3] = {u[0] - un * n[0], u[1] - un * n[1], u[2] - un * n[2]};
+      double lt = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+      if (!(lt > 1e-6)) {    // a radial axis: any tangent one
+        const bool pole = std::fabs(n[2]) > 0.9;
+        t[0] = pole ? 0.0 : n[1];
+        t[1] = pole ? n[2] : -n[0];
+        t[2] = pole ? -n[1] : 0.0;
+        lt = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+      }
+      for (int d = 0; d < 3; d++) u[d] = t[d] / lt;
+    }
+  }
 }
 
 /* The unit polarity of a daughter k (3 values): her mother's direction (or

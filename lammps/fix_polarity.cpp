@@ -149,6 +149,13 @@ void FixPolarity::init()
     init_angles_3d();
   else
     init_angles();
+  // Cells on a sphere: no direction in space is tangent everywhere.
+  if (pair && pair->on_sphere() && params.J_G != 0.0)
+    error->all(FLERR,
+               "fix polarity {}: 'groove' alignment has no meaning for cells on a sphere (the "
+               "groove is a fixed direction in space, tangent to the sphere only along one great "
+               "circle); leave out 'groove' (neighbor, velocity and noise work on the sphere)",
+               id);
   find_driver();
   if (!(update->dt >= 0.0) || !std::isfinite(update->dt))
     error->all(FLERR,
@@ -551,11 +558,13 @@ void FixPolarity::coupled_noise(double *w, int stride)
   const bigint step = update->ntimestep;
   if (domain->dimension == 3) {
     // The same Gaussian increments as the forward Euler step draws.
-    for (int i = 0; i < atom->nlocal; i++)
-      for (int d = 0; d < 3; d++)
-        w[i * stride + d] = (d_rot > 0.0 && (mask[i] & groupbit))
-            ? noise * gaussian(seed ^ 0x5bd1e995ULL, 3 * static_cast<uint64_t>(tag[i]) + d, step)
-            : 0.0;
+    for (int i = 0; i < atom->nlocal; i++) {
+      double *wi = w + i * stride;
+      if (d_rot > 0.0 && (mask[i] & groupbit))
+        noise_3d(i, noise, step, wi);
+      else
+        wi[0] = wi[1] = wi[2] = 0.0;
+    }
     return;
   }
   for (int i = 0; i < atom->nlocal; i++)

@@ -16,6 +16,7 @@
 #include "update.h"
 
 #include "tessera/counter_rng.h"
+#include "tessera/sphere.h"
 
 #include <algorithm>
 #include <cmath>
@@ -105,6 +106,10 @@ void FixPolarity::field_3d(bigint state_step)
     for (int d = 0; d < 3; d++) unit[3 * i + d] = mu[i][d] * inv;
   }
   tau.assign(3 * nlocal, 0.0);
+  if (pair && pair->on_sphere()) {
+    field_sphere(state_step);
+    return;
+  }
   if (params.J_S != 0.0) {
     const tessera::CellView &v = pair->cells();
     const tessera::Contacts t = v.contacts();
@@ -161,7 +166,6 @@ void FixPolarity::initial_integrate_3d()
   const int nlocal = atom->nlocal;
   double **mu = atom->mu;
   const int *mask = atom->mask;
-  const tagint *tag = atom->tag;
   // Cells that appeared since (fix deposit, create_atoms) get a direction.
   init_angles_3d();
   field_3d(update->ntimestep - 1);
@@ -177,9 +181,11 @@ void FixPolarity::initial_integrate_3d()
     double w[3] = {dt / gamma_r * (n[1] * h[2] - n[2] * h[1]),
                    dt / gamma_r * (n[2] * h[0] - n[0] * h[2]),
                    dt / gamma_r * (n[0] * h[1] - n[1] * h[0])};
-    if (d_rot > 0.0)
-      for (int d = 0; d < 3; d++)
-        w[d] += noise * gaussian(seed ^ 0x5bd1e995ULL, 3 * static_cast<uint64_t>(tag[i]) + d, step);
+    if (d_rot > 0.0) {
+      double xi[3];
+      noise_3d(i, noise, step, xi);
+      for (int d = 0; d < 3; d++) w[d] += xi[d];
+    }
     rotate_3d(i, w);
   }
   (void) mu;
@@ -213,3 +219,92 @@ void FixPolarity::polar_orders_3d(double &polar, double &nematic)
   }
 }
 
+
+/* The rotational noise of local atom i in 3d (scale sqrt(2 D_r dt)): an
+   angle vector of three Gaussians (rotational diffusion on the unit
+   sphere), or, with the cells on a sphere, one Gaussian angle about the
+   outward normal u_i (diffusion of the angle in the tangent plane, as in 2d:
+   <n(t).n(0)> = exp(-D_r t)). */
+
+void FixPolarity::noise_3d(int i, double scale, bigint step, double *w) const
+{
+  const tagint t = atom->tag[i];
+  if (pair && pair->on_sphere()) {
+    const double *c = pair->sphere_centre();
+    const double *x = atom->x[i];
+    const double u[3] = {x[0] - c[0], x[1] - c[1], x[2] - c[2]};
+    const double l = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    const double a = scale * gaussian(seed ^ 0x5bd1e995ULL, 3 * static_cast<uint64_t>(t), step);
+    for (int d = 0; d < 3; d++) w[d] = l > 0.0 ? a * u[d] / l : 0.0;
+    return;
+  }
+  for (int d = 0; d < 3; d++)
+    w[d] = scale * gaussian(seed ^ 0x5bd1e995ULL, 3 * static_cast<uint64_t>(t) + d, step);
+}
+
+/* Cells on a sphere (pair_style vertex/voronoi ... surface sphere): the
+   polarities are tangent (unit, of owned and ghost atoms, projected onto the
+   tangent plane at their positions), and the field is
+     h_i = J_S sum_j T_ji n_j + J_V vhat_i
+   with T_ji the parallel transport from j to i along their geodesic
+   (tessera::sphere_transport) and vhat_i the direction of the velocity's
+   tangent part.  Then n_i x h_i lies along the outward normal: the turn
+   dt/gamma_R n_i x h_i is a rotation in the tangent plane by
+   dt/gamma_R [J_S sum_j u_i.(n_i x T_ji n_j) + J_V u_i.(n_i x vhat_i)],
+   the core's sphere_alignment_torque for J_S (doc/sphere.md). */
+
+void FixPolarity::field_sphere(bigint state_step)
+{
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  double **x = atom->x;
+  const double *cc = pair->sphere_centre();
+  const tessera::Vec3 c{cc[0], cc[1], cc[2]};
+  auto at = [&](int i) { return tessera::Vec3{x[i][0], x[i][1], x[i][2]}; };
+  for (int i = 0; i < nall; i++) {
+    double *n = &unit[3 * i];
+    if (n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0) continue;
+    const tessera::Vec3 t = tessera::sphere_tangent(c, at(i), {n[0], n[1], n[2]});
+    const double l = std::sqrt(t.x * t.x + t.y * t.y + t.z * t.z);
+    if (!(l > 0.0)) continue;
+    n[0] = t.x / l;
+    n[1] = t.y / l;
+    n[2] = t.z / l;
+  }
+  if (params.J_S != 0.0) {
+    const tessera::CellView &v = pair->cells();
+    const tessera::Contacts t = v.contacts();
+    if (pair->cells_step() != state_step || t.n_owned != nlocal)
+      error->one(FLERR,
+                 "fix polarity: the tessellation of pair vertex/voronoi is from step {}, the "
+                 "polarities need it for step {}",
+                 pair->cells_step(), state_step);
+    for (int i = 0; i < nlocal; i++)
+      for (int f = t.offset[i]; f < t.offset[i + 1]; f++) {
+        if (!(t.size[f] > 1e-9 * v.boundary(i))) continue;    // Voronoi neighbours only
+        const int j = t.neighbor[f];
+        const double *nj = &unit[3 * j];
+        tessera::Vec3 m;
+        try {
+          m = tessera::sphere_transport(c, at(j), at(i), {nj[0], nj[1], nj[2]});
+        } catch (tessera::Error &e) {
+          error->one(FLERR, "fix polarity on the sphere, atoms {} and {}: {}", atom->tag[j],
+                     atom->tag[i], e.what());
+        }
+        tau[3 * i] += params.J_S * m.x;
+        tau[3 * i + 1] += params.J_S * m.y;
+        tau[3 * i + 2] += params.J_S * m.z;
+      }
+  }
+  if (params.J_V != 0.0)
+    for (int i = 0; i < nlocal; i++) {
+      if (!has_v[i]) continue;
+      const double *w = &vhat[3 * i];
+      const tessera::Vec3 t = tessera::sphere_tangent(c, at(i), {w[0], w[1], w[2]});
+      const double l = std::sqrt(t.x * t.x + t.y * t.y + t.z * t.z);
+      if (!(l > 0.0)) continue;
+      tau[3 * i] += params.J_V * t.x / l;
+      tau[3 * i + 1] += params.J_V * t.y / l;
+      tau[3 * i + 2] += params.J_V * t.z / l;
+    }
+}

@@ -16,6 +16,7 @@
 #include "pair_vertex_voronoi_3d.h"
 #include "pair_vertex_voronoi_confluent.h"
 #include "pair_vertex_voronoi_finite.h"
+#include "pair_vertex_voronoi_sphere.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -76,6 +77,8 @@ PairVertexVoronoi::~PairVertexVoronoi()
 {
   if (cutghost_saved >= 0.0) comm->cutghostuser = cutghost_saved;
   if (modify && modify->find_fix(guard_id) >= 0) modify->delete_fix(guard_id);
+  if (modify && !sphere_fix_id.empty() && modify->find_fix(sphere_fix_id) >= 0)
+    modify->delete_fix(sphere_fix_id);
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -137,7 +140,10 @@ void PairVertexVoronoi::init_style()
   // The model's unit: 3D polyhedra, finite 2D cells ('radius') or confluent
   // 2D cells; kept across runs while the model stays the same.
   std::unique_ptr<VertexModel> want;
-  if (domain->dimension == 3)
+  no_virial_fdotr_compute = 0;    // the sphere's unit computes its own virial
+  if (sphere_on)
+    want = std::make_unique<VertexSphere>(lmp, this);
+  else if (domain->dimension == 3)
     want = std::make_unique<Vertex3d>(lmp, this);
   else if (radius > 0.0)
     want = std::make_unique<VertexFinite>(lmp, this);
@@ -184,6 +190,7 @@ void PairVertexVoronoi::init_style()
   if (modify->find_fix(guard_id) < 0) modify->add_fix(guard_id + " all " + guard_style);
   auto guard = dynamic_cast<FixVertexGuard *>(modify->fix[modify->find_fix(guard_id)]);
   if (guard) guard->pair = this;
+  if (sphere_on) add_sphere_fix();
   // No neighbor list is requested: the tessellation needs only the ghost atoms.
   for (double &v : stats) v = 0.0;
   close_d = -1.0;
@@ -249,10 +256,15 @@ void PairVertexVoronoi::print_model() const
   const int n = atom->ntypes;
   static const char *inc_name[] = {"no", "yes", "check"};
   const char *tname = tension == tessera::Tension::Edge ? "edge" : "cell";
-  const bool three = domain->dimension == 3, finite = radius > 0.0;
+  const bool three = domain->dimension == 3 && !sphere_on, finite = radius > 0.0;
   // The settings that apply to this model only.
   std::string msg;
-  if (finite)
+  if (sphere_on)
+    msg = fmt::format("pair_style vertex/voronoi: cutoff {:.6g} tension {} surface sphere {:.6g} "
+                      "{:.6g} {:.6g} {} (cells on a sphere)\n", cut_global, tname, sphere_c[0],
+                      sphere_c[1], sphere_c[2],
+                      sphere_var.empty() ? fmt::format("{:.6g}", sphere_R) : "v_" + sphere_var);
+  else if (finite)
     msg = fmt::format("pair_style vertex/voronoi: cutoff {:.6g} tension {} radius {:.6g} (finite "
                       "cells)\n", cut_global, tname, radius);
   else if (three)
@@ -595,7 +607,7 @@ bool PairVertexVoronoi::cells_current() const
 
 double PairVertexVoronoi::cell_size(int type) const
 {
-  return domain->dimension == 3 ? std::cbrt(area0[type]) : std::sqrt(area0[type]);
+  return domain->dimension == 3 && !sphere_on ? std::cbrt(area0[type]) : std::sqrt(area0[type]);
 }
 
 /* The closest neighbour of owned atom i in the last cells, at the

@@ -38,6 +38,7 @@ class PairVertexVoronoi : public Pair {
   friend class VertexConfluent;
   friend class VertexFinite;
   friend class Vertex3d;
+  friend class VertexSphere;
 
  public:
   PairVertexVoronoi(class LAMMPS *);
@@ -72,6 +73,14 @@ class PairVertexVoronoi : public Pair {
   // owned atoms at owned_x (dimension values per atom, recorded then).
   double cell_size(int type) const;
   bool closest_neighbour(int i, const double *owned_x, tagint &j, double &d) const;
+  // 'surface sphere cx cy cz R': the cells live on a sphere (the unit of
+  // pair_vertex_voronoi_sphere.cpp).  Its centre, and its radius now (an
+  // equal-style variable is evaluated at each call).
+  bool on_sphere() const { return sphere_on != 0; }
+  const double *sphere_centre() const { return sphere_c; }
+  double sphere_radius();
+  // Stops with an error when the sphere of radius R reaches past the box.
+  void check_sphere_box(double R) const;
 
  protected:
   double cut_global;
@@ -138,6 +147,17 @@ class PairVertexVoronoi : public Pair {
   void check_lost_atoms();
   std::string guard_id;
   double ghost_width() const;
+  // 'surface sphere' (pair_vertex_voronoi_sphere.cpp: parsing, restart
+  // record, the internal fix that keeps the atoms on the sphere)
+  int sphere_on = 0;
+  double sphere_c[3] = {0.0, 0.0, 0.0};
+  double sphere_R = 0.0;    // the radius, when not a variable
+  std::string sphere_var;   // name of an equal-style variable for R, or empty
+  std::string sphere_fix_id;
+  int parse_surface(int iarg, int narg, char **arg);
+  void write_sphere_settings(FILE *) const;
+  void read_sphere_settings(FILE *);
+  void add_sphere_fix();
 };
 
 }    // namespace LAMMPS_NS

@@ -18,7 +18,7 @@
 using namespace LAMMPS_NS;
 
 /* ----------------------------------------------------------------------
-   pair_style vertex/voronoi cutoff [tension edge|cell]
+   pair_style vertex/voronoi cutoff [tension edge|cell] [... surface sphere cx cy cz R]
 ------------------------------------------------------------------------- */
 
 void PairVertexVoronoi::settings(int narg, char **arg)
@@ -34,6 +34,9 @@ void PairVertexVoronoi::settings(int narg, char **arg)
                "cell diameters",
                arg[0]);
   int iarg = 1;
+  // A pair_style line without 'surface' puts the cells back in the plane
+  // (or in space), also when it repeats the style of a sphere.
+  sphere_on = 0;
   while (iarg < narg) {
     if (strcmp(arg[iarg], "tension") == 0) {
       if (iarg + 2 > narg)
@@ -89,10 +92,12 @@ void PairVertexVoronoi::settings(int narg, char **arg)
       if (!(radius > 0.0) || !std::isfinite(radius))
         error->all(FLERR, "pair_style vertex/voronoi: radius must be > 0, got {}", arg[iarg + 1]);
       iarg += 2;
+    } else if (strcmp(arg[iarg], "surface") == 0) {
+      iarg = parse_surface(iarg, narg, arg);
     } else {
       error->all(FLERR,
                  "pair_style vertex/voronoi: unknown keyword '{}' (known: tension, incremental, "
-                 "grow, reference, radius)",
+                 "grow, reference, radius, surface)",
                  arg[iarg]);
     }
   }

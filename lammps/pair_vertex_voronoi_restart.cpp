@@ -19,9 +19,11 @@ using namespace LAMMPS_NS;
 // first layout (cutoff and tension only) store tension as 0 or 1; later ones
 // add RESTART_V2 to it and carry every keyword and the heterotypic sigma;
 // the third layout (RESTART_V3) adds, at the end, which types were given in
-// the quadratic form (whose constant the energy includes).
+// the quadratic form (whose constant the energy includes); the fourth
+// (RESTART_V4) adds the 'surface' settings after the radius.
 static constexpr int RESTART_V2 = 16;
 static constexpr int RESTART_V3 = 32;
+static constexpr int RESTART_V4 = 64;
 
 void PairVertexVoronoi::write_restart(FILE *fp)
 {
@@ -91,13 +93,14 @@ void PairVertexVoronoi::read_restart(FILE *fp)
 
 void PairVertexVoronoi::write_restart_settings(FILE *fp)
 {
-  int t = (tension == tessera::Tension::Edge ? 0 : 1) + RESTART_V3;
+  int t = (tension == tessera::Tension::Edge ? 0 : 1) + RESTART_V4;
   fwrite(&cut_global, sizeof(double), 1, fp);
   fwrite(&t, sizeof(int), 1, fp);
   fwrite(&incremental, sizeof(int), 1, fp);
   fwrite(&grow, sizeof(int), 1, fp);
   fwrite(&reference_every, sizeof(int), 1, fp);
   fwrite(&radius, sizeof(double), 1, fp);
+  write_sphere_settings(fp);
 }
 
 void PairVertexVoronoi::read_restart_settings(FILE *fp)
@@ -114,9 +117,9 @@ int PairVertexVoronoi::read_restart_settings_version(FILE *fp)
   }
   MPI_Bcast(&cut_global, 1, MPI_DOUBLE, 0, world);
   MPI_Bcast(&t, 1, MPI_INT, 0, world);
-  const int version = t >= RESTART_V3 ? 3 : t >= RESTART_V2 ? 2 : 1;
+  const int version = t >= RESTART_V4 ? 4 : t >= RESTART_V3 ? 3 : t >= RESTART_V2 ? 2 : 1;
   if (version >= 2) {
-    t -= version == 3 ? RESTART_V3 : RESTART_V2;
+    t -= version == 4 ? RESTART_V4 : version == 3 ? RESTART_V3 : RESTART_V2;
     int v[3] = {incremental, grow, reference_every};
     if (comm->me == 0) utils::sfread(FLERR, v, sizeof(int), 3, fp, nullptr, error);
     MPI_Bcast(v, 3, MPI_INT, 0, world);
@@ -126,6 +129,7 @@ int PairVertexVoronoi::read_restart_settings_version(FILE *fp)
     if (comm->me == 0) utils::sfread(FLERR, &radius, sizeof(double), 1, fp, nullptr, error);
     MPI_Bcast(&radius, 1, MPI_DOUBLE, 0, world);
   }
+  if (version >= 4) read_sphere_settings(fp);
   tension = t == 0 ? tessera::Tension::Edge : tessera::Tension::Cell;
   return version;
 }

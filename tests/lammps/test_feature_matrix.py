@@ -44,6 +44,8 @@ def model_script(model, data=None):
     three = model.startswith("3d")
     finite = model.startswith("finite")
     head = "units lj\natom_style dipole\natom_modify map array\n"
+    if model == "sphere":
+        return sphere_script(head, data)
     if not three:
         head = "dimension 2\n" + head
     if model == "finite_open":
@@ -97,8 +99,40 @@ set group all dipole/random 3313 1.0
     return head + body + pair + "thermo_modify norm no format float %.17g\n"
 
 
+# Cells on a sphere: centre and radius (the centre is the box's, so that
+# change_box scales positions about it).
+SPHERE_C, SPHERE_R = 6.0, 4.0
+
+
+def sphere_script(head, data=None):
+    """96 cells on a sphere in an open box: a Fibonacci lattice (nearly
+    uniform, so that the short runs see few neighbour exchanges) turned and
+    jittered, the jitter partly off the sphere (the pair style projects the
+    points onto it)."""
+    head += "boundary f f f\n"
+    if data:
+        body = f"read_data {data}\n"
+    else:
+        n = 96
+        k = np.arange(n) + 0.5
+        z = 1 - 2 * k / n
+        ph = math.pi * (1 + 5 ** 0.5) * k
+        u = np.column_stack([np.sqrt(1 - z * z) * np.cos(ph), np.sqrt(1 - z * z) * np.sin(ph), z])
+        rng = np.random.default_rng(8231)
+        x = SPHERE_C + SPHERE_R * u + rng.uniform(-0.08, 0.08, size=(n, 3))
+        body = "region box block 0 12 0 12 0 12\ncreate_box 2 box\n"
+        body += "".join(f"create_atoms 1 single {p[0]!r} {p[1]!r} {p[2]!r} units box\n" for p in x)
+        body += """set type 1 type/fraction 2 0.4 7731
+set group all dipole/random 3313 1.0
+"""
+    body += "mass * 1.0\n"
+    pair = (f"pair_style vertex/voronoi 3.0 surface sphere {SPHERE_C} {SPHERE_C} {SPHERE_C} "
+            f"{SPHERE_R}\n" + COEFFS_2D)
+    return head + body + pair + "thermo_modify norm no format float %.17g\n"
+
+
 def dim_of(model):
-    return 3 if model.startswith("3d") else 2
+    return 3 if model.startswith("3d") or model == "sphere" else 2
 
 
 def printed(run, key):
@@ -213,7 +247,9 @@ print "V $(c_c[1]:%.17g) $(c_c[2]:%.17g) $(c_c[3]:%.17g) $(c_c[4]:%.17g) $(c_c[5
         pe, esum, asum, vol = printed(run, "T")[0]
         # The cells' energies add up to pe (constants of the quadratic form included).
         self.assertAlmostEqual(esum, pe, delta=1e-10 * abs(pe))
-        if model not in ("finite_open", "finite_per"):
+        if model == "sphere":    # the cells tile the sphere
+            self.assertAlmostEqual(asum, 4 * math.pi * SPHERE_R ** 2, delta=1e-9 * asum)
+        elif model not in ("finite_open", "finite_per"):
             self.assertAlmostEqual(asum, vol, delta=1e-9 * vol)    # the cells tile the box
         else:
             self.assertLess(asum, vol)
@@ -222,7 +258,7 @@ print "V $(c_c[1]:%.17g) $(c_c[2]:%.17g) $(c_c[3]:%.17g) $(c_c[4]:%.17g) $(c_c[5
         meas, bound, shape, nb = f["c_c[1]"], f["c_c[2]"], f["c_c[3]"], f["c_c[4]"]
         for col in ("c_c[%d]" % k for k in range(1, 10)):
             self.assertTrue(np.all(np.isfinite(f[col])), col)
-        expect = bound / meas ** 0.5 if d == 2 else bound / meas ** (2.0 / 3.0)
+        expect = bound / meas ** 0.5 if d == 2 or model == "sphere" else bound / meas ** (2.0 / 3.0)
         np.testing.assert_allclose(shape, expect, rtol=1e-12)
         self.assertTrue(np.all(nb >= (0 if model == "finite_open" else 3)))
         np.testing.assert_allclose(f["c_c[5]"].sum(), pe, rtol=1e-10)
@@ -254,7 +290,21 @@ run 0
         perim = dict(zip(cells["id"], cells["c_c[2]"]))
         ids = rows[:, 0].astype(int)
         self.assertEqual(set(ids), set(perim))
-        if d == 2:
+        if model == "sphere":
+            # Each row a geodesic edge: its length R times the angle of its
+            # ends; each cell's rows close into its boundary, lengths add up
+            # to the perimeter.
+            c = np.full(3, SPHERE_C)
+            for cid in set(ids):
+                r = rows[ids == cid]
+                a, b = r[:, 2:5] - c, r[:, 5:8] - c
+                np.testing.assert_allclose(np.linalg.norm(a, axis=1), SPHERE_R, rtol=1e-12)
+                ang = np.arctan2(np.linalg.norm(np.cross(a, b), axis=1), np.einsum("ij,ij->i", a, b))
+                np.testing.assert_allclose(r[:, 8], SPHERE_R * ang, rtol=1e-9, atol=1e-12)
+                np.testing.assert_allclose(r[:-1, 5:8], r[1:, 2:5], atol=1e-9)
+                np.testing.assert_allclose(r[-1, 5:8], r[0, 2:5], atol=1e-9)
+                self.assertAlmostEqual(r[:, 8].sum(), perim[cid], delta=1e-10 * perim[cid])
+        elif d == 2:
             # Each cell's rows close into its boundary; lengths add up to the perimeter.
             for cid in set(ids):
                 r = rows[ids == cid]
@@ -298,6 +348,11 @@ write_dump all custom end.dump id x y z mux muy muz modify format float %.17g
         np.testing.assert_allclose(n, 1.0, atol=1e-12)
         if dim_of(model) == 2:
             self.assertTrue(np.all(frame["muz"] == 0.0))
+        if model == "sphere" and "x" in frame:    # tangent to the sphere
+            r = np.column_stack([frame[c] for c in "xyz"]) - SPHERE_C
+            mu = np.column_stack([frame["mux"], frame["muy"], frame["muz"]])
+            np.testing.assert_allclose(np.linalg.norm(r, axis=1), SPHERE_R, rtol=1e-12)
+            np.testing.assert_allclose(np.einsum("ij,ij->i", r, mu), 0.0, atol=1e-11)
 
     def check_polarity(self, model):
         start = self.run_lmp(model_script(model) + "run 0\nwrite_dump all custom s.dump id mux muy muz\n")
@@ -626,6 +681,9 @@ print "R $(c_r1[2]) $(c_r2[2]) $(c_r3[2])"
         d = dim_of(model)
         region = ("region ins block 1.5 2.5 0.5 1.5 0.5 1.5 units box" if d == 3 else
                   "region ins block 1 5 1 5 -0.1 0.1 units box")
+        if model == "sphere":    # a slab across the sphere's top
+            top = SPHERE_C + SPHERE_R
+            region = f"region ins block 4.5 7.5 4.5 7.5 {top - 0.5} {top + 0.1} units box"
         script = model_script(model) + f"""{region}
 fix p all polarity 0.3 1.0 neighbor 0.5
 fix b all brownian 1.0 1 gamma_t 1.0 rng none
@@ -687,13 +745,22 @@ run 4
             measure = dict(zip(f["id"].astype(int).tolist(), f["c_c[1]"].tolist()))
             free = dict(zip(f["id"].astype(int).tolist(), f["c_c[8]"].tolist()))
             got = {}
-            stored = mesh.cell_data["volume" if d == 3 else "area"]
+            stored = mesh.cell_data["volume" if d == 3 and model != "sphere" else "area"]
             for block, ids, cell_measure in zip(mesh.cells, mesh.cell_data["id"], stored):
                 # the cell data holds the exact measure (finite cells: arcs, not samples)
                 for i, m in zip(ids, cell_measure):
                     self.assertAlmostEqual(m, measure[int(i)], delta=1e-9 * measure[int(i)], msg=f"cell {i}")
                 for conn, i in zip(block.data, ids):
-                    if d == 3:
+                    if model == "sphere":
+                        # the spherical polygon of the read-back corners (on the sphere)
+                        u = mesh.points[conn] - SPHERE_C
+                        u /= np.linalg.norm(u, axis=1)[:, None]
+                        area = 0.0
+                        for q in range(1, len(u) - 1):
+                            a, b, c = u[0], u[q], u[q + 1]
+                            area += 2 * math.atan2(a @ np.cross(b, c), 1 + a @ b + b @ c + c @ a)
+                        got[int(i)] = SPHERE_R ** 2 * area
+                    elif d == 3:
                         self.assertTrue(block.type.startswith("polyhedron"))
                         vol = 0.0
                         for face in conn:
@@ -718,7 +785,7 @@ run 4
 
 MODEL_NAMES = {"confluent": "confluent 2d", "confluent_tri": "confluent 2d, triclinic",
                "finite_open": "finite 2d, open box", "finite_per": "finite 2d, periodic",
-               "3d": "3d", "3d_tri": "3d, triclinic"}
+               "3d": "3d", "3d_tri": "3d, triclinic", "sphere": "sphere"}
 DOC = os.path.join(os.path.dirname(os.path.dirname(HERE)), "doc", "model.md")
 BEGIN, END = "<!-- feature matrix: begin -->", "<!-- feature matrix: end -->"
 

@@ -21,6 +21,10 @@ sampled (:data:`tessera_tools.junctions.ARC_STEP`), in open boxes too; their
 the samples' chords).  Without a local dump, ``radius`` gives the finite
 Voronoi cells of the dumped centres (:mod:`tessera_tools.finite`).
 
+Cells on a sphere (a local dump with 9 columns and one row per cell and
+neighbour: geodesic edges) are polygons of their Voronoi vertices in space
+(:mod:`tessera_tools.sphere_cells`), with their spherical ``area``.
+
 In 3d (a local dump with the 9 columns of 3d rows) every cell is one
 ``VTK_POLYHEDRON`` made of its face polygons (the rows with the same cell and
 neighbour IDs, chained edge to edge, outward), with the per-atom columns and
@@ -236,7 +240,11 @@ def write_vtk(atoms_path, out_prefix, local_path=None, frames=None, dt=None, com
     Voronoi tessellation."""
     if local_path:
         pairs = paired_frames(atoms_path, local_path, frames)
-        if len(junction_columns(pairs[0][1], compute)) == 9:
+        from .sphere_cells import is_sphere_local, frame_sphere_cells
+
+        if is_sphere_local(pairs[0][1], compute):    # cells on a sphere: one row per edge
+            work = [(a, lambda a=a, l=l: frame_sphere_cells(a, l, compute)) for a, l in pairs]
+        elif len(junction_columns(pairs[0][1], compute)) == 9:
             work = [(a, lambda a=a, l=l: frame_cells3d(a, l, compute)) for a, l in pairs]
         else:
             work = [(a, lambda a=a, l=l: junction_tessellation(a, l, compute)) for a, l in pairs]
@@ -270,7 +278,14 @@ def write_vtk(atoms_path, out_prefix, local_path=None, frames=None, dt=None, com
         tess = make()
         time = _frame_time(frame, dt)
         path = f"{out_prefix}_{frame.timestep:0{width}d}.vtu"
-        mesh = frame_mesh3d(frame, tess, time) if isinstance(tess, Cells3d) else frame_mesh(frame, tess, time)
+        from .sphere_cells import SphereCells, frame_mesh_sphere
+
+        if isinstance(tess, SphereCells):
+            mesh = frame_mesh_sphere(frame, tess, VECTORS, time)
+        elif isinstance(tess, Cells3d):
+            mesh = frame_mesh3d(frame, tess, time)
+        else:
+            mesh = frame_mesh(frame, tess, time)
         mesh.write(path)
         written.append(path)
         entries.append((time, os.path.basename(path)))

@@ -40,6 +40,10 @@ public:
 
   // 2 (area, perimeter, edges) or 3 (volume, surface, faces).
   virtual int dimension() const = 0;
+  // Coordinates per position (points, corners, centroid, axes): dimension(),
+  // except for cells on a curved surface in space (the sphere: 2-dimensional
+  // cells, 3 coordinates; SphereCells in tessera/sphere_cells.h).
+  virtual int space_dimension() const { return dimension(); }
   virtual int n_owned() const = 0;
   // Owned and ghost points the tessellation used; point indices in the view
   // (neighbours, multifold rings) are < n_points.
@@ -61,7 +65,7 @@ public:
   virtual int piece_neighbor(int k) const = 0;
   // Length (2D edge or arc) or area (3D face) of piece k.
   virtual double piece_size(int k) const = 0;
-  // Appends piece k's corners to xyz (dimension() coordinates each) and
+  // Appends piece k's corners to xyz (space_dimension() coordinates each) and
   // returns how many: 2D, its start and end point (consecutive pieces of a
   // cell share a corner, so the ends close into the cell's boundary); 3D,
   // the face polygon, counter-clockwise seen from the neighbour.
@@ -70,7 +74,7 @@ public:
   // arc_radius(), from angle phi over theta > 0 radians.  false otherwise.
   virtual bool piece_arc(int /*k*/, double & /*phi*/, double & /*theta*/) const { return false; }
   virtual double arc_radius() const { return 0.0; }
-  // Position of point i as the tessellation used it (dimension() values).
+  // Position of point i as the tessellation used it (space_dimension() values).
   virtual void point(int i, double *x) const = 0;
 
   // The neighbour lists in compressed rows, for per-step loops.
@@ -102,15 +106,15 @@ public:
   int coordination_number(int c, double rel_tol = 1e-9) const;
   // 2D: P / sqrt(A); 3D: S / V^(2/3).  0 for an empty cell.
   double shape_index(int c) const;
-  // Centroid of the cell (dimension() values).
-  void centroid(int c, double *x) const;
+  // Centroid of the cell (space_dimension() values).
+  virtual void centroid(int c, double *x) const;
   // Second moments about the centroid, integral of (x - xc)_a (x - xc)_b
-  // over the cell, row-major dimension() x dimension().
-  void second_moments(int c, double *m) const;
+  // over the cell, row-major space_dimension() x space_dimension().
+  virtual void second_moments(int c, double *m) const;
   // Unit vector along the cell's longest (longest = true) or shortest
-  // principal axis of the second moments; false (and x untouched) when the
-  // cell is isotropic to round-off or empty.
-  bool principal_axis(int c, bool longest, double *x) const;
+  // principal axis of the second moments (space_dimension() values); false
+  // (and x untouched) when the cell is isotropic to round-off or empty.
+  virtual bool principal_axis(int c, bool longest, double *x) const;
 };
 
 // The views of the three models.  Each binds to a tessellation and the

@@ -1,0 +1,69 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(VERTEX_VORONOI_SPHERE,FixVertexSphere);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_VERTEX_SPHERE_H
+#define LMP_FIX_VERTEX_SPHERE_H
+
+#include "fix.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class PairVertexVoronoi;
+
+/* The surface constraint of pair_style vertex/voronoi ... surface sphere, an
+   internal fix the pair style adds (style VERTEX_VORONOI_SPHERE, not for
+   input scripts).  It puts every owned atom back on the sphere by radial
+   projection, c + R (x - c)/|x - c|, and turns its dipole moment (the
+   polarity) into the tangent plane there, keeping its length: at the setup
+   of a run, after the integrators moved the atoms (post_integrate, before
+   ghost atoms are updated) and after atoms were added (pre_exchange, e.g.
+   fix cell/divide's daughters).  After a move the polarity is carried from
+   the atom's direction at the end of the previous step to its new one by
+   parallel transport along the great circle (second-order accurate, where
+   a projection onto the new tangent plane would turn it by O(step^2)).
+   With a radius given by a variable the cells follow the sphere as it
+   grows or shrinks. */
+
+class FixVertexSphere : public Fix {
+ public:
+  FixVertexSphere(class LAMMPS *, int, char **);
+  int setmask() override;
+  void setup_pre_exchange() override { project(false); }
+  void pre_exchange() override { project(false); }
+  void post_integrate() override { project(true); }
+  void setup(int) override { record(); }
+  void end_of_step() override { record(); }
+  PairVertexVoronoi *pair = nullptr;
+
+  static const char *style_name() { return "VERTEX_VORONOI_SPHERE"; }
+  static Fix *creator(class LAMMPS *, int, char **);
+  // Radial projection of x onto the sphere (c, R) and, when mu is given
+  // (4 values, LAMMPS's layout), of mu onto the tangent plane there.
+  // With u0 (the unit direction before the move), mu is transported from
+  // u0 to the new direction first.
+  static void project_one(const double *c, double R, double *x, double *mu,
+                          const double *u0 = nullptr);
+
+ private:
+  void project(bool transport);
+  // Each owned atom's ID and unit direction at the end of the last step
+  // (by local index: atoms are not exchanged between then and the move).
+  void record();
+  std::vector<tagint> tag0;
+  std::vector<double> u0;
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -7,7 +7,8 @@
    virial, and the choice of the model unit that computes the cells
    (pair_vertex_voronoi_confluent.cpp, _finite.cpp, _3d.cpp).  Restart
    files: pair_vertex_voronoi_restart.cpp.  The step guard:
-   fix_vertex_guard.cpp.
+   fix_vertex_guard.cpp, with the closest pairs and lost atoms it reports:
+   pair_vertex_voronoi_closest.cpp.
 ------------------------------------------------------------------------- */
 
 #include "pair_vertex_voronoi.h"
@@ -608,112 +609,6 @@ bool PairVertexVoronoi::cells_current() const
 double PairVertexVoronoi::cell_size(int type) const
 {
   return domain->dimension == 3 && !sphere_on ? std::cbrt(area0[type]) : std::sqrt(area0[type]);
-}
-
-/* The closest neighbour of owned atom i in the last cells, at the
-   positions of that force computation: owned atoms' from owned_x (dim per
-   atom, recorded then: the guard's copy), ghosts' from atom->x (not yet
-   updated when the guard asks, between the move and the next forward
-   communication). */
-
-bool PairVertexVoronoi::closest_neighbour(int i, const double *owned_x, tagint &j, double &d) const
-{
-  d = -1.0;
-  const int nlocal = atom->nlocal;
-  const tessera::CellView &v = cells();
-  if (i < 0 || i >= v.n_owned() || v.n_owned() != nlocal || v.n_points() != nlocal + atom->nghost)
-    return false;
-  const int dim = domain->dimension;
-  const tessera::Contacts c = v.contacts();
-  double **x = atom->x;
-  for (int k = c.offset[i]; k < c.offset[i + 1]; k++) {
-    const int q = c.neighbor[k];
-    double r2 = 0.0;
-    for (int a = 0; a < dim; a++) {
-      const double dq = (q < nlocal ? owned_x[dim * q + a] : x[q][a]) - owned_x[dim * i + a];
-      r2 += dq * dq;
-    }
-    const double r = std::sqrt(r2);
-    if (d < 0.0 || r < d) {
-      d = r;
-      j = atom->tag[q];
-    }
-  }
-  return d >= 0.0;
-}
-
-/* The closest pair of neighbours among this rank's cells at this force
-   computation, for the error message of lost atoms (IDs and distance are
-   kept: they are read at the next step, after the atoms moved); the
-   confluent unit gets it from compute_forces, the others from here. */
-
-void PairVertexVoronoi::note_closest_pair()
-{
-  double best = -1.0;
-  int bi = -1, bq = -1;
-  const tessera::Contacts c = cells().contacts();
-  const int dim = domain->dimension;
-  double **x = atom->x;
-  for (int i = 0; i < c.n_owned; i++)
-    for (int k = c.offset[i]; k < c.offset[i + 1]; k++) {
-      const int q = c.neighbor[k];
-      double r2 = 0.0;
-      for (int a = 0; a < dim; a++) r2 += (x[q][a] - x[i][a]) * (x[q][a] - x[i][a]);
-      if (best < 0.0 || r2 < best) {
-        best = r2;
-        bi = i;
-        bq = q;
-      }
-    }
-  note_closest_pair(bi, bq, best);
-}
-
-/* Records owned atom i and atom q at squared distance d2 as this step's
-   closest pair (i < 0: none). */
-
-void PairVertexVoronoi::note_closest_pair(int i, int q, double d2)
-{
-  close_d = -1.0;
-  if (i >= 0) {
-    close_d = std::sqrt(d2);
-    close_i = atom->tag[i];
-    close_j = atom->tag[q];
-  }
-  close_step = update->ntimestep;
-}
-
-/* Atoms lost since the last step (moved out of the box or past a
-   neighbouring rank in one step): say so before the tessellation of what is
-   left fails, with the closest pair of the previous step. */
-
-void PairVertexVoronoi::check_lost_atoms()
-{
-  bigint n = atom->nlocal, ntotal = 0;
-  MPI_Allreduce(&n, &ntotal, 1, MPI_LMP_BIGINT, MPI_SUM, world);
-  if (ntotal == atom->natoms) return;
-  if (output && output->thermo && output->thermo->lostflag != Thermo::ERROR) return;
-  // The globally closest pair of the last force computation.
-  struct {
-    double d;
-    int rank;
-  } mine{close_d >= 0.0 ? close_d : std::numeric_limits<double>::max(), comm->me}, best;
-  MPI_Allreduce(&mine, &best, 1, MPI_DOUBLE_INT, MPI_MINLOC, world);
-  tagint ids[2] = {close_i, close_j};
-  bigint when = close_step;
-  MPI_Bcast(ids, 2, MPI_LMP_TAGINT, best.rank, world);
-  MPI_Bcast(&when, 1, MPI_LMP_BIGINT, best.rank, world);
-  const std::string closest =
-      best.d < std::numeric_limits<double>::max()
-          ? fmt::format("; at step {} the closest centres were atoms {} and {}, {:.3g} apart", when,
-                        ids[0], ids[1], best.d)
-          : std::string();
-  error->all(FLERR,
-             "pair_style vertex/voronoi: {} of {} atoms are left at step {}: the others were lost "
-             "(moved out of the box, or past a neighbouring rank's domain in one step; during a "
-             "run usually because the forces were too large for the timestep: two centres nearly "
-             "colliding, or very stiff parameters){}. Use a smaller timestep, 'fix dt/reset', or "
-             "fix brownian/heun",
-             ntotal, atom->natoms, update->ntimestep, closest);
 }
 
 void *PairVertexVoronoi::extract(const char *str, int &dim)

@@ -8,11 +8,12 @@
    projection), their spherical Voronoi tessellation (tessera/sphere.h) and
    the energy of the plane with spherical areas and geodesic lengths:
      E = sum_i [ K/2 (A_i - A0)^2 + Gamma/2 P_i^2 ] + sum_junctions Lambda_IJ l_ij
-   (both parameter forms, types, junction tensions, per-cell A0 from
-   d_area0).  Every rank gathers every cell's position, type and A0 sorted
-   by atom ID (MPI_Allgatherv: O(N) memory and work per rank, whatever the
-   number of ranks), tessellates the whole sphere and keeps the forces and
-   energies of its owned atoms: the same numbers on any number of ranks.
+   (both parameter forms, types, junction tensions, per-cell A0, KA, KP,
+   P0 from d_area0, d_ka, d_kp, d_perim0).  Every rank gathers every cell's
+   position, type and per-cell values sorted by atom ID (MPI_Allgatherv:
+   O(N) memory and work per rank, whatever the number of ranks),
+   tessellates the whole sphere and keeps the forces and energies of its
+   owned atoms: the same numbers on any number of ranks.
    The forces are tangent to the sphere; an internal fix (fix_vertex_sphere.h)
    puts the atoms back on it after each move.  The virial is that about the
    centre, W_ab = sum_i (r_i - c)_a F_i,b: symmetric and traceless.  The
@@ -196,22 +197,30 @@ void VertexSphere::init()
   pair->no_virial_fdotr_compute = 1;
 }
 
-/* Every cell's ID, type, position and A0 on every rank, sorted by ID. */
+/* Every cell's ID, type, position and per-cell values (d_area0, d_ka,
+   d_kp, d_perim0, each when defined) on every rank, sorted by ID.  (The
+   owned values are checked by the pair style's prepare_atoms before the
+   force computation reads them.) */
 
 void VertexSphere::gather()
 {
   const int nlocal = atom->nlocal;
-  int a0_flag = -1, a0_cols = -1;
-  const int a0_index = atom->find_custom("area0", a0_flag, a0_cols);
-  has_a0 = a0_index >= 0 && a0_flag == 1 && a0_cols == 0;
-  constexpr int W = 6;
+  const char *names[NPC] = {"area0", "ka", "kp", "perim0"};
+  const double *pc[NPC] = {nullptr, nullptr, nullptr, nullptr};
+  for (int k = 0; k < NPC; k++) {
+    int flag = -1, cols = -1;
+    const int index = atom->find_custom(names[k], flag, cols);
+    has_pc[k] = index >= 0 && flag == 1 && cols == 0;
+    if (has_pc[k]) pc[k] = atom->dvector[index];
+  }
+  constexpr int W = 5 + NPC;
   std::vector<double> mine(static_cast<size_t>(W) * nlocal);
   for (int i = 0; i < nlocal; i++) {
     double *m = &mine[static_cast<size_t>(W) * i];
     m[0] = static_cast<double>(atom->tag[i]);
     m[1] = atom->type[i] - 1;
     for (int d = 0; d < 3; d++) m[2 + d] = atom->x[i][d];
-    m[5] = has_a0 ? atom->dvector[a0_index][i] : 0.0;
+    for (int k = 0; k < NPC; k++) m[5 + k] = pc[k] ? pc[k][i] : 0.0;
   }
   const int nprocs = comm->nprocs;
   std::vector<int> counts(nprocs), displs(nprocs);
@@ -230,7 +239,7 @@ void VertexSphere::gather()
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](int a, int b) { return all[W * a] < all[W * b]; });
   xall.resize(3 * static_cast<size_t>(n));
-  a0all.resize(n);
+  for (auto &v : pcall) v.resize(n);
   typeall.resize(n);
   ids.resize(n);
   tags.resize(n);
@@ -240,7 +249,7 @@ void VertexSphere::gather()
     ids[k] = static_cast<long>(tags[k]);
     typeall[k] = static_cast<int>(m[1]);
     for (int d = 0; d < 3; d++) xall[3 * k + d] = m[2 + d];
-    a0all[k] = m[5];
+    for (int q = 0; q < NPC; q++) pcall[q][k] = m[5 + q];
   }
   // Each owned atom's index in the list, and each listed cell's local index.
   owned.resize(nlocal);
@@ -308,17 +317,28 @@ void VertexSphere::compute(int eflag, int vflag)
   const int nlocal = atom->nlocal;
   const int n = static_cast<int>(tags.size());
   pair->prepare_atoms();
-  // The energy of every cell needs every cell's A0: the gathered ones.
-  pair->model.cell_area0 = has_a0 ? a0all.data() : nullptr;
+  // The energy of every cell needs every cell's A0, KA, KP, P0: the
+  // gathered ones, in the gathered order, for the core only.  prepare_atoms
+  // bound the local arrays (and checked the owned values); they come back
+  // afterwards, for the quadratic forms' constant (accumulate) and whoever
+  // reads the model by local index.
+  tessera::Model &model = pair->model;
+  const double *local_pc[NPC] = {model.cell_area0, model.cell_KA, model.cell_KP, model.cell_P0};
+  const double **bound[NPC] = {&model.cell_area0, &model.cell_KA, &model.cell_KP, &model.cell_P0};
+  for (int k = 0; k < NPC; k++) *bound[k] = has_pc[k] ? pcall[k].data() : nullptr;
   fall.assign(3 * static_cast<size_t>(n), 0.0);
   eall.assign(n, 0.0);
+  std::string failed;
   try {
-    tessera::sphere_forces(tess, {xall.data(), n, 3}, typeall.data(), pair->model, fall.data(), 3,
+    tessera::sphere_forces(tess, {xall.data(), n, 3}, typeall.data(), model, fall.data(), 3,
                            eall.data(), nullptr);
   } catch (tessera::Error &e) {
-    error->all(FLERR, "pair_style vertex/voronoi (surface sphere) at step {}: {}",
-               update->ntimestep, e.what());
+    failed = e.what();
   }
+  for (int k = 0; k < NPC; k++) *bound[k] = local_pc[k];
+  if (!failed.empty())
+    error->all(FLERR, "pair_style vertex/voronoi (surface sphere) at step {}: {}",
+               update->ntimestep, failed);
   double **f = atom->f;
   double energy = 0.0;
   if (pair->vflag_atom) pair->cell_w.assign(9 * static_cast<size_t>(nlocal), 0.0);
@@ -356,7 +376,9 @@ void VertexSphere::compute(int eflag, int vflag)
 
 double VertexSphere::memory_usage() const
 {
-  return (double) (xall.capacity() + a0all.capacity() + fall.capacity() + eall.capacity()) *
+  double pcs = 0.0;
+  for (const auto &v : pcall) pcs += (double) v.capacity();
+  return (pcs + (double) (xall.capacity() + fall.capacity() + eall.capacity())) *
       sizeof(double) +
       (double) (typeall.capacity() + owned.capacity() + local.capacity()) * sizeof(int) +
       (double) tess.cell_vertex.capacity() * (2 * sizeof(int) + sizeof(double)) +

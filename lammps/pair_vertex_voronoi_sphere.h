@@ -32,14 +32,17 @@ class VertexSphere : public VertexModel {
   tessera::SphereCells cells_;
   double centre[3] = {0.0, 0.0, 0.0};
   double R = 1.0;
-  // All cells, by ascending atom ID: positions, 0-based types, per-cell A0
-  // (when d_area0 exists), IDs; each owned atom's index among them, and each
-  // one's local index (-1: not on this rank).
-  std::vector<double> xall, a0all, fall, eall, wbuf;
+  // All cells, by ascending atom ID: positions, 0-based types, per-cell A0,
+  // KA, KP, P0 (pcall[0..3], when d_area0, d_ka, d_kp, d_perim0 exist), IDs;
+  // each owned atom's index among them, and each one's local index (-1: not
+  // on this rank).
+  static constexpr int NPC = 4;
+  std::vector<double> xall, fall, eall, wbuf;
+  std::vector<double> pcall[NPC];
+  bool has_pc[NPC] = {false, false, false, false};
   std::vector<int> typeall, owned, local;
   std::vector<long> ids;
   std::vector<tagint> tags;
-  bool has_a0 = false;
   void gather();
   bool tessellate();    // true if the ghost shell had to grow
 };

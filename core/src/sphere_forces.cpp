@@ -40,25 +40,25 @@ using namespace sphere_detail;
 
 namespace {
 
+// Cell c's energy with the parameters in use (Model::cell_params: the
+// type's, or the per-cell KA, KP, P0 and A0), as energy.cpp in the plane:
+//   K_c/2 (A - A0_c)^2 + Gamma_c/2 P^2 + shift_c P + w sum_k Lambda_{t t_k} l_k.
 double cell_energy_of(const SphereTessellation &t, int c, const int *type, const Model &m) {
   const int tc = type[c];
-  const CellType &ct = m.types[tc];
-  const double dA = t.area[c] - m.area0_of(c, tc);
-  double e = 0.5 * ct.K * dA * dA + 0.5 * ct.Gamma * t.perimeter[c] * t.perimeter[c];
+  const Model::CellParams p = m.cell_params(c, tc);
+  const double dA = t.area[c] - p.A0;
+  const double P = t.perimeter[c];
+  double e = 0.5 * p.K * dA * dA + 0.5 * p.Gamma * P * P;
   double lsum = 0.0;
   for (int k = t.cell_offset[c]; k < t.cell_offset[c + 1]; ++k)
     lsum += m.lambda_of(tc, type[t.cell_neighbor[k]]) * t.edge_length[k];
-  return e + m.tension_weight() * lsum;
+  return e + m.tension_weight() * lsum + p.shift * P;
 }
 
 void check_types(const SphereTessellation &t, const int *type, const Model &model) {
   model.validate();
-  // The sphere's energy reads the types' K, Gamma and tensions only (and
-  // cell_area0): refuse per-cell KA, KP, P0 rather than ignore them.
-  if (model.has_cell_params())
-    throw Error("tessera: per-cell KA, KP or P0 (LAMMPS: d_ka, d_kp, d_perim0) are not "
-                "supported for cells on a sphere; give these parameters per type (pair_coeff) "
-                "or leave out the per-atom properties (d_area0 works)");
+  // Every point is a cell: all n_points per-cell values are read.
+  model.validate_cells(t.n_points);
   for (int p = 0; p < t.n_points; ++p)
     if (type[p] < 0 || type[p] >= model.ntypes()) {
       std::ostringstream s;
@@ -196,10 +196,11 @@ SphereForceOutput sphere_forces(const SphereTessellation &t, const Points3 &pts,
   for (int cell = 0; cell < t.n_points; ++cell) {
     const int k0 = t.cell_offset[cell], k1 = t.cell_offset[cell + 1], m = k1 - k0;
     const int tc = type[cell];
-    const CellType &ct = model.types[tc];
+    // (without per-cell KA, KP, P0: the type's values and shift 0)
+    const Model::CellParams ct = model.cell_params(cell, tc);
     const double A = t.area[cell], P = t.perimeter[cell];
-    const double dEdA = ct.K * (A - model.area0_of(cell, tc));
-    const double dEdP = ct.Gamma * P;
+    const double dEdA = ct.K * (A - ct.A0);
+    const double dEdP = ct.Gamma * P + ct.shift;
     const double ec = cell_energy_of(t, cell, type, model);
     if (cell_energy) cell_energy[cell] = ec;
     out.energy += ec;

@@ -4,14 +4,13 @@
 // cell_P0; LAMMPS's d_ka, d_kp, d_perim0) in every model: the energy against
 // the quadratic form written out per cell, the forces against central
 // differences of the energy (confluent 2D on the lean and the general path,
-// finite 2D cells, 3D polyhedra), the Hessian against central differences
-// of the forces, and per-cell values equal to the types' giving the types'
-// forces.
+// finite 2D cells, 3D polyhedra; the sphere in test_per_cell_sphere.cpp),
+// the Hessian against central differences of the forces, and per-cell
+// values equal to the types' giving the types' forces.
 #include "test_util.h"
 #include "tessera/energy.h"
 #include "tessera/finite.h"
 #include "tessera/hessian.h"
-#include "tessera/sphere.h"
 #include "tessera/tessellation.h"
 #include "tessera/voronoi3d.h"
 
@@ -438,36 +437,5 @@ TEST(PerCell, HessianEqualsFiniteDifferencesOfForces) {
         worst = std::max(worst, std::abs(H[static_cast<size_t>(i) * n2 + j] + (fp[i] - fm[i]) / (2 * h)));
     }
     EXPECT_LT(worst / scale, 1e-6) << "max |H - H_fd| = " << worst << ", max |H| = " << scale;
-  }
-}
-
-TEST(PerCell, SphereRefusesThemByName) {
-  // Cells on a sphere read the types' parameters: per-cell KA, KP, P0 are an
-  // error there, not ignored; per-cell A0 alone still works.
-  std::vector<double> xyz;
-  const double g = (1.0 + std::sqrt(5.0)) / 2.0;
-  for (double a : {-1.0, 1.0})
-    for (double b : {-g, g}) {
-      const double v[3][3] = {{0, a, b}, {a, b, 0}, {b, 0, a}};
-      for (const auto &p : v) xyz.insert(xyz.end(), {p[0], p[1], p[2]});
-    }
-  const tessera::Vec3 c{0.0, 0.0, 0.0};
-  const double R = std::sqrt(1.0 + g * g);
-  const tessera::Points3 pts{xyz.data(), 12, 3};
-  const auto t = tessera::tessellate_sphere(c, R, pts);
-  std::vector<int> type(12, 0);
-  tessera::Model m(1);
-  m.set_lambda(0, 0, -0.5);
-  m.types[0].Gamma = 0.1;
-  std::vector<double> f(36, 0.0), a0(12, 1.1), kp(12, 0.2);
-  m.cell_area0 = a0.data();
-  EXPECT_NO_THROW(tessera::sphere_forces(t, pts, type.data(), m, f.data(), 3));
-  m.cell_KP = kp.data();
-  try {
-    tessera::sphere_forces(t, pts, type.data(), m, f.data(), 3);
-    ADD_FAILURE() << "per-cell KP accepted on a sphere";
-  } catch (const tessera::Error &e) {
-    EXPECT_NE(std::string(e.what()).find("not supported for cells on a sphere"), std::string::npos)
-        << e.what();
   }
 }

@@ -4,17 +4,20 @@
 d_kp d_perim0 (with d_area0), in the quadratic form's units.
 
 * forces = central differences of pe with random per-cell values of two
-  types, confluent, finite and 3d cells, on 1 and 2 ranks;
+  types, confluent, finite and 3d cells and cells on a sphere (along
+  geodesics), on 1 and 2 ranks;
 * pe of a one-type tissue equals sum_c d_ka (A - d_area0)^2 + d_kp (P -
   d_perim0)^2 written from compute vertex/atom's areas and perimeters (2d,
-  3d), and the thesis form gets the same forces without the constant;
-* per-atom values equal to the types' give the types' forces (1e-13);
+  3d, sphere), and the thesis form gets the same forces without the constant;
+* per-atom values equal to the types' give the types' forces (1e-13; also
+  on a sphere);
 * restart files keep the values (fix property/atom defined again), and
   fix cell/divide's daughters keep their mother's;
 * bad values stop with an error naming the atom;
 * examples/heterogeneous runs (short) and cells of the larger p0 end up
   with the larger shape index."""
 
+import math
 import os
 import re
 
@@ -22,6 +25,7 @@ import numpy as np
 
 import lmptest
 from lmptest import LammpsTestCase, nprocs
+import test_sphere as sphere
 from test_feature_matrix import COEFFS_2D, COEFFS_3D, COEFFS_FINITE, model_script
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -342,6 +346,170 @@ set atom * d_kp 0.1
 run 0
 """, ok=False)
         self.assertLammpsError(run, "has perimeter modulus 0 (Gamma = 2 KP)", "also define d_perim0")
+
+
+# Cells on a sphere (surface sphere): the per-cell values around the types'
+# of SPHERE_COEFFS, scaled with the area per cell a of SPHERE_N cells on a
+# sphere of radius SPHERE_R.
+SPHERE_N, SPHERE_R = 24, 5.0
+SPHERE_A = 4 * math.pi * SPHERE_R ** 2 / SPHERE_N
+SPHERE_COEFFS = f"""pair_coeff 1 1 1.0 {SPHERE_A!r} 0.02 -0.3
+pair_coeff 2 2 quadratic 0.01 {0.9 * SPHERE_A!r} 0.015 {3.9 * math.sqrt(SPHERE_A)!r}
+pair_coeff 1 2 0.1
+"""
+PER_CELL_SPHERE = f"""fix pc all property/atom d_ka d_kp d_perim0 d_area0
+variable ka atom 0.006+0.002*(id%5)
+variable kp atom 0.01+0.004*(id%4)
+variable p0 atom {math.sqrt(SPHERE_A)!r}*(3.5+0.15*(id%6))
+variable a0 atom {SPHERE_A!r}*(0.85+0.05*(id%7))
+set atom * d_ka v_ka
+set atom * d_kp v_kp
+set atom * d_perim0 v_p0
+set atom * d_area0 v_a0
+"""
+
+
+def sphere_data(types=None):
+    dirs = sphere.random_directions(SPHERE_N, 11)
+    if types is None:
+        types = [1 + (i % 3 == 0) for i in range(SPHERE_N)]
+    return dirs, sphere.data_file(dirs, SPHERE_R, types)
+
+
+class PerCellSphere(LammpsTestCase):
+    """Cells on a sphere with per-cell d_ka, d_kp, d_perim0, d_area0: forces
+    equal central differences of pe along geodesics (1 and 2 ranks, which
+    agree), pe of a
+    one-type tissue is sum_c d_ka (A - d_area0)^2 + d_kp (P - d_perim0)^2 of
+    compute vertex/atom's spherical areas and geodesic perimeters, and values
+    equal to the types' give the types' forces and pe."""
+
+    def check_fd(self, n):
+        R, h = SPHERE_R, 1e-5
+        dirs, data = sphere_data()
+        script = sphere.head(R) + SPHERE_COEFFS + PER_CELL_SPHERE + """thermo_style custom step pe
+thermo_modify norm no format float %.17g
+dump d all custom 1 f.dump id x y z fx fy fz
+dump_modify d format float %.17g sort id
+run 0
+undump d
+"""
+        cases = []
+        for atom in (3, 11, 20):
+            u = dirs[atom - 1]
+            t1 = np.cross(u, [0.3, 0.5, 0.8])
+            t1 /= np.linalg.norm(t1)
+            t2 = np.cross(u, t1)
+            for k, t in enumerate((t1, t2)):
+                axis = np.cross(u, t)
+                for sign, key in ((1, "EP"), (-1, "EM")):
+                    p = sphere.C + R * sphere.rotate(u, axis, sign * h / R)
+                    script += f"set atom {atom} x {p[0]!r} y {p[1]!r} z {p[2]!r}\nrun 0\n"
+                    script += f'print "{key} {atom} {k} $(pe:%.17g)"\n'
+                p = sphere.C + R * u
+                script += f"set atom {atom} x {p[0]!r} y {p[1]!r} z {p[2]!r}\n"
+                cases.append((atom, k, t))
+        run = self.run_lmp(script, nprocs=n, files={"cells.data": data})
+        self.assertIn("per-cell values (fix property/atom) replace the types': d_area0 d_ka "
+                      "d_kp d_perim0", run.stdout)
+        f = run.dump("f.dump")[0]
+        F = np.column_stack([f["fx"], f["fy"], f["fz"]])
+        ep = {(int(a), int(k)): e for a, k, e in printed(run, "EP")}
+        em = {(int(a), int(k)): e for a, k, e in printed(run, "EM")}
+        scale = np.abs(F).max()
+        self.assertGreater(scale, 1e-2)
+        for atom, k, t in cases:
+            fd = -(ep[(atom, k)] - em[(atom, k)]) / (2 * h)
+            self.assertAlmostEqual(F[atom - 1] @ t, fd, delta=1e-6 * scale,
+                                   msg=f"{n} ranks: atom {atom} dir {k}")
+        self.assertEqual(len(ep), 6)
+        # tangent forces
+        r = np.column_stack([f["x"], f["y"], f["z"]]) - sphere.C
+        np.testing.assert_allclose(np.einsum("ij,ij->i", F, r / R), 0.0, atol=1e-12 * scale)
+        return F
+
+    def test_fd(self):
+        self.check_fd(1)
+
+    @nprocs(2)
+    def test_fd_2_ranks(self):
+        self.check_fd(2)
+
+    @nprocs(2)
+    def test_ranks_agree(self):
+        """Every rank uses every cell's values: 1 and 2 ranks give the same
+        forces and pe (1e-13)."""
+        _, data = sphere_data()
+        script = sphere.head(SPHERE_R) + SPHERE_COEFFS + PER_CELL_SPHERE + """thermo_style custom step pe
+thermo_modify norm no format float %.17g
+run 0
+print "E $(pe:%.17g)"
+write_dump all custom f.dump id fx fy fz modify format float %.17g sort id
+"""
+        runs = [self.run_lmp(script, nprocs=n, files={"cells.data": data}) for n in (1, 2)]
+        fa, fb = runs[0].dump("f.dump")[0], runs[1].dump("f.dump")[0]
+        scale = max(np.abs(fa[c]).max() for c in ("fx", "fy", "fz"))
+        self.assertGreater(scale, 1e-2)
+        for c in ("fx", "fy", "fz"):
+            np.testing.assert_allclose(fb[c], fa[c], rtol=0, atol=1e-13 * scale, err_msg=c)
+        ea, eb = printed(runs[0], "E")[0][0], printed(runs[1], "E")[0][0]
+        self.assertAlmostEqual(ea, eb, delta=1e-13 * abs(ea))
+
+    def test_quadratic_pe(self):
+        """One quadratic type: pe = sum_c d_ka (A - d_area0)^2 + d_kp (P -
+        d_perim0)^2 (the constant KP_c P0_c^2 included), per cell too."""
+        _, data = sphere_data([1] * SPHERE_N)
+        script = sphere.head(SPHERE_R) + (
+            f"pair_coeff * * quadratic 0.01 {SPHERE_A!r} 0.015 {3.8 * math.sqrt(SPHERE_A)!r}\n"
+            + PER_CELL_SPHERE + """compute c all vertex/atom
+thermo_style custom step pe
+thermo_modify norm no format float %.17g
+dump d all custom 1 cells.dump id c_c[1] c_c[2] c_c[5] d_ka d_kp d_perim0 d_area0
+dump_modify d format float %.17g
+run 0
+print "E $(pe:%.17g)"
+""")
+        run = self.run_lmp(script, files={"cells.data": data})
+        f = run.dump("cells.dump")[0]
+        A, P = f["c_c[1]"], f["c_c[2]"]
+        self.assertAlmostEqual(A.sum(), 4 * math.pi * SPHERE_R ** 2, delta=1e-10 * A.sum())
+        e = f["d_ka"] * (A - f["d_area0"]) ** 2 + f["d_kp"] * (P - f["d_perim0"]) ** 2
+        pe = printed(run, "E")[0][0]
+        self.assertAlmostEqual(pe, e.sum(), delta=1e-11 * abs(pe))
+        np.testing.assert_allclose(f["c_c[5]"], e, rtol=1e-10, atol=1e-12)
+
+    def test_values_equal_to_the_types(self):
+        """d_ka, d_kp, d_perim0, d_area0 set to the types' quadratic values
+        give the types' forces and pe (1e-13)."""
+        _, data = sphere_data()
+        vals = {1: (0.02, SPHERE_A, 0.01, 3.7 * math.sqrt(SPHERE_A)),
+                2: (0.01, 0.9 * SPHERE_A, 0.015, 3.9 * math.sqrt(SPHERE_A))}
+        coeffs = "".join(f"pair_coeff {t} {t} quadratic {ka!r} {a0!r} {kp!r} {p0!r}\n"
+                         for t, (ka, a0, kp, p0) in vals.items()) + "pair_coeff 1 2 quadratic 0.1\n"
+        setv = "fix pc all property/atom d_ka d_kp d_perim0 d_area0\n"
+        for t, (ka, a0, kp, p0) in vals.items():
+            setv += (f"set type {t} d_ka {ka!r}\nset type {t} d_kp {kp!r}\n"
+                     f"set type {t} d_perim0 {p0!r}\nset type {t} d_area0 {a0!r}\n")
+        out = """thermo_style custom step pe
+thermo_modify norm no format float %.17g
+run 0
+print "E $(pe:%.17g)"
+write_dump all custom f.dump id fx fy fz modify format float %.17g sort id
+"""
+        a = self.run_lmp(sphere.head(SPHERE_R) + coeffs + out, files={"cells.data": data})
+        b = self.run_lmp(sphere.head(SPHERE_R) + coeffs + setv + out, files={"cells.data": data})
+        self.assertIn("replace the types'", b.stdout)
+        fa, fb = a.dump("f.dump")[0], b.dump("f.dump")[0]
+        scale = max(np.abs(fa[c]).max() for c in ("fx", "fy", "fz"))
+        self.assertGreater(scale, 1e-2)
+        for c in ("fx", "fy", "fz"):
+            np.testing.assert_allclose(fb[c], fa[c], rtol=0, atol=1e-13 * scale, err_msg=c)
+        ea, eb = printed(a, "E")[0][0], printed(b, "E")[0][0]
+        self.assertAlmostEqual(ea, eb, delta=1e-13 * abs(ea))
+        # and other values give another energy
+        c = self.run_lmp(sphere.head(SPHERE_R) + coeffs + PER_CELL_SPHERE + out,
+                         files={"cells.data": data})
+        self.assertGreater(abs(printed(c, "E")[0][0] - ea), 1e-4 * abs(ea))
 
 
 class HeterogeneousExample(LammpsTestCase):

@@ -9,9 +9,13 @@
 //   E = sum_i [ K_i/2 (A_i - A0_i)^2 + Gamma_i/2 P_i^2 ] + sum_junctions Lambda_IJ l_ij
 //
 // (tessera::Model unchanged: Tension::Cell counts each junction once per
-// cell, cell_area0 replaces the types' A0, quadratic parameters through
-// cell_type_from_quadratic / lambda_from_quadratic) with A_i the spherical
-// area, P_i the geodesic perimeter and l_ij the geodesic edge length.
+// cell, cell_area0 replaces the types' A0, cell_KA, cell_KP, cell_P0 replace
+// K, Gamma and the preferred perimeter cell by cell exactly as in the plane
+// (Model::cell_params: the cell's energy gains shift_c P_i), quadratic
+// parameters through cell_type_from_quadratic / lambda_from_quadratic) with
+// A_i the spherical area, P_i the geodesic perimeter and l_ij the geodesic
+// edge length.  Per-cell arrays are indexed like the points (all n_points
+// entries are read: every point is a cell).
 //
 // Input points are projected radially onto the sphere: point p stands for
 // c + R (p - c)/|p - c|.  Everything below (geometry, forces, virial) is of
@@ -96,18 +100,20 @@ struct SphereForceOutput {
   // dE/dR with the points' directions fixed (the work of inflating the
   // sphere; -dE/dR / (4 pi R^2) is a pressure).  Exact, since A scales as
   // R^2 and P, l as R:
-  //   R dE/dR = sum_i [ 2 K_i (A_i - A0_i) A_i + Gamma_i P_i^2 ] + E_junctions
-  // with E_junctions the tension term of E (linear in R).
+  //   R dE/dR = sum_i [ 2 K_i (A_i - A0_i) A_i + Gamma_i P_i^2 + shift_i P_i ] + E_junctions
+  // with E_junctions the tension term of E (linear in R) and shift_i the
+  // per-cell linear perimeter coefficient (0 without per-cell parameters).
   double dE_dR = 0.0;
 };
 
 // Energy and forces.  pts: the points given to tessellate_sphere (checked:
 // same count, same directions to 1e-12; the directions stored in t are used).
-// type: 0-based, n_points entries.  Forces F_p = -dE/dr_p on the projected
-// points, tangent to the sphere (E depends on the points only through their
-// directions, so there is no radial part: the constraint force keeping the
-// points on the sphere is not the model's), are *added* to f (stride
-// f_stride, n_points rows, 3 components).  cell_energy (optional, n_points)
+// type: 0-based, n_points entries (an Error on a type out of range, or on
+// a bad per-cell value: Model::validate_cells over all n_points).  Forces
+// F_p = -dE/dr_p on the projected points, tangent to the sphere (E depends
+// on the points only through their directions, so there is no radial part:
+// the constraint force keeping the points on the sphere is not the model's),
+// are *added* to f (stride f_stride, n_points rows, 3 components).  cell_energy (optional, n_points)
 // receives each cell's energy, junction terms weighted by
 // model.tension_weight().  cell_virial (optional, 9 per cell, order as
 // SphereForceOutput::virial) receives sum_p (r_p - r_i)_a F^(i)_p,b over the

@@ -430,9 +430,20 @@ write_dump all custom end.dump id x y z modify format float %.17g
 
 class Errors(LammpsTestCase):
     def test_dimension_2(self):
-        run = self.run_lmp("dimension 2\n" + head(5.0).replace("boundary f f f", "boundary p p p")
-                           + "pair_coeff * * 1 1 0.1 0\nrun 0\n",
-                           files={"cells.data": data_file(icosahedron(), 5.0, ntypes=1)}, ok=False)
+        # (a 2d box of its own: a current LAMMPS refuses a 2d data file whose
+        # z range does not straddle 0 before the pair style is read)
+        run = self.run_lmp(f"""dimension 2
+units lj
+atom_style dipole
+boundary p p p
+region box block -6 6 -6 6 -0.5 0.5
+create_box 1 box
+create_atoms 1 random 12 4821 NULL
+mass * 1.0
+pair_style vertex/voronoi 8.0 surface sphere 0 0 0 5.0
+pair_coeff * * 1 1 0.1 0
+run 0
+""", ok=False)
         self.assertLammpsError(run, "'surface sphere' needs 'dimension 3'")
 
     def test_sphere_outside_the_box(self):

@@ -37,7 +37,7 @@ class VertexSphere : public VertexModel {
   // each owned atom's index among them, and each one's local index (-1: not
   // on this rank).
   static constexpr int NPC = 4;
-  std::vector<double> xall, fall, eall, wbuf;
+  std::vector<double> xall, fall, eall;
   std::vector<double> pcall[NPC];
   bool has_pc[NPC] = {false, false, false, false};
   std::vector<int> typeall, owned, local;

@@ -241,7 +241,6 @@ write_dump all custom end.dump id xu yu zu mux muy muz modify format float %.17g
         self.assertGreater(e1 / e2, 4.2, f"errors {e1} {e2}: not second order")
 
     def check_divide(self, model):
-        d = dim_of(model)
         cases = [("rate 20.0", "random"), ("cycle 0.05 spread 0.01", "long"),
                  ("area 0.5", "short"), ("rate 20.0", "polarity")]
         for trigger, axis in cases:

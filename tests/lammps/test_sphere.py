@@ -95,9 +95,16 @@ def rotate(n, k, a):
 class Icosahedron(LammpsTestCase):
     """12 cells at an icosahedron's vertices: 12 regular pentagons of area
     4 pi R^2 / 12, perimeter 5 R theta (cos theta = sqrt(5)/3, the angle a
-    regular dodecahedron's edge subtends), energy from those, zero force."""
+    regular dodecahedron's edge subtends), energy from those, zero force;
+    on 1, 2 and 4 ranks."""
 
+    @nprocs(4)
     def test_pentagons(self):
+        for n in (1, 2, 4):
+            with self.subTest(ranks=n):
+                self.pentagons(n)
+
+    def pentagons(self, n):
         R, K, A0, G, L = 3.0, 1.0, 2.0, 0.1, -0.2
         script = head(R) + f"""pair_coeff * * {K} {A0} {G} {L}
 compute c all vertex/atom
@@ -108,7 +115,8 @@ thermo_modify norm no
 run 0
 print "E $(pe:%.17g)"
 """
-        run = self.run_lmp(script, files={"cells.data": data_file(icosahedron(), R, ntypes=1)})
+        run = self.run_lmp(script, nprocs=n,
+                           files={"cells.data": data_file(icosahedron(), R, ntypes=1)})
         f = run.dump("cells.dump")[0]
         A = 4 * math.pi * R * R / 12
         theta = math.acos(math.sqrt(5) / 3)
@@ -173,7 +181,13 @@ pair_coeff 2 2 quadratic 0.7 3.0 0.15 3.9
 pair_coeff 1 2 0.1
 """
 
+    @nprocs(4)
     def test_central_differences(self):
+        for n in (1, 2, 4):
+            with self.subTest(ranks=n):
+                self.central_differences(n)
+
+    def central_differences(self, n):
         R, h = self.R, 1e-5
         script = head(R) + self.coeffs + """thermo_style custom step pe
 thermo_modify norm no format float %.17g
@@ -197,7 +211,7 @@ undump d
                 p = C + R * u
                 script += f"set atom {atom} x {p[0]!r} y {p[1]!r} z {p[2]!r}\n"
                 cases.append((atom, k, t))
-        run = self.run_lmp(script, files={"cells.data": self.data})
+        run = self.run_lmp(script, nprocs=n, files={"cells.data": self.data})
         f = run.dump("f.dump")[0]
         F = np.column_stack([f["fx"], f["fy"], f["fz"]])
         r = positions(f) - C
@@ -432,7 +446,7 @@ class Errors(LammpsTestCase):
     def test_dimension_2(self):
         # (a 2d box of its own: a current LAMMPS refuses a 2d data file whose
         # z range does not straddle 0 before the pair style is read)
-        run = self.run_lmp(f"""dimension 2
+        run = self.run_lmp("""dimension 2
 units lj
 atom_style dipole
 boundary p p p

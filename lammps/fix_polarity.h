@@ -72,6 +72,7 @@ class FixPolarity : public Fix, public CoupledDof {
   // 3d: the field each polarity turns towards (tau, 3 per atom) at state_step.
   void field_3d(bigint state_step);
   void field_sphere(bigint state_step);    // cells on a sphere: transported neighbours
+  template <class Term> void for_each_neighbour(bigint state_step, Term &&term);
   void noise_3d(int i, double scale, bigint step, double *w) const;
   void rotate_3d(int i, const double *w);
 };

@@ -89,6 +89,25 @@ void FixPolarity::post_force_3d()
   }
 }
 
+/* Calls term(i, j) for every owned cell i and each of its Voronoi
+   neighbours j (contacts longer than 1e-9 of i's boundary) in the cells of
+   pair vertex/voronoi, which must be those of state_step. */
+
+template <class Term> void FixPolarity::for_each_neighbour(bigint state_step, Term &&term)
+{
+  const int nlocal = atom->nlocal;
+  const tessera::CellView &v = pair->cells();
+  const tessera::Contacts t = v.contacts();
+  if (pair->cells_step() != state_step || t.n_owned != nlocal)
+    error->one(FLERR,
+               "fix polarity: the tessellation of pair vertex/voronoi is from step {}, the "
+               "polarities need it for step {}",
+               pair->cells_step(), state_step);
+  for (int i = 0; i < nlocal; i++)
+    for (int f = t.offset[i]; f < t.offset[i + 1]; f++)
+      if (t.size[f] > 1e-9 * v.boundary(i)) term(i, t.neighbor[f]);
+}
+
 /* The field h_i = J_S sum_j n_j + J_G (n_i.g) g + J_V vhat_i of every
    local atom (tau, 3 per atom), from the unit polarities of owned and ghost
    atoms and the cells of state_step. */
@@ -110,21 +129,10 @@ void FixPolarity::field_3d(bigint state_step)
     field_sphere(state_step);
     return;
   }
-  if (params.J_S != 0.0) {
-    const tessera::CellView &v = pair->cells();
-    const tessera::Contacts t = v.contacts();
-    if (pair->cells_step() != state_step || t.n_owned != nlocal)
-      error->one(FLERR,
-                 "fix polarity: the tessellation of pair vertex/voronoi is from step {}, the "
-                 "polarities need it for step {}",
-                 pair->cells_step(), state_step);
-    for (int i = 0; i < nlocal; i++)
-      for (int f = t.offset[i]; f < t.offset[i + 1]; f++) {
-        if (!(t.size[f] > 1e-9 * v.boundary(i))) continue;    // Voronoi neighbours only
-        const int j = t.neighbor[f];
-        for (int d = 0; d < 3; d++) tau[3 * i + d] += params.J_S * unit[3 * j + d];
-      }
-  }
+  if (params.J_S != 0.0)
+    for_each_neighbour(state_step, [&](int i, int j) {
+      for (int d = 0; d < 3; d++) tau[3 * i + d] += params.J_S * unit[3 * j + d];
+    });
   const double g[3] = {std::cos(params.phi_G), std::sin(params.phi_G), 0.0};
   for (int i = 0; i < nlocal; i++) {
     const double *n = &unit[3 * i];
@@ -271,31 +279,20 @@ void FixPolarity::field_sphere(bigint state_step)
     n[1] = t.y / l;
     n[2] = t.z / l;
   }
-  if (params.J_S != 0.0) {
-    const tessera::CellView &v = pair->cells();
-    const tessera::Contacts t = v.contacts();
-    if (pair->cells_step() != state_step || t.n_owned != nlocal)
-      error->one(FLERR,
-                 "fix polarity: the tessellation of pair vertex/voronoi is from step {}, the "
-                 "polarities need it for step {}",
-                 pair->cells_step(), state_step);
-    for (int i = 0; i < nlocal; i++)
-      for (int f = t.offset[i]; f < t.offset[i + 1]; f++) {
-        if (!(t.size[f] > 1e-9 * v.boundary(i))) continue;    // Voronoi neighbours only
-        const int j = t.neighbor[f];
-        const double *nj = &unit[3 * j];
-        tessera::Vec3 m;
-        try {
-          m = tessera::sphere_transport(c, at(j), at(i), {nj[0], nj[1], nj[2]});
-        } catch (tessera::Error &e) {
-          error->one(FLERR, "fix polarity on the sphere, atoms {} and {}: {}", atom->tag[j],
-                     atom->tag[i], e.what());
-        }
-        tau[3 * i] += params.J_S * m.x;
-        tau[3 * i + 1] += params.J_S * m.y;
-        tau[3 * i + 2] += params.J_S * m.z;
+  if (params.J_S != 0.0)
+    for_each_neighbour(state_step, [&](int i, int j) {
+      const double *nj = &unit[3 * j];
+      tessera::Vec3 m;
+      try {
+        m = tessera::sphere_transport(c, at(j), at(i), {nj[0], nj[1], nj[2]});
+      } catch (tessera::Error &e) {
+        error->one(FLERR, "fix polarity on the sphere, atoms {} and {}: {}", atom->tag[j],
+                   atom->tag[i], e.what());
       }
-  }
+      tau[3 * i] += params.J_S * m.x;
+      tau[3 * i + 1] += params.J_S * m.y;
+      tau[3 * i + 2] += params.J_S * m.z;
+    });
   if (params.J_V != 0.0)
     for (int i = 0; i < nlocal; i++) {
       if (!has_v[i]) continue;

@@ -94,14 +94,10 @@ def frame_sphere_cells(atoms, local, compute=None):
 
 def frame_mesh_sphere(frame, cells, vectors, time=None):
     """A meshio.Mesh of one frame's polygons on the sphere with per-cell data."""
-    import meshio
+    from .vtk import cells_mesh, frame_columns, polygon_block
 
     n = len(cells)
-    data = {}
-    for name in frame.names:
-        col = np.asarray(frame[name])
-        if col.dtype.kind in "iuf" and len(col) == n:
-            data[name] = col
+    data = frame_columns(frame, n)
     data["area"] = cells.area
     data["perimeter"] = cells.perimeter
     data["shape_index"] = cells.shape_index
@@ -109,14 +105,5 @@ def frame_mesh_sphere(frame, cells, vectors, time=None):
     for vec, comps in vectors.items():
         if all(c in frame for c in comps):
             data[vec] = np.column_stack([np.asarray(frame[c], dtype=float) for c in comps])
-    sizes = cells.sides
-    offsets = np.concatenate([[0], np.cumsum(sizes)])
     points = np.vstack(cells.polygons) if n else np.zeros((0, 3))
-    blocks, cell_data = [], {name: [] for name in data}
-    for m in np.unique(sizes):
-        members = np.nonzero(sizes == m)[0]
-        blocks.append(("polygon", offsets[members][:, None] + np.arange(m)[None, :]))
-        for name, values in data.items():
-            cell_data[name].append(values[members])
-    field_data = {} if time is None else {"TIME": np.array([float(time)])}
-    return meshio.Mesh(points, blocks, cell_data=cell_data, field_data=field_data)
+    return cells_mesh(points, np.asarray(cells.sides, dtype=int), data, polygon_block, time)

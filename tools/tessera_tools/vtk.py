@@ -53,15 +53,42 @@ def _meshio():
     return meshio
 
 
-def frame_mesh(frame, tess, time=None):
-    """A meshio.Mesh of one frame's polygons with per-cell data (one cell block per polygon size)."""
-    meshio = _meshio()
-    n = len(tess)
+def frame_columns(frame, n):
+    """The frame's numeric per-atom columns (each of length n), by name."""
     data = {}
     for name in frame.names:
         col = np.asarray(frame[name])
         if col.dtype.kind in "iuf" and len(col) == n:
             data[name] = col
+    return data
+
+
+def cells_mesh(points, sizes, data, block, time=None):
+    """A meshio.Mesh with one cell block per number of corners (ascending, the order in which
+    meshio reads them back): block(members, m, offsets) gives the (type, connectivity) of the
+    cells ``members`` with m corners each, their corners stored from ``offsets[members]``;
+    ``data`` holds the per-cell arrays and ``time`` the TIME field."""
+    meshio = _meshio()
+    offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(int)
+    blocks, cell_data = [], {name: [] for name in data}
+    for m in np.unique(sizes):
+        members = np.nonzero(sizes == m)[0]
+        blocks.append(block(members, m, offsets))
+        for name, values in data.items():
+            cell_data[name].append(values[members])
+    field_data = {} if time is None else {"TIME": np.array([float(time)])}
+    return meshio.Mesh(points, blocks, cell_data=cell_data, field_data=field_data)
+
+
+def polygon_block(members, m, offsets):
+    """cells_mesh's block of polygons whose corners are stored one after another."""
+    return ("polygon", offsets[members][:, None] + np.arange(m)[None, :])
+
+
+def frame_mesh(frame, tess, time=None):
+    """A meshio.Mesh of one frame's polygons with per-cell data (one cell block per polygon size)."""
+    n = len(tess)
+    data = frame_columns(frame, n)
     data["area"] = tess.area
     data["perimeter"] = tess.perimeter
     data["shape_index"] = tess.shape_index
@@ -71,19 +98,10 @@ def frame_mesh(frame, tess, time=None):
             cols = [np.asarray(frame[c], dtype=float) if c in frame else np.zeros(n) for c in comps]
             data[vec] = np.column_stack(cols)
     sizes = np.array([len(p) for p in tess.polygons], dtype=int)
-    offsets = np.concatenate([[0], np.cumsum(sizes)])
-    points = np.zeros((offsets[-1], 3))
+    points = np.zeros((sizes.sum(), 3))
     if n:
         points[:, :2] = np.vstack(tess.polygons)
-    cells, cell_data = [], {name: [] for name in data}
-    for m in np.unique(sizes):
-        members = np.nonzero(sizes == m)[0]
-        conn = offsets[members][:, None] + np.arange(m)[None, :]
-        cells.append(("polygon", conn))
-        for name, values in data.items():
-            cell_data[name].append(values[members])
-    field_data = {} if time is None else {"TIME": np.array([float(time)])}
-    return meshio.Mesh(points, cells, cell_data=cell_data, field_data=field_data)
+    return cells_mesh(points, sizes, data, polygon_block, time)
 
 
 class Cells3d:
@@ -196,13 +214,8 @@ def frame_cells3d(atoms, local, compute=None):
 def frame_mesh3d(frame, cells, time=None):
     """A meshio.Mesh of one 3d frame: one polyhedron per cell (blocks by number of corners,
     ascending, the order in which meshio reads them back) with per-cell data."""
-    meshio = _meshio()
     n = len(cells)
-    data = {}
-    for name in frame.names:
-        col = np.asarray(frame[name])
-        if col.dtype.kind in "iuf" and len(col) == n:
-            data[name] = col
+    data = frame_columns(frame, n)
     data["volume"] = cells.volume
     data["surface"] = cells.surface
     data["faces"] = cells.nfaces
@@ -210,16 +223,12 @@ def frame_mesh3d(frame, cells, time=None):
         if all(c in frame for c in comps):
             data[vec] = np.column_stack([np.asarray(frame[c], dtype=float) for c in comps])
     sizes = np.array([len(v) for v in cells.vertices], dtype=int)
-    offsets = np.concatenate([[0], np.cumsum(sizes)])
     points = np.vstack(cells.vertices) if n else np.zeros((0, 3))
-    blocks, cell_data = [], {name: [] for name in data}
-    for m in np.unique(sizes):
-        members = np.nonzero(sizes == m)[0]
-        blocks.append((f"polyhedron{m}", [[offsets[i] + f for f in cells.faces[i]] for i in members]))
-        for name, values in data.items():
-            cell_data[name].append(values[members])
-    field_data = {} if time is None else {"TIME": np.array([float(time)])}
-    return meshio.Mesh(points, blocks, cell_data=cell_data, field_data=field_data)
+
+    def polyhedra(members, m, offsets):
+        return (f"polyhedron{m}", [[offsets[i] + f for f in cells.faces[i]] for i in members])
+
+    return cells_mesh(points, sizes, data, polyhedra, time)
 
 
 def _frame_time(frame, dt):

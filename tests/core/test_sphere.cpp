@@ -8,6 +8,7 @@
 #include "tessera/energy.h"
 #include "tessera/sphere.h"
 #include "tessera/tessellation.h"
+#include "sphere_test_util.h"
 #include "test_util.h"
 
 #include <gmock/gmock.h>
@@ -25,21 +26,7 @@ namespace {
 using tessera::Vec3;
 using testutil::Rng;
 
-constexpr double kPi = 3.14159265358979323846;
-
-struct W {
-  double x, y, z;
-};
-W operator+(W a, W b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-W operator-(W a, W b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-W operator*(double s, W a) { return {s * a.x, s * a.y, s * a.z}; }
-double dot(W a, W b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-W cross(W a, W b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double norm(W a) { return std::sqrt(dot(a, a)); }
-W unit(W a) { return (1.0 / norm(a)) * a; }
-W w3(const Vec3 &v) { return {v.x, v.y, v.z}; }
-Vec3 v3(W a) { return Vec3{a.x, a.y, a.z}; }
-double angle(W a, W b) { return std::atan2(norm(cross(a, b)), dot(a, b)); }
+using namespace spheretest;
 
 // A random rotation (from a random unit quaternion).
 struct Rotation {

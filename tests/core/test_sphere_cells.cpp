@@ -7,6 +7,7 @@
 // the cube, and the caller's index map with missing points.
 #include "tessera/sphere.h"
 #include "tessera/sphere_cells.h"
+#include "sphere_test_util.h"
 #include "test_util.h"
 
 #include <gtest/gtest.h>
@@ -20,19 +21,7 @@ namespace {
 using tessera::Vec3;
 using testutil::Rng;
 
-constexpr double kPi = 3.14159265358979323846;
-
-struct W {
-  double x, y, z;
-};
-W operator+(W a, W b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-W operator-(W a, W b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-W operator*(double s, W a) { return {s * a.x, s * a.y, s * a.z}; }
-double dot(W a, W b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-W cross(W a, W b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double norm(W a) { return std::sqrt(dot(a, a)); }
-W unit(W a) { return (1.0 / norm(a)) * a; }
-W w3(const Vec3 &v) { return {v.x, v.y, v.z}; }
+using namespace spheretest;
 
 std::vector<double> on_sphere(const Vec3 &c, double R, const std::vector<W> &dirs) {
   std::vector<double> xyz;

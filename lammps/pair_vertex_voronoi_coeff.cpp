@@ -34,9 +34,16 @@ void PairVertexVoronoi::settings(int narg, char **arg)
                "cell diameters",
                arg[0]);
   int iarg = 1;
-  // A pair_style line without 'surface' puts the cells back in the plane
-  // (or in space), also when it repeats the style of a sphere.
+  // LAMMPS calls settings() again on the same object when a script repeats
+  // 'pair_style vertex/voronoi': every keyword not on the new line takes its
+  // default (a repeated line without 'radius' gives confluent cells again,
+  // without 'surface' cells in the plane or in space), as for a new style.
   sphere_on = 0;
+  tension = tessera::Tension::Edge;
+  incremental = 1;
+  grow = 1;
+  reference_every = 0;
+  radius = 0.0;
   while (iarg < narg) {
     if (strcmp(arg[iarg], "tension") == 0) {
       if (iarg + 2 > narg)

@@ -271,5 +271,33 @@ write_restart r.restart
         self.assertLammpsError(run, "is too small for this configuration")
 
 
+class RepeatedPairStyle(LammpsTestCase):
+    """A repeated pair_style line starts from the defaults: keywords of the
+    earlier line that the new one does not give are gone (LAMMPS calls
+    settings() again on the same style object)."""
+
+    def test_keywords_reset(self):
+        run = self.run_lmp(two_type_tissue() + """
+pair_style vertex/voronoi 3.0 tension cell incremental no grow no reference 2 radius 0.5
+pair_coeff * * 1.0 1.0 0.1 -0.5
+thermo_style custom step pe
+thermo_modify format float %.15g
+run 0
+pair_style vertex/voronoi 3.0
+pair_coeff * * 1.0 1.0 0.1 -0.5
+run 0
+""")
+        settings = [l for l in run.stdout.splitlines() if l.startswith("pair_style vertex/voronoi: cutoff")]
+        self.assertEqual(len(settings), 2, run.stdout)
+        self.assertIn("radius 0.5 (finite cells)", settings[0])
+        self.assertIn("cutoff 3 tension edge incremental yes grow yes reference 0", settings[1])
+        rows = thermo(run)
+        # the second run: confluent hexagons of area 1, tension edge
+        self.assertAlmostEqual(rows[-1][1], hex_energy_per_cell(1.0, 1.0, 0.1, -0.5, -0.5, -0.5),
+                               delta=1e-12)
+        # the first: discs of radius 0.5 cut the hexagons (circumradius 0.62), another energy
+        self.assertGreater(abs(rows[0][1] - rows[-1][1]), 1e-3)
+
+
 if __name__ == "__main__":
     lmptest.main()

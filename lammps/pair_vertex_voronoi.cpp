@@ -575,11 +575,16 @@ bool PairVertexVoronoi::ghost_shell_complete(double need_local)
                "pair_style vertex/voronoi: cutoff {} is far too small: some cells have no "
                "complete {} of neighbours; use a cutoff of at least 2.5 cell diameters",
                cut_global, domain->dimension == 3 ? "shell" : "ring");
+  // On the sphere every rank holds every cell; what it needs within the
+  // ghost shell are the owned cells' neighbours, not circumspheres.
+  const char *why = sphere_on ? "a neighbour of a cell of this rank lies past the ghost atoms"
+                    : domain->dimension == 3
+                        ? "a Voronoi vertex's circumsphere reaches past the ghost atoms"
+                        : "a Voronoi vertex's circumcircle reaches past the ghost atoms";
   error->all(FLERR,
              "pair_style vertex/voronoi: cutoff {:.6g} is too small for this configuration "
-             "(a Voronoi vertex's {} reaches past the ghost atoms); use "
-             "'pair_style vertex/voronoi {:.3g}' or larger",
-             cut_global, domain->dimension == 3 ? "circumsphere" : "circumcircle", needed);
+             "({}); use 'pair_style vertex/voronoi {:.3g}' or larger",
+             cut_global, why, needed);
   return true;
 }
 

@@ -484,6 +484,14 @@ run 0
                                files={"cells.data": data_file(icosahedron(), 5.0, ntypes=1)}, ok=False)
             self.assertLammpsError(run, msg)
 
+    @nprocs(2)
+    def test_cutoff_too_small_names_the_neighbours(self):
+        # grow no and a cutoff below the cell spacing: the message says what
+        # the sphere needs (the cells' neighbours), not a circumsphere
+        run = self.run_lmp(head(8.0, cut=0.8, extra=" grow no") + tissue_coeffs(1.0) + "run 0\n",
+                           files={"cells.data": tissue(200, 8.0)}, nprocs=2, ok=False)
+        self.assertLammpsError(run, "a neighbour of a cell of this rank lies past the ghost atoms")
+
 
 if __name__ == "__main__":
     lmptest.main()

@@ -92,7 +92,10 @@ struct Box {
 // from vertex v to vertex v+1 (cyclically) separates c from point
 // cell_neighbor[k] and has length edge_length[k].  Co-circular points give
 // several triangles with one circumcentre: those edges have length 0 and are
-// kept, so the polygon's topology always matches the triangulation.
+// kept, so the polygon's topology always matches the triangulation.  The
+// triangles of such a multifold vertex (a group, below) all hold the group's
+// centre in `vertices` (the mean of their circumcentres, which differ by
+// round-off), not each its own circumcentre.
 struct Tessellation {
   int n_points = 0;
   int n_owned = 0;

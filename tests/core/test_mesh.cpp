@@ -4,6 +4,7 @@
 // triangulation (Mesh::build, CGAL) on long random walks with many neighbour
 // exchanges, on moving convex hulls, and through degenerate lattices.
 
+#include "test_util.h"
 #include "tessera/energy.h"
 #include "tessera/mesh.h"
 
@@ -22,16 +23,7 @@ namespace {
 using tessera::Mesh;
 using tessera::Points;
 using tessera::Tessellation;
-
-std::set<std::array<int, 3>> triangle_set(const Tessellation &t) {
-  std::set<std::array<int, 3>> s;
-  for (auto tri : t.triangles) {
-    // canonical rotation: smallest index first, orientation kept
-    const int k = static_cast<int>(std::min_element(tri.begin(), tri.end()) - tri.begin());
-    s.insert({tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]});
-  }
-  return s;
-}
+using testutil::triangle_set;
 
 // Points in a periodic box plus their images within a margin; move() keeps
 // images rigidly attached to their owners.

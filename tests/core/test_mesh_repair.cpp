@@ -10,6 +10,7 @@
 // unique) or, with images and a region of interest, the same owned cells;
 // advance() must give update() + cells() bit for bit.
 
+#include "test_util.h"
 #include "tessera/energy.h"
 #include "tessera/mesh.h"
 
@@ -29,15 +30,7 @@ namespace {
 using tessera::Mesh;
 using tessera::Points;
 using tessera::Tessellation;
-
-std::set<std::array<int, 3>> triangle_set(const Tessellation &t) {
-  std::set<std::array<int, 3>> s;
-  for (auto tri : t.triangles) {
-    const int k = static_cast<int>(std::min_element(tri.begin(), tri.end()) - tri.begin());
-    s.insert({tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]});
-  }
-  return s;
-}
+using testutil::triangle_set;
 
 // Folded triangles (clockwise or flat at pts), counting only those with a
 // corner below `below` (default: all).

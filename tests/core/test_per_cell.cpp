@@ -7,6 +7,7 @@
 // finite 2D cells, 3D polyhedra; the sphere in test_per_cell_sphere.cpp),
 // the Hessian against central differences of the forces, and per-cell
 // values equal to the types' giving the types' forces.
+#include "per_cell_test_util.h"
 #include "test_util.h"
 #include "tessera/energy.h"
 #include "tessera/finite.h"
@@ -21,44 +22,11 @@
 #include <vector>
 
 using testutil::Config;
+using testutil::PerCell;
 using testutil::Rng;
+using testutil::two_types;
 
 namespace {
-
-// Two types with heterotypic tension, K, Gamma > 0, Lambda < 0.
-tessera::Model two_types(uint64_t seed, tessera::Tension tension) {
-  Rng rng(seed);
-  tessera::Model m(2);
-  m.tension = tension;
-  for (auto &t : m.types) {
-    t.K = rng.uniform(0.5, 2.0);
-    t.A0 = rng.uniform(0.8, 1.2);
-    t.Gamma = rng.uniform(0.1, 0.4);
-  }
-  m.set_lambda(0, 0, -rng.uniform(0.5, 1.5));
-  m.set_lambda(1, 1, -rng.uniform(0.5, 1.5));
-  m.set_lambda(0, 1, rng.uniform(-0.8, 0.3));
-  return m;
-}
-
-struct PerCell {
-  std::vector<double> ka, kp, p0, a0;
-  void draw(Rng &rng, int n, double p0_lo, double p0_hi) {
-    for (int i = 0; i < n; ++i) {
-      ka.push_back(rng.uniform(0.3, 1.5));
-      kp.push_back(rng.uniform(0.02, 0.3));
-      p0.push_back(rng.uniform(p0_lo, p0_hi));
-      a0.push_back(rng.uniform(0.7, 1.3));
-    }
-  }
-  // which: bit 0 KA, 1 KP, 2 P0, 3 A0
-  void bind(tessera::Model &m, int which) const {
-    m.cell_KA = which & 1 ? ka.data() : nullptr;
-    m.cell_KP = which & 2 ? kp.data() : nullptr;
-    m.cell_P0 = which & 4 ? p0.data() : nullptr;
-    m.cell_area0 = which & 8 ? a0.data() : nullptr;
-  }
-};
 
 void wrap2(const tessera::Box &box, double &x, double &y) {
   const double lx = box.length(0), ly = box.length(1);

@@ -7,6 +7,7 @@
 // the energy along geodesics, dE/dR against a central difference of the
 // radius, per-cell values equal to the types' giving the types' forces, and
 // bad values named.
+#include "per_cell_test_util.h"
 #include "test_util.h"
 #include "tessera/energy.h"
 #include "tessera/sphere.h"
@@ -18,7 +19,9 @@
 #include <string>
 #include <vector>
 
+using testutil::PerCell;
 using testutil::Rng;
+using testutil::two_types;
 
 namespace {
 
@@ -32,34 +35,6 @@ D3 operator*(double s, D3 a) { return {s * a.x, s * a.y, s * a.z}; }
 double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 D3 unit(D3 a) { return (1.0 / std::sqrt(dot(a, a))) * a; }
-
-// Two types with heterotypic tension, K, Gamma > 0, Lambda < 0 (as the
-// planar per-cell tests), preferred areas near the cells' mean area 1.
-tessera::Model two_types(uint64_t seed, tessera::Tension tension) {
-  Rng rng(seed);
-  tessera::Model m(2);
-  m.tension = tension;
-  for (auto &t : m.types) {
-    t.K = rng.uniform(0.5, 2.0);
-    t.A0 = rng.uniform(0.8, 1.2);
-    t.Gamma = rng.uniform(0.1, 0.4);
-  }
-  m.set_lambda(0, 0, -rng.uniform(0.5, 1.5));
-  m.set_lambda(1, 1, -rng.uniform(0.5, 1.5));
-  m.set_lambda(0, 1, rng.uniform(-0.8, 0.3));
-  return m;
-}
-
-struct PerCell {
-  std::vector<double> ka, kp, p0, a0;
-  // which: bit 0 KA, 1 KP, 2 P0, 3 A0
-  void bind(tessera::Model &m, int which) const {
-    m.cell_KA = which & 1 ? ka.data() : nullptr;
-    m.cell_KP = which & 2 ? kp.data() : nullptr;
-    m.cell_P0 = which & 4 ? p0.data() : nullptr;
-    m.cell_area0 = which & 8 ? a0.data() : nullptr;
-  }
-};
 
 // n random cells on a sphere of mean cell area 1, off-centre, points off
 // the sphere (they are projected), two types.
@@ -106,12 +81,7 @@ struct Cells {
 
 PerCell random_values(Rng &rng, int n) {
   PerCell pc;
-  for (int i = 0; i < n; ++i) {
-    pc.ka.push_back(rng.uniform(0.3, 1.5));
-    pc.kp.push_back(rng.uniform(0.02, 0.3));
-    pc.p0.push_back(rng.uniform(3.3, 4.2));
-    pc.a0.push_back(rng.uniform(0.7, 1.3));
-  }
+  pc.draw(rng, n, 3.3, 4.2);
   return pc;
 }
 

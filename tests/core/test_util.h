@@ -9,10 +9,12 @@
 #include "tessera/tessellation.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -194,6 +196,17 @@ inline double max_abs(const std::vector<double> &v) {
   double m = 0;
   for (double x : v) m = std::max(m, std::abs(x));
   return m;
+}
+
+// The triangles of a tessellation as a set, each rotated to start at its
+// smallest index (orientation kept): equal sets are the same triangulation.
+inline std::set<std::array<int, 3>> triangle_set(const tessera::Tessellation &t) {
+  std::set<std::array<int, 3>> s;
+  for (auto tri : t.triangles) {
+    const int k = static_cast<int>(std::min_element(tri.begin(), tri.end()) - tri.begin());
+    s.insert({tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]});
+  }
+  return s;
 }
 
 }  // namespace testutil

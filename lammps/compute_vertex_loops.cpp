@@ -60,10 +60,13 @@ ComputeVertexLoops::ComputeVertexLoops(LAMMPS *lmp, int narg, char **arg) :
                id, group->names[igroup]);
   if (atom->tag_enable == 0)
     error->all(FLERR, "compute vertex/loops requires atom IDs (atom_modify id yes)");
-  if (domain->dimension != 2)
+  if (domain->dimension != 2) {
+    auto *p = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+    if (p && p->on_sphere()) sphere_error();
     error->all(FLERR,
                "compute vertex/loops is for 2d finite cells; a 3d tissue has no free boundary "
-               "loops");
+               "loops (nor have cells on a sphere)");
+  }
 
   local_flag = 1;
   size_local_rows = 0;
@@ -89,11 +92,21 @@ void ComputeVertexLoops::init()
                "compute vertex/loops {} reads the cells of pair_style vertex/voronoi, but the "
                "pair style is '{}'; define 'pair_style vertex/voronoi CUT radius r'",
                id, force->pair_style ? force->pair_style : "none");
+  // (again here: the pair style may have changed since the compute was defined)
+  if (pair->on_sphere()) sphere_error();
   if (!(pair->finite_radius() > 0.0))
     error->all(FLERR,
                "compute vertex/loops {} needs finite cells (pair_style vertex/voronoi CUT radius "
                "r): a confluent tissue has no free boundary",
                id);
+}
+
+void ComputeVertexLoops::sphere_error()
+{
+  error->all(FLERR,
+             "compute vertex/loops {}: cells on a sphere (surface sphere) close the surface, so "
+             "there is no free boundary to follow",
+             id);
 }
 
 /* The loops of this step's cells, once per pair computation. */

@@ -35,6 +35,7 @@ class ComputeVertexLoops : public Compute {
   int warned;
   std::vector<double> table;    // the loops, 7 values each (every rank)
   void find_loops();
+  void sphere_error();    // stops: a sphere has no free boundary
 };
 
 }    // namespace LAMMPS_NS

@@ -532,6 +532,35 @@ print "R $(c_r1[2]) $(c_r2[2]) $(c_r3[2])"
         self.assertLessEqual(r2, r3)
         self.assertGreater(r3, 0)
 
+    def check_loops(self, model):
+        # compute vertex/loops after a few Brownian steps: the loops' areas
+        # against the cells' (compute vertex/atom): in an open box the outer
+        # loops less the holes enclose exactly the cells; in a periodic box
+        # the cells and the holes tile the box.
+        script = model_script(model) + """fix b all brownian 1.0 1 gamma_t 1.0 rng none
+compute c all vertex/atom
+compute a all reduce sum c_c[1]
+compute l all vertex/loops
+timestep 0.005
+thermo_style custom step pe c_a c_l[2]
+run 5
+dump d all local 1 loops.dump c_l[1] c_l[2] c_l[3] c_l[4] c_l[5] c_l[6] c_l[7]
+dump_modify d format float %.17g
+run 0
+print "A $(c_a:%.17g) $(vol:%.17g) $(c_l[2]:%.17g)"
+"""
+        run = self.run_lmp(script)
+        cells, box, holes = printed(run, "A")[0]
+        rows = local_rows(run, "loops.dump")[-1]
+        kind, area = rows[:, 6], rows[:, 1]
+        self.assertAlmostEqual(area[kind == 0].sum(), holes, delta=1e-12 * box)
+        if model == "finite_open":
+            self.assertGreaterEqual((kind == 1).sum(), 1)
+            self.assertAlmostEqual(area[kind == 1].sum() - holes, cells, delta=1e-9 * cells)
+        else:
+            self.assertGreater(holes, 0.0)    # r below the hexagons' circumradius: gaps
+            self.assertAlmostEqual(cells + holes, box, delta=1e-9 * box)
+
     def check_deposit(self, model):
         d = dim_of(model)
         region = ("region ins block 1.5 2.5 0.5 1.5 0.5 1.5 units box" if d == 3 else

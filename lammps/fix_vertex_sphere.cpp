@@ -28,7 +28,7 @@ Fix *FixVertexSphere::creator(LAMMPS *lmp, int narg, char **arg)
 
 int FixVertexSphere::setmask()
 {
-  return POST_INTEGRATE | PRE_EXCHANGE | END_OF_STEP;
+  return POST_INTEGRATE | PRE_EXCHANGE | END_OF_STEP | MIN_PRE_EXCHANGE | MIN_PRE_FORCE;
 }
 
 void FixVertexSphere::project_one(const double *c, double R, double *x, double *mu,

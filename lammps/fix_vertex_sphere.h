@@ -32,7 +32,12 @@ class PairVertexVoronoi;
    parallel transport along the great circle (second-order accurate, where
    a projection onto the new tangent plane would turn it by O(step^2)).
    With a radius given by a variable the cells follow the sphere as it
-   grows or shrinks. */
+   grows or shrinks.  During an energy minimisation (minimize) the owned
+   atoms are put back on the sphere at its setup and before every force
+   evaluation (min_pre_force: the minimisers move them along the tangent
+   forces, off the sphere at second order), so the minimum found is on the
+   sphere; the geometry uses the owned atoms gathered by the pair style, not
+   the ghosts' positions. */
 
 class FixVertexSphere : public Fix {
  public:
@@ -41,6 +46,8 @@ class FixVertexSphere : public Fix {
   void setup_pre_exchange() override { project(false); }
   void pre_exchange() override { project(false); }
   void post_integrate() override { project(true); }
+  void min_pre_exchange() override { project(false); }
+  void min_pre_force(int) override { project(false); }
   void setup(int) override { record(); }
   void end_of_step() override { record(); }
   PairVertexVoronoi *pair = nullptr;

@@ -561,6 +561,32 @@ print "A $(c_a:%.17g) $(vol:%.17g) $(c_l[2]:%.17g)"
             self.assertGreater(holes, 0.0)    # r below the hexagons' circumradius: gaps
             self.assertAlmostEqual(cells + holes, box, delta=1e-9 * box)
 
+    def check_minimize(self, model):
+        # minimize (FIRE): pe falls, the minimiser's last energy is the energy
+        # of the final positions (a fresh run 0 gives it again), and on the
+        # sphere the atoms stay on it.
+        script = model_script(model) + f"""variable r atom sqrt((x-{SPHERE_C})^2+(y-{SPHERE_C})^2+(z-{SPHERE_C})^2)
+compute rmin all reduce min v_r
+compute rmax all reduce max v_r
+thermo_style custom step pe fnorm c_rmin c_rmax
+run 0
+print "E0 $(pe:%.17g)"
+min_style fire
+minimize 0 1e-10 300 3000
+print "E1 $(pe:%.17g) $(c_rmin:%.17g) $(c_rmax:%.17g)"
+run 0
+print "E2 $(pe:%.17g)"
+"""
+        run = self.run_lmp(script)
+        e0 = printed(run, "E0")[0][0]
+        e1, rmin, rmax = printed(run, "E1")[0]
+        e2 = printed(run, "E2")[0][0]
+        self.assertLess(e1, e0)
+        self.assertAlmostEqual(e1, e2, delta=1e-12 * abs(e0))
+        if model == "sphere":
+            self.assertAlmostEqual(rmin, SPHERE_R, delta=1e-12 * SPHERE_R)
+            self.assertAlmostEqual(rmax, SPHERE_R, delta=1e-12 * SPHERE_R)
+
     def check_deposit(self, model):
         d = dim_of(model)
         region = ("region ins block 1.5 2.5 0.5 1.5 0.5 1.5 units box" if d == 3 else

@@ -168,9 +168,13 @@ bool Vertex3d::tessellate()
   // (tessera::Mesh3, the same cells as a rebuild); after a rebuild of the
   // lists (atoms exchanged or sorted, a new run) it is built from scratch.
   // The repaired mesh is certified inside the sub-domain's bounding box grown
-  // by 0.6 of the ghost shell, where the owned cells' circumspheres lie.
+  // by 0.8 of the ghost shell, where the owned cells' circumspheres lie.  (At
+  // 0.6 a relaxing random start rebuilt on every step: some owned
+  // circumsphere reached past it; at 0.8 the repair kept the mesh on all but
+  // a few steps, and at 0.95 the tetrahedra near the ghost shell's hull made
+  // it fail more often.)
   const tessera::Region3 sub = subdomain();
-  const double w = pair->ghost_width(), wi = 0.6 * w;
+  const double w = pair->ghost_width(), wi = 0.8 * w;
   double lo[3], hi[3];
   for (int d = 0; d < 3; d++) {
     // Bounding box of the parallelepiped o + s a + t b + u c.

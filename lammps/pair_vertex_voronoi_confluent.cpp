@@ -81,8 +81,10 @@ bool VertexConfluent::tessellate()
   // The updated mesh is certified inside a smaller region: thin triangles on
   // the hull of the ghost shell fold over often, and outside this region
   // they are frozen rather than forcing a rebuild.  Owned cells' circumdisks
-  // reach about one cell beyond the sub-domain, well inside it.
-  const double wi = 0.6 * w;
+  // reach about one cell beyond the sub-domain, well inside it; from a
+  // disordered start some reach farther (at 0.6 of the ghost width half the
+  // rebuilds of the first steps were such cells, at 0.8 almost none).
+  const double wi = 0.8 * w;
   double lo_inc[2], hi_inc[2];
   sub.bounding_box(wi, lo_inc, hi_inc);
 

@@ -285,9 +285,7 @@ std::size_t Mesh3::memory_bytes() const {
                            stack_.capacity() + pending_.capacity() + tmap_.capacity() +
                            tused_.capacity() + bfs_.capacity() +
                            3 * undo_.capacity() + dirty_list_.capacity() + c_off_.capacity() +
-                           c_nb_.capacity() + c_foff_.capacity() + c_tet_.capacity() +
-                           nx_off_.capacity() + nx_nb_.capacity() + nx_foff_.capacity() +
-                           nx_tet_.capacity();
+                           c_nb_.capacity() + c_foff_.capacity() + c_tet_.capacity();
   return ints * sizeof(int) + skip_.capacity() + dirty_.capacity() + code_.capacity() * sizeof(unsigned short) +
          (prev_.capacity() + mid_.capacity()) * sizeof(double) +
          (tmark_.capacity() + pmark_.capacity()) * sizeof(unsigned);

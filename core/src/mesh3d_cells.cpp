@@ -131,8 +131,9 @@ void Mesh3::next_stamp() const {
 }
 
 // The faces of owned cell i (neighbour, ring of mesh tetrahedra) appended to
-// the next cache; false if the cell is unbounded.
-bool Mesh3::walk_cell(int i, const long *ids) const {
+// t's face arrays (the rings in mesh numbering until cells() renumbers
+// them); false if the cell is unbounded.
+bool Mesh3::walk_cell(int i, const long *ids, Tessellation3 &t) const {
   const int n = n_points_;
   next_stamp();
   const unsigned st = stamp_;
@@ -172,7 +173,7 @@ bool Mesh3::walk_cell(int i, const long *ids) const {
       // counter-clockwise about x_j - x_i.
       int cur = m, va = tv_[4 * m + la], vb = tv_[4 * m + lb];
       do {
-        nx_tet_.push_back(cur);
+        t.face_vertex.push_back(cur);
         int sa = 0;
         while (tv_[4 * cur + sa] != va) ++sa;
         const int nx = tn_[4 * cur + sa];
@@ -185,8 +186,8 @@ bool Mesh3::walk_cell(int i, const long *ids) const {
         vb = vc;
         cur = nx;
       } while (cur != m);
-      nx_nb_.push_back(j);
-      nx_foff_.push_back(static_cast<int>(nx_tet_.size()));
+      t.face_neighbor.push_back(j);
+      t.face_offset.push_back(static_cast<int>(t.face_vertex.size()));
     }
   }
   return true;
@@ -213,35 +214,41 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
     }
   } reset{*this};
 
-  // Pass 1, topology: the faces and rings of every owned cell in mesh
-  // numbering (nx_*).  A cell whose star no flip touched since the last
-  // cells() keeps its faces and rings; the others walk their star again.
+  // Pass 1, topology: the faces and rings of every owned cell, written into
+  // t with the rings in mesh numbering.  A cell whose star no flip touched
+  // since the last cells() keeps its faces and rings (from the cache c_*);
+  // the others walk their star again.
   const bool reuse = cache_ok_ && cache_owned_ == n_owned;
-  nx_off_.assign(1, 0);
-  nx_nb_.clear();
-  nx_foff_.assign(1, 0);
-  nx_tet_.clear();
-  if (nx_nb_.capacity() < c_nb_.size()) nx_nb_.reserve(c_nb_.size() + c_nb_.size() / 32);
-  if (nx_foff_.capacity() < c_foff_.size()) nx_foff_.reserve(c_foff_.size() + c_foff_.size() / 32);
-  if (nx_tet_.capacity() < c_tet_.size()) nx_tet_.reserve(c_tet_.size() + c_tet_.size() / 32);
+  t.cell_offset.assign(1, 0);
+  t.face_neighbor.clear();
+  t.face_offset.assign(1, 0);
+  t.face_vertex.clear();
+  auto room = [](std::vector<int> &v, size_t n) {
+    if (v.capacity() < n) v.reserve(n + n / 32);
+  };
+  room(t.cell_offset, static_cast<size_t>(n_owned) + 1);
+  room(t.face_neighbor, c_nb_.size());
+  room(t.face_offset, c_foff_.size());
+  room(t.face_vertex, c_tet_.size());
   for (int i = 0; i < n_owned; ++i) {
     if (reuse && !dirty_[i] && c_off_[i + 1] > c_off_[i]) {
       const int f0 = c_off_[i], f1 = c_off_[i + 1];
-      const int base = static_cast<int>(nx_tet_.size()) - c_foff_[f0];
-      const size_t nf = nx_nb_.size();
-      nx_nb_.resize(nf + (f1 - f0));
-      nx_foff_.resize(nf + 1 + (f1 - f0));
+      const int base = static_cast<int>(t.face_vertex.size()) - c_foff_[f0];
+      const size_t nf = t.face_neighbor.size();
+      t.face_neighbor.resize(nf + (f1 - f0));
+      t.face_offset.resize(nf + 1 + (f1 - f0));
       for (int f = f0; f < f1; ++f) {
-        nx_nb_[nf + (f - f0)] = c_nb_[f];
-        nx_foff_[nf + 1 + (f - f0)] = c_foff_[f + 1] + base;
+        t.face_neighbor[nf + (f - f0)] = c_nb_[f];
+        t.face_offset[nf + 1 + (f - f0)] = c_foff_[f + 1] + base;
       }
-      nx_tet_.insert(nx_tet_.end(), c_tet_.begin() + c_foff_[f0], c_tet_.begin() + c_foff_[f1]);
+      t.face_vertex.insert(t.face_vertex.end(), c_tet_.begin() + c_foff_[f0],
+                           c_tet_.begin() + c_foff_[f1]);
     } else {
-      const size_t nf = nx_nb_.size(), nr = nx_tet_.size();
-      if (!walk_cell(i, ids)) {
-        nx_nb_.resize(nf);
-        nx_foff_.resize(nf + 1);
-        nx_tet_.resize(nr);
+      const size_t nf = t.face_neighbor.size(), nr = t.face_vertex.size();
+      if (!walk_cell(i, ids, t)) {
+        t.face_neighbor.resize(nf);
+        t.face_offset.resize(nf + 1);
+        t.face_vertex.resize(nr);
         if (throw_if_unbounded) {
           throw Error("tessera: the cell of " + point_name(i, ids) +
                       " is unbounded (on the convex hull): the ghost shell is missing");
@@ -249,23 +256,29 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
         t.unbounded_cell = i;
       }
     }
-    nx_off_.push_back(static_cast<int>(nx_nb_.size()));
+    t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
   }
+  // (the first call's arrays grew by doubling: give the slack back)
+  trim(t.face_neighbor);
+  trim(t.face_offset);
+  trim(t.face_vertex);
+  // The cache for the next call: this topology in mesh numbering (one copy
+  // beside t's; an Error below leaves it invalid, and the next call walks
+  // every cell).
+  cache_ok_ = false;
+  c_off_.assign(t.cell_offset.begin(), t.cell_offset.end());
+  c_nb_.assign(t.face_neighbor.begin(), t.face_neighbor.end());
+  c_foff_.assign(t.face_offset.begin(), t.face_offset.end());
+  c_tet_.assign(t.face_vertex.begin(), t.face_vertex.end());
 
-  // Pass 2: number the tetrahedra of the rings in order of first use (as
-  // before: the Tessellation3's numbering), and the polygons in that
-  // numbering.  The faces are nx_*'s, in the same order.
-  const size_t n_faces = nx_nb_.size(), n_ring = nx_tet_.size();
-  t.cell_offset.assign(nx_off_.begin(), nx_off_.end());
-  t.face_neighbor.assign(nx_nb_.begin(), nx_nb_.end());
-  t.face_offset.assign(nx_foff_.begin(), nx_foff_.end());
+  // Pass 2: number the tetrahedra of the rings in order of first use (the
+  // Tessellation3's numbering), and the polygons in that numbering, in place.
+  const size_t n_faces = t.face_neighbor.size(), n_ring = t.face_vertex.size();
   fit(t.face_area, n_faces);
-  fit(t.face_vertex, n_ring);
   int *fv = t.face_vertex.data();
-  const int *ring = nx_tet_.data();
   int n_tet = 0;
   for (size_t r = 0; r < n_ring; ++r) {
-    const int m = ring[r];
+    const int m = fv[r];
     int id = tmap_[m];
     if (id < 0) {
       if (skip_[m])
@@ -359,10 +372,6 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
         if (touched[i]) measure_cell(t, pts, i);
     }
   }
-  c_off_.swap(nx_off_);
-  c_nb_.swap(nx_nb_);
-  c_foff_.swap(nx_foff_);
-  c_tet_.swap(nx_tet_);
   trim(c_nb_);
   trim(c_foff_);
   trim(c_tet_);

@@ -157,8 +157,9 @@ private:
   mutable std::vector<int> dirty_list_;
   // The owned cells' faces of the last cells(), in mesh numbering: faces
   // c_off_[i] .. c_off_[i+1]-1 of cell i, face f towards c_nb_[f] with the
-  // ring of tetrahedra c_tet_[c_foff_[f] .. c_foff_[f+1]); nx_*: the next.
-  mutable std::vector<int> c_off_, c_nb_, c_foff_, c_tet_, nx_off_, nx_nb_, nx_foff_, nx_tet_;
+  // ring of tetrahedra c_tet_[c_foff_[f] .. c_foff_[f+1]).  cells() builds
+  // the next ones in the Tessellation3 it fills and copies them here.
+  mutable std::vector<int> c_off_, c_nb_, c_foff_, c_tet_;
   mutable bool cache_ok_ = false;
   mutable int cache_owned_ = -1;
   mutable unsigned stamp_ = 0;
@@ -185,7 +186,7 @@ private:
   Points3 interpolate(const Points3 &pts, double s);
   bool replace(const Points3 &pts, const int *old_tets, int n_old, int (*nv)[4], int n_new);
   void next_stamp() const;
-  bool walk_cell(int i, const long *ids) const;
+  bool walk_cell(int i, const long *ids, Tessellation3 &t) const;
 };
 
 // The benchmarks' yardstick: a plain CGAL Delaunay_triangulation_3 (default

@@ -230,6 +230,8 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
   room(t.face_neighbor, c_nb_.size());
   room(t.face_offset, c_foff_.size());
   room(t.face_vertex, c_tet_.size());
+  const size_t cap_nb = t.face_neighbor.capacity(), cap_fo = t.face_offset.capacity(),
+               cap_fv = t.face_vertex.capacity();
   for (int i = 0; i < n_owned; ++i) {
     if (reuse && !dirty_[i] && c_off_[i + 1] > c_off_[i]) {
       const int f0 = c_off_[i], f1 = c_off_[i + 1];
@@ -258,10 +260,11 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
     }
     t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
   }
-  // (the first call's arrays grew by doubling: give the slack back)
-  trim(t.face_neighbor);
-  trim(t.face_offset);
-  trim(t.face_vertex);
+  // Arrays that grew by doubling here (the first call) give the slack back;
+  // storage the caller gave t stays.
+  if (t.face_neighbor.capacity() != cap_nb) trim(t.face_neighbor);
+  if (t.face_offset.capacity() != cap_fo) trim(t.face_offset);
+  if (t.face_vertex.capacity() != cap_fv) trim(t.face_vertex);
   // The cache for the next call: this topology in mesh numbering (one copy
   // beside t's; an Error below leaves it invalid, and the next call walks
   // every cell).

@@ -76,22 +76,67 @@ bool centre_of(TetGraph &graph, const Points3 &pts, long g, V3 *h) {
 void find_fourfold_edges(Tessellation3 &t, const Points3 &pts, TetGraph &g) {
   t.fourfold.clear();
   const int nt = static_cast<int>(t.tets.size());
-  // Tetrahedra with a facet neighbour on their circumsphere.
+  // Tetrahedra with a facet neighbour on their circumsphere (the same
+  // circumcentre).  A facet with an owned corner lies between consecutive
+  // tetrahedra of an owned cell's ring; the only other facets of t's
+  // tetrahedra are those opposite the owned corner of a tetrahedron with
+  // just one, asked of the builder's adjacency.
   std::vector<char> flag(nt, 0);
   bool any = false;
+  {
+    // A first filter with one bound for all: tolerance(h, r) is below
+    // 1.1e-8 (r + |h|).
+    double big = 0.0;
+    for (int v = 0; v < nt; ++v)
+      if (std::isfinite(t.radius[v])) big = std::max(big, t.radius[v] + magnitude(vv(t.vertices[v])));
+    const double bound2 = (1.1e-8 * big) * (1.1e-8 * big);
+    const int nf = t.cell_offset[t.n_owned];
+    const int *fv = t.face_vertex.data();
+    for (int f = 0; f < nf; ++f) {
+      const int o = t.face_offset[f], e = t.face_offset[f + 1];
+      int a = fv[e - 1];
+      V3 ha = vv(t.vertices[a]);
+      for (int k = o; k < e; ++k) {
+        const int b = fv[k];
+        const V3 hb = vv(t.vertices[b]);
+        const V3 d = ha - hb;
+        if (dot(d, d) <= bound2 && a != b) {
+          const double tol = tolerance(ha, t.radius[a]);
+          if (dot(d, d) <= tol * tol) {
+            flag[a] = flag[b] = 1;
+            any = true;
+          }
+        }
+        a = b;
+        ha = hb;
+      }
+    }
+  }
   for (int v = 0; v < nt; ++v) {
+    int owned = 0, k = -1;
+    for (int s = 0; s < 4; ++s)
+      if (t.tets[v][s] < t.n_owned) {
+        ++owned;
+        k = s;
+      }
+    if (owned != 1 || flag[v]) continue;
     const double r = t.radius[v];
     if (!std::isfinite(r)) continue;
     const V3 h = vv(t.vertices[v]);
     const double tol = tolerance(h, r);
-    const long id = g.id(v);
-    for (int k = 0; k < 4; ++k) {
-      const int o = g.opposite(id, k);
-      if (o >= 0 && on_sphere(pts, o, h, r, tol)) {
-        flag[v] = 1;
-        any = true;
-        break;
-      }
+    const int w = g.t_neighbor(v, k);
+    bool on = false;
+    if (w >= 0) {
+      const V3 d = vv(t.vertices[w]) - h;
+      on = dot(d, d) <= tol * tol;
+    } else if (w == -1) {
+      const int o = g.opposite(g.id(v), k);
+      on = o >= 0 && on_sphere(pts, o, h, r, tol);
+    }
+    if (on) {
+      flag[v] = 1;
+      if (w >= 0) flag[w] = 1;
+      any = true;
     }
   }
   if (!any) return;

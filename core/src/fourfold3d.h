@@ -40,6 +40,10 @@ public:
   virtual void corners(long g, int q[4]) = 0;
   // The corner of the neighbour across facet k that is not in g, or -1.
   virtual int opposite(long g, int k) = 0;
+  // The neighbour of t's tetrahedron v across the facet opposite corner k
+  // as an index into t.tets; -1 if it is not one of them, -2 if there is
+  // none (or it is CGAL's infinite cell).
+  virtual int t_neighbor(int v, int k) = 0;
 };
 
 // Fills t.fourfold from the owned cells' face rings: a transition between

@@ -366,8 +366,8 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
     class MeshGraph : public detail3::TetGraph {
     public:
       MeshGraph(const std::vector<int> &tv, const std::vector<int> &tn, const std::vector<int> &used,
-                int n)
-          : tv_(tv), tn_(tn), used_(used), n_(n) {}
+                const std::vector<int> &tmap, int n)
+          : tv_(tv), tn_(tn), used_(used), tmap_(tmap), n_(n) {}
       long id(int v) override { return used_[v]; }
       long neighbor(long g, int k) override {
         const int nb = tn_[4 * g + k];
@@ -378,6 +378,11 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
       }
       void corners(long g, int q[4]) override {
         for (int s = 0; s < 4; ++s) q[s] = tv_[4 * g + s] < n_ ? tv_[4 * g + s] : -1;
+      }
+      int t_neighbor(int v, int k) override {
+        const int nb = tn_[4 * used_[v] + k];
+        if (nb < 0) return -2;
+        return tmap_[nb] >= 0 ? tmap_[nb] : -1;
       }
       int opposite(long g, int k) override {
         const int nb = tn_[4 * g + k];
@@ -390,9 +395,9 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
       }
 
     private:
-      const std::vector<int> &tv_, &tn_, &used_;
+      const std::vector<int> &tv_, &tn_, &used_, &tmap_;
       int n_;
-    } graph(tv_, tn_, tused_, n);
+    } graph(tv_, tn_, tused_, tmap_, n);
     detail3::find_fourfold_edges(t, pts, graph);
   }
   c_off_.swap(nx_off_);

@@ -236,7 +236,8 @@ void drop_slivers(Tessellation3 &t, const DT &dt, const std::vector<DT::Cell_han
 // (t's tetrahedra first; others numbered through info() as they are met).
 class CgalGraph : public detail3::TetGraph {
 public:
-  CgalGraph(const DT &dt, std::vector<DT::Cell_handle> &handle) : dt_(dt), handle_(handle) {}
+  CgalGraph(const DT &dt, std::vector<DT::Cell_handle> &handle)
+      : dt_(dt), handle_(handle), n_tets_(static_cast<int>(handle.size())) {}
   long id(int v) override { return v; }
   long neighbor(long g, int k) override {
     const DT::Cell_handle nb = handle_[g]->neighbor(k);
@@ -253,6 +254,12 @@ public:
       q[k] = dt_.is_infinite(v) ? -1 : v->info();
     }
   }
+  int t_neighbor(int v, int k) override {
+    const DT::Cell_handle nb = handle_[v]->neighbor(k);
+    if (dt_.is_infinite(nb)) return -2;
+    const int i = nb->info();
+    return i >= 0 && i < n_tets_ ? i : -1;
+  }
   int opposite(long g, int k) override {
     const DT::Cell_handle c = handle_[g], nb = c->neighbor(k);
     const DT::Vertex_handle v = nb->vertex(nb->index(c));
@@ -262,6 +269,7 @@ public:
 private:
   const DT &dt_;
   std::vector<DT::Cell_handle> &handle_;
+  int n_tets_;
 };
 
 // Face areas, volumes and surfaces of the owned cells from t.vertices.

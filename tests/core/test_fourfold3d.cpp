@@ -115,6 +115,14 @@ TEST(FourFold3D, CentralDifferenceIsTheMeanOfTheTwoBranchGradients) {
     ASSERT_EQ(c.n(), 24);
     std::vector<double> f0;
     periodic_forces_3d(c.box, c.points(), c.type.data(), m, f0);
+    // The forces sum to zero (each branch's do, and so does their mean).
+    double sum[3] = {0, 0, 0}, sabs = 0.0;
+    for (int i = 0; i < c.n(); ++i)
+      for (int d = 0; d < 3; ++d) {
+        sum[d] += f0[3 * i + d];
+        sabs += std::fabs(f0[3 * i + d]);
+      }
+    for (int d = 0; d < 3; ++d) EXPECT_LT(std::fabs(sum[d]), 1e-12 * sabs) << "seed " << seed;
     // In-plane coordinates (x, z) of the square's corners move them off
     // the circle: one sign opens a face between one diagonal pair, the
     // other between the other.

@@ -15,6 +15,8 @@
 // of a well-shaped facet neighbour (one of the owned cells' tetrahedra)
 // with the same centre is dropped from the face polygons (voronoi3d.cpp,
 // drop_slivers).  Both are rare; the common path only measures flatness.
+// Four-fold edges are found by the same routine as tessellate_local_3d's
+// (fourfold3d.cpp), through the mesh's adjacency.
 
 #include "tessera/mesh3d.h"
 

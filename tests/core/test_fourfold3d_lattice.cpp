@@ -93,8 +93,7 @@ TEST(FourFold3D, TiltedSimpleCubicHasZeroForcesBothBuilders) {
       const Lattice c = sc(3, a, cs[0], cs[1], cs[2]);
       const Tessellation3 t = tessellate_periodic_3d(c.box, c.points());
       const Points3 all{t.position.data(), t.n_points, 3};
-      // Every site's three squares with it at a corner... and more: each
-      // owned site is a corner of 12 squares.
+      // (each site is a corner of 12 squares)
       with_edges += !t.fourfold.empty();
       double vsum = 0.0;
       const double v0 = a * a * a;
@@ -112,6 +111,9 @@ TEST(FourFold3D, TiltedSimpleCubicHasZeroForcesBothBuilders) {
       Tessellation3 tm;
       mesh.cells(all, c.n(), tm);
       EXPECT_EQ(tm.fourfold.size(), t.fourfold.size());
+      double vsum_m = 0.0;
+      for (int i = 0; i < c.n(); ++i) vsum_m += tm.volume[i];
+      EXPECT_NEAR(vsum_m, c.box.volume(), 1e-10 * c.box.volume());
       const std::vector<double> fm = folded(tm, all, t.origin, c.n(), m);
       EXPECT_LT(testutil::max_abs(fm), 1e-10)
           << "Mesh3: lo " << cs[0] << " tilts " << cs[1] << " " << cs[2] << " a " << a;

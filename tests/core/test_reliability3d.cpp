@@ -144,9 +144,10 @@ TEST(Reliability3D, TiltedFCCLatticeHasZeroForcesAndEqualCells) {
 
 // The lattice sheared with the box (sites at fixed fractional coordinates,
 // tilt xy = 0.5): a Bravais lattice, so all cells have volume V/N, and they
-// tile the box.  (Its forces are not all 0: the shear keeps the squares of
-// sites in the xz planes, four-fold Voronoi edges where the energy has a
-// kink; see MultifoldEdges below.)
+// tile the box.  The shear keeps the squares of sites in the xz planes,
+// four-fold Voronoi edges where the energy has a kink; with the mean of the
+// branches there every site has the same force, so the forces are 0 (they
+// were not before that rule; see MultifoldEdges below).
 TEST(Reliability3D, ShearedLatticeCellsAreEqual) {
   for (const auto *basis : {&kFCC, &kSC})
     for (double lo : {0.0, 0.3}) {
@@ -177,6 +178,9 @@ TEST(Reliability3D, ShearedLatticeCellsAreEqual) {
         ASSERT_NEAR(t.surface[i], t.surface[0], 1e-12) << "cell " << i;
       }
       EXPECT_NEAR(vsum, c.box.volume(), 1e-10);
+      std::vector<double> f;
+      periodic_forces_3d(c.box, c.points(), c.type.data(), one_type(), f);
+      EXPECT_LT(testutil::max_abs(f), 1e-10) << (basis == &kSC ? "SC" : "FCC") << " lo " << lo;
     }
 }
 

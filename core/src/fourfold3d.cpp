@@ -89,26 +89,27 @@ void find_fourfold_edges(Tessellation3 &t, const Points3 &pts, TetGraph &g) {
     double big = 0.0;
     for (int v = 0; v < nt; ++v)
       if (std::isfinite(t.radius[v])) big = std::max(big, t.radius[v] + magnitude(vv(t.vertices[v])));
-    const double bound2 = (1.1e-8 * big) * (1.1e-8 * big);
+    const double bound = 1.1e-8 * big;
     const int nf = t.cell_offset[t.n_owned];
     const int *fv = t.face_vertex.data();
+    const Vec3 *hv = t.vertices.data();
     for (int f = 0; f < nf; ++f) {
       const int o = t.face_offset[f], e = t.face_offset[f + 1];
       int a = fv[e - 1];
-      V3 ha = vv(t.vertices[a]);
+      double xa = hv[a].x;
       for (int k = o; k < e; ++k) {
         const int b = fv[k];
-        const V3 hb = vv(t.vertices[b]);
-        const V3 d = ha - hb;
-        if (dot(d, d) <= bound2 && a != b) {
-          const double tol = tolerance(ha, t.radius[a]);
+        const double xb = hv[b].x;
+        if (std::fabs(xa - xb) <= bound && a != b) {  // (rare: then the full test)
+          const V3 d = vv(hv[a]) - vv(hv[b]);
+          const double tol = tolerance(vv(hv[a]), t.radius[a]);
           if (dot(d, d) <= tol * tol) {
             flag[a] = flag[b] = 1;
             any = true;
           }
         }
         a = b;
-        ha = hb;
+        xa = xb;
       }
     }
   }

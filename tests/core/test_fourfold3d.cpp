@@ -12,6 +12,7 @@
 #include "test_util.h"
 
 #include "tessera/energy.h"
+#include "tessera/mesh3d.h"
 #include "tessera/voronoi3d.h"
 
 #include <gtest/gtest.h>
@@ -123,6 +124,25 @@ TEST(FourFold3D, CentralDifferenceIsTheMeanOfTheTwoBranchGradients) {
         sabs += std::fabs(f0[3 * i + d]);
       }
     for (int d = 0; d < 3; ++d) EXPECT_LT(std::fabs(sum[d]), 1e-12 * sabs) << "seed " << seed;
+    {
+      // Mesh3 (the pair style's per-step path) finds the same edge and
+      // gives the same forces.
+      const Tessellation3 t = tessellate_periodic_3d(c.box, c.points());
+      EXPECT_EQ(t.fourfold.size(), 1u) << "seed " << seed;
+      const Points3 all{t.position.data(), t.n_points, 3};
+      Mesh3 mesh;
+      mesh.build(all);
+      Tessellation3 tm;
+      mesh.cells(all, c.n(), tm);
+      EXPECT_EQ(tm.fourfold.size(), 1u) << "seed " << seed;
+      std::vector<int> ty(t.n_points);
+      for (int p = 0; p < t.n_points; ++p) ty[p] = c.type[t.origin[p]];
+      std::vector<double> fall(3 * static_cast<size_t>(t.n_points), 0.0), fm(3 * c.n(), 0.0);
+      compute_forces_3d(tm, all, ty.data(), m, fall.data(), 3);
+      for (int p = 0; p < t.n_points; ++p)
+        for (int d = 0; d < 3; ++d) fm[3 * t.origin[p] + d] += fall[3 * p + d];
+      for (size_t q = 0; q < fm.size(); ++q) EXPECT_NEAR(fm[q], f0[q], 1e-10 * sabs) << "seed " << seed;
+    }
     // In-plane coordinates (x, z) of the square's corners move them off
     // the circle: one sign opens a face between one diagonal pair, the
     // other between the other.

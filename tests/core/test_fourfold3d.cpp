@@ -175,3 +175,47 @@ TEST(FourFold3D, CentralDifferenceIsTheMeanOfTheTwoBranchGradients) {
   }
   EXPECT_EQ(kinks, checked);  // every such move crosses the kink
 }
+
+// Five co-circular, coplanar centres (a regular pentagon, radius 0.3, in the
+// plane y = 1) among random centres: a five-fold Voronoi edge, which the
+// rule leaves alone (doc/model.md, "Four-fold edges (3D)"): no four-fold
+// edge is recorded, so the forces are the gradient of the branch the
+// triangulation chose (the remeasured tessellation's, exactly).
+TEST(FourFold3D, FiveFoldEdgesAreLeftAlone) {
+  const Model m = two_types();
+  Config3 c = square_and_random(4);
+  const double pi = 3.141592653589793;
+  // Replace the square by a pentagon (one more centre: the last random one
+  // goes).
+  c.xyz.resize(3 * 23);
+  c.type.resize(23);
+  std::vector<double> pent;
+  for (int k = 0; k < 5; ++k) {
+    pent.push_back(1.0 + 0.3 * std::cos(2 * pi * k / 5));
+    pent.push_back(1.0);
+    pent.push_back(1.0 + 0.3 * std::sin(2 * pi * k / 5));
+  }
+  c.xyz.erase(c.xyz.begin(), c.xyz.begin() + 12);
+  c.xyz.insert(c.xyz.begin(), pent.begin(), pent.end());
+  c.type.push_back(0);
+  ASSERT_EQ(c.n(), 24);
+  const Tessellation3 t = tessellate_periodic_3d(c.box, c.points());
+  EXPECT_TRUE(t.fourfold.empty());
+  // The edge is there: the energy has a kink at the pentagon (moving a
+  // corner in its plane gives different one-sided derivatives).
+  const double h = 1e-6, e0 = energy_at(c, m, 0, 0.0);
+  const double right = (energy_at(c, m, 0, h) - e0) / h, left = (e0 - energy_at(c, m, 0, -h)) / h;
+  EXPECT_GT(std::fabs(right - left), 1e-3);
+  std::vector<double> f;
+  periodic_forces_3d(c.box, c.points(), c.type.data(), m, f);
+  for (double x : f) EXPECT_TRUE(std::isfinite(x));
+  Tessellation3 b = t;
+  const Points3 all{t.position.data(), t.n_points, 3};
+  remeasure_3d(b, all);
+  std::vector<int> ty(t.n_points);
+  for (int p = 0; p < t.n_points; ++p) ty[p] = c.type[t.origin[p]];
+  std::vector<double> fa(3 * static_cast<size_t>(t.n_points), 0.0), fb = fa;
+  compute_forces_3d(t, all, ty.data(), m, fa.data(), 3);
+  compute_forces_3d(b, all, ty.data(), m, fb.data(), 3);
+  for (size_t q = 0; q < fa.size(); ++q) EXPECT_NEAR(fa[q], fb[q], 1e-12 * (1.0 + std::fabs(fb[q])));
+}

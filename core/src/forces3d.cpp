@@ -6,6 +6,7 @@
 
 #include "tessera/voronoi3d.h"
 
+#include "fourfold3d.h"
 #include "vec3_detail.h"
 
 #include <cmath>
@@ -99,6 +100,11 @@ ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const
   const double w = model.tension_weight();
   std::vector<V3> g(t.tets.size(), V3{0, 0, 0});
   std::vector<V3> u;
+  // Forces sent to the points directly (the four-fold edges' triangle
+  // routes), as the chain rule below adds them.
+  std::vector<V3> force(t.n_points, V3{0, 0, 0});
+  const FourFoldIndex ff(t, pts);
+  std::vector<int> ring;
   // With cell_virial: each cell's dE_c/dh on its own tetrahedra, then its
   // forces and their virial about the cell's centre.
   std::vector<int> own;
@@ -112,11 +118,94 @@ ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const
     const double dedv = ct.K * (t.volume[c] - ct.A0);
     const double deds = ct.Gamma * t.surface[c] + ct.shift;
     const V3 xc = load(pts, c);
+    double *wc = cell_virial ? cell_virial + 9 * static_cast<long>(c) : nullptr;
+    if (wc)
+      for (int a = 0; a < 9; ++a) wc[a] = 0.0;
+    // A force on point p from this cell's term, sent directly.
+    auto direct = [&](int p, V3 fp) {
+      force[p] = force[p] + fp;
+      if (wc) {
+        const V3 r = load(pts, p) - xc;
+        const double ra[3] = {r.x, r.y, r.z}, fb[3] = {fp.x, fp.y, fp.z};
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b) wc[3 * a + b] += ra[a] * fb[b];
+      }
+    };
+    auto to_tet = [&](int v, V3 dg) {
+      g[v] = g[v] + dg;
+      if (cell_virial) {
+        if (stamp[v] != c) {
+          stamp[v] = c;
+          gc[v] = V3{0, 0, 0};
+          own.push_back(v);
+        }
+        gc[v] = gc[v] + dg;
+      }
+    };
     for (int f = t.cell_offset[c]; f < t.cell_offset[c + 1]; ++f) {
       const int o = t.face_offset[f], m = t.face_offset[f + 1] - o;
-      const double dedsf = deds + w * model.lambda_of(type[c], type[t.face_neighbor[f]]);
-      V3 d = load(pts, t.face_neighbor[f]) - xc;
+      const int nb = t.face_neighbor[f];
+      const double dedsf = deds + w * model.lambda_of(type[c], type[nb]);
+      V3 d = load(pts, nb) - xc;
       const V3 nrm = (1.0 / std::sqrt(dot(d, d))) * d;
+      if (!ff.empty()) {
+        int nr = 0;
+        const FourFoldIndex::Role *roles = ff.roles(c, nb, &nr);
+        if (nr > 0) {
+          // A diagonal of a four-fold edge: replaced by the mean over both
+          // diagonals below.  A side: the ring without the edges' slivers,
+          // each four-fold stretch one Voronoi edge whose gradient goes
+          // half through each triangle of the square on this side.
+          bool diagonal = false;
+          for (int r = 0; r < nr; ++r) diagonal = diagonal || roles[r].diagonal;
+          if (diagonal) continue;
+          ring.clear();
+          for (int k = 0; k < m; ++k) {
+            const int v = t.face_vertex[o + k];
+            bool drop = false;
+            for (int r = 0; r < nr && !drop; ++r) drop = ff.is_square_tet(roles[r].edge, v);
+            if (!drop) ring.push_back(v);
+          }
+          const int mr = static_cast<int>(ring.size());
+          if (mr >= 2) {
+            u.resize(mr);
+            V3 av{0, 0, 0}, q{0, 0, 0};
+            for (int k = 0; k < mr; ++k) u[k] = vv(t.vertices[ring[k]]) - xc;
+            for (int k = 0; k < mr; ++k) {
+              av = av + 0.5 * cross(u[k], u[(k + 1) % mr]);
+              q = q + u[k];
+            }
+            q = (1.0 / mr) * q;
+            for (int k = 0; k < mr; ++k) {
+              const int k1 = (k + 1) % mr;
+              const V3 de = u[k1] - u[k];
+              const V3 piece = dedsf * (0.5 * cross(de, nrm)) +
+                               dedv * ((1.0 / 3.0) * (0.5 * cross(de, q) + (0.5 / mr) * av));
+              int edge = -1;
+              for (int r = 0; r < nr && edge < 0; ++r) {
+                const int e = roles[r].edge;
+                if (std::sqrt(dot(de, de)) > ff.tol(e) && ff.on_axis(e, u[k] + xc) &&
+                    ff.on_axis(e, u[k1] + xc))
+                  edge = r;
+              }
+              if (edge < 0) {
+                to_tet(ring[k], piece);
+                to_tet(ring[k1], piece);
+                continue;
+              }
+              // The square's two points other than c and nb.
+              const auto &sq = t.fourfold[roles[edge].edge].p;
+              int others[2], no = 0;
+              for (const int p : sq)
+                if (p != c && p != nb) others[no++] = p;
+              for (const V3 P : {u[k] + xc, u[k1] + xc})
+                for (const int p : others)
+                  triangle_route(pts, piece, P, c, nb, p, 0.5, direct);
+            }
+            continue;
+          }
+        }
+      }
       u.resize(m);
       V3 av{0, 0, 0}, q{0, 0, 0};
       for (int k = 0; k < m; ++k) u[k] = vv(t.vertices[t.face_vertex[o + k]]) - xc;
@@ -130,21 +219,39 @@ ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const
         const V3 dS = 0.5 * cross(diff, nrm);
         const V3 dV = (1.0 / 3.0) * (0.5 * cross(diff, q) + (1.0 / m) * av);
         const int v = t.face_vertex[o + k];
-        const V3 dg = dedsf * dS + dedv * dV;
-        g[v] = g[v] + dg;
-        if (cell_virial) {
-          if (stamp[v] != c) {
-            stamp[v] = c;
-            gc[v] = V3{0, 0, 0};
-            own.push_back(v);
-          }
-          gc[v] = gc[v] + dg;
+        to_tet(v, dedsf * dS + dedv * dV);
+      }
+    }
+    if (!ff.empty()) {
+      // Each diagonal of each four-fold edge at c with weight 1/2: the
+      // 2-gon end[0], end[1] (area 0) whose two Voronoi edges are dual to
+      // the two triangles on the diagonal.
+      int nr = 0;
+      const FourFoldIndex::Role *roles = ff.corners_of(c, &nr);
+      for (int r = 0; r < nr; ++r) {
+        const FourFoldEdge3 &e = t.fourfold[roles[r].edge];
+        const int ci = roles[r].corner;
+        const int nb = e.p[(ci + 2) % 4];
+        const double dedsf = deds + w * model.lambda_of(type[c], type[nb]);
+        const V3 dx = load(pts, nb) - xc;
+        const V3 nrm = (1.0 / std::sqrt(dot(dx, dx))) * dx;
+        const V3 X = vv(e.end[0]), Y = vv(e.end[1]);
+        const V3 q = 0.5 * ((X - xc) + (Y - xc));
+        const V3 de = Y - X;
+        const V3 piece = dedsf * (0.5 * cross(de, nrm)) + dedv * ((1.0 / 6.0) * cross(de, q));
+        // Going from X to Y (counter-clockwise about dx) crosses the
+        // triangle whose third point lies beyond the edge X Y, along its
+        // outward normal de x dx.
+        const int p1 = e.p[(ci + 1) % 4], p3 = e.p[(ci + 3) % 4];
+        const bool first = dot(load(pts, p1) - xc, cross(de, dx)) > 0.0;
+        const int pxy = first ? p1 : p3, pyx = first ? p3 : p1;
+        for (const V3 P : {X, Y}) {
+          triangle_route(pts, piece, P, c, nb, pxy, 0.5, direct);
+          triangle_route(pts, -1.0 * piece, P, c, nb, pyx, 0.5, direct);
         }
       }
     }
     if (cell_virial) {
-      double *wc = cell_virial + 9 * static_cast<long>(c);
-      for (int a = 0; a < 9; ++a) wc[a] = 0.0;
       for (int v : own)
         chain_rule(t, pts, v, gc[v], [&](int p, V3 fp) {
           const V3 r = load(pts, p) - xc;
@@ -155,7 +262,6 @@ ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const
     }
   }
   // Chain rule through the circumcentres.
-  std::vector<V3> force(t.n_points, V3{0, 0, 0});
   for (size_t v = 0; v < t.tets.size(); ++v) {
     const V3 gv = g[v];
     if (gv.x == 0.0 && gv.y == 0.0 && gv.z == 0.0) continue;

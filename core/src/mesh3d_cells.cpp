@@ -15,9 +15,12 @@
 // of a well-shaped facet neighbour (one of the owned cells' tetrahedra)
 // with the same centre is dropped from the face polygons (voronoi3d.cpp,
 // drop_slivers).  Both are rare; the common path only measures flatness.
+// Four-fold edges are found by the same routine as tessellate_local_3d's
+// (fourfold3d.cpp), through the mesh's adjacency.
 
 #include "tessera/mesh3d.h"
 
+#include "fourfold3d.h"
 #include "vec3_detail.h"
 
 #include "point_name.h"
@@ -374,6 +377,46 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
       for (int i = 0; i < n_owned; ++i)
         if (touched[i]) measure_cell(t, pts, i);
     }
+  }
+  {
+    // Four-fold edges, found through the mesh's adjacency (far points and
+    // their tetrahedra count as absent, as CGAL's infinite ones).
+    class MeshGraph : public detail3::TetGraph {
+    public:
+      MeshGraph(const std::vector<int> &tv, const std::vector<int> &tn, const std::vector<int> &used,
+                const std::vector<int> &tmap, int n)
+          : tv_(tv), tn_(tn), used_(used), tmap_(tmap), n_(n) {}
+      long id(int v) override { return used_[v]; }
+      long neighbor(long g, int k) override {
+        const int nb = tn_[4 * g + k];
+        if (nb < 0) return -1;
+        for (int s = 0; s < 4; ++s)
+          if (tv_[4 * nb + s] >= n_) return -1;
+        return nb;
+      }
+      void corners(long g, int q[4]) override {
+        for (int s = 0; s < 4; ++s) q[s] = tv_[4 * g + s] < n_ ? tv_[4 * g + s] : -1;
+      }
+      int t_neighbor(int v, int k) override {
+        const int nb = tn_[4 * used_[v] + k];
+        if (nb < 0) return -2;
+        return tmap_[nb] >= 0 ? tmap_[nb] : -1;
+      }
+      int opposite(long g, int k) override {
+        const int nb = tn_[4 * g + k];
+        if (nb < 0) return -1;
+        const int *a = &tv_[4 * g], *b = &tv_[4 * nb];
+        for (int s = 0; s < 4; ++s)
+          if (b[s] != a[0] && b[s] != a[1] && b[s] != a[2] && b[s] != a[3])
+            return b[s] < n_ ? b[s] : -1;
+        return -1;
+      }
+
+    private:
+      const std::vector<int> &tv_, &tn_, &used_, &tmap_;
+      int n_;
+    } graph(tv_, tn_, tused_, tmap_, n);
+    detail3::find_fourfold_edges(t, pts, graph);
   }
   trim(c_nb_);
   trim(c_foff_);

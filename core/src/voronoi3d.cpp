@@ -29,6 +29,7 @@
 
 #include "tessera/voronoi3d.h"
 
+#include "fourfold3d.h"
 #include "vec3_detail.h"
 
 #include <CGAL/Delaunay_triangulation_3.h>
@@ -231,6 +232,46 @@ void drop_slivers(Tessellation3 &t, const DT &dt, const std::vector<DT::Cell_han
   t.face_offset.swap(fo);
 }
 
+// CGAL's adjacency for find_fourfold_edges: ids are indices into handle
+// (t's tetrahedra first; others numbered through info() as they are met).
+class CgalGraph : public detail3::TetGraph {
+public:
+  CgalGraph(const DT &dt, std::vector<DT::Cell_handle> &handle)
+      : dt_(dt), handle_(handle), n_tets_(static_cast<int>(handle.size())) {}
+  long id(int v) override { return v; }
+  long neighbor(long g, int k) override {
+    const DT::Cell_handle nb = handle_[g]->neighbor(k);
+    if (dt_.is_infinite(nb)) return -1;
+    if (nb->info() < 0) {
+      nb->info() = static_cast<int>(handle_.size());
+      handle_.push_back(nb);
+    }
+    return nb->info();
+  }
+  void corners(long g, int q[4]) override {
+    for (int k = 0; k < 4; ++k) {
+      const DT::Vertex_handle v = handle_[g]->vertex(k);
+      q[k] = dt_.is_infinite(v) ? -1 : v->info();
+    }
+  }
+  int t_neighbor(int v, int k) override {
+    const DT::Cell_handle nb = handle_[v]->neighbor(k);
+    if (dt_.is_infinite(nb)) return -2;
+    const int i = nb->info();
+    return i >= 0 && i < n_tets_ ? i : -1;
+  }
+  int opposite(long g, int k) override {
+    const DT::Cell_handle c = handle_[g], nb = c->neighbor(k);
+    const DT::Vertex_handle v = nb->vertex(nb->index(c));
+    return dt_.is_infinite(v) ? -1 : v->info();
+  }
+
+private:
+  const DT &dt_;
+  std::vector<DT::Cell_handle> &handle_;
+  int n_tets_;
+};
+
 // Face areas, volumes and surfaces of the owned cells from t.vertices.
 void measure(Tessellation3 &t, const Points3 &pts) {
   for (int i = 0; i < t.n_owned; ++i) {
@@ -379,10 +420,13 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
   }
   drop_slivers(t, dt, handle, pts);
   measure(t, pts);
+  CgalGraph graph(dt, handle);
+  detail3::find_fourfold_edges(t, pts, graph);
   return t;
 }
 
 void remeasure_3d(Tessellation3 &t, const Points3 &pts) {
+  t.fourfold.clear();
   for (size_t v = 0; v < t.tets.size(); ++v) {
     const auto &q = t.tets[v];
     const V3 p0 = load(pts, q[0]), p1 = load(pts, q[1]), p2 = load(pts, q[2]), p3 = load(pts, q[3]);

@@ -1,18 +1,18 @@
 // Tessera tests.  SPDX-License-Identifier: GPL-2.0-or-later
 //
-// The ground a 3D multifold rule would stand on (doc/model.md, "Four-fold
-// edges (3D)"): at an isolated four-fold Voronoi edge (four coplanar,
-// co-circular centres; at each end of the edge a fifth centre in general
-// position) the energy has a kink, and its central difference is the mean
-// of the two branch gradients (the triangulations with one diagonal of the
-// square or the other).  The branches are taken from the Delaunay
-// triangulations of the configuration moved a little either way, remeasured
-// at the unmoved points.  What 3D computes today is the gradient of the one
-// branch CGAL chose.
+// The four-fold edge rule (doc/model.md, "Four-fold edges (3D)"): at an
+// isolated four-fold Voronoi edge (four coplanar, co-circular centres; at
+// each end of the edge a fifth centre in general position) the energy has a
+// kink, and its central difference is the mean of the two branch gradients
+// (the triangulations with one diagonal of the square or the other).  The
+// branches are taken from the Delaunay triangulations of the configuration
+// moved a little either way, remeasured at the unmoved points
+// (remeasure_3d: a branch, no four-fold edges).  The force is that mean.
 
 #include "test_util.h"
 
 #include "tessera/energy.h"
+#include "tessera/mesh3d.h"
 #include "tessera/voronoi3d.h"
 
 #include <gtest/gtest.h>
@@ -116,6 +116,33 @@ TEST(FourFold3D, CentralDifferenceIsTheMeanOfTheTwoBranchGradients) {
     ASSERT_EQ(c.n(), 24);
     std::vector<double> f0;
     periodic_forces_3d(c.box, c.points(), c.type.data(), m, f0);
+    // The forces sum to zero (each branch's do, and so does their mean).
+    double sum[3] = {0, 0, 0}, sabs = 0.0;
+    for (int i = 0; i < c.n(); ++i)
+      for (int d = 0; d < 3; ++d) {
+        sum[d] += f0[3 * i + d];
+        sabs += std::fabs(f0[3 * i + d]);
+      }
+    for (int d = 0; d < 3; ++d) EXPECT_LT(std::fabs(sum[d]), 1e-12 * sabs) << "seed " << seed;
+    {
+      // Mesh3 (the pair style's per-step path) finds the same edge and
+      // gives the same forces.
+      const Tessellation3 t = tessellate_periodic_3d(c.box, c.points());
+      EXPECT_EQ(t.fourfold.size(), 1u) << "seed " << seed;
+      const Points3 all{t.position.data(), t.n_points, 3};
+      Mesh3 mesh;
+      mesh.build(all);
+      Tessellation3 tm;
+      mesh.cells(all, c.n(), tm);
+      EXPECT_EQ(tm.fourfold.size(), 1u) << "seed " << seed;
+      std::vector<int> ty(t.n_points);
+      for (int p = 0; p < t.n_points; ++p) ty[p] = c.type[t.origin[p]];
+      std::vector<double> fall(3 * static_cast<size_t>(t.n_points), 0.0), fm(3 * c.n(), 0.0);
+      compute_forces_3d(tm, all, ty.data(), m, fall.data(), 3);
+      for (int p = 0; p < t.n_points; ++p)
+        for (int d = 0; d < 3; ++d) fm[3 * t.origin[p] + d] += fall[3 * p + d];
+      for (size_t q = 0; q < fm.size(); ++q) EXPECT_NEAR(fm[q], f0[q], 1e-10 * sabs) << "seed " << seed;
+    }
     // In-plane coordinates (x, z) of the square's corners move them off
     // the circle: one sign opens a face between one diagonal pair, the
     // other between the other.
@@ -138,10 +165,57 @@ TEST(FourFold3D, CentralDifferenceIsTheMeanOfTheTwoBranchGradients) {
         const double left = -(energy_at(c, m, q, 0.0) - energy_at(c, m, q, -h)) / h;
         EXPECT_NEAR(right, fp[q], 1e-5 * scale) << "seed " << seed << ", coordinate " << q;
         EXPECT_NEAR(left, fm[q], 1e-5 * scale) << "seed " << seed << ", coordinate " << q;
-        // Today's force is one of the two branches' gradients.
-        EXPECT_LT(std::min(std::fabs(f0[q] - fp[q]), std::fabs(f0[q] - fm[q])), 1e-9 * scale)
+        // The force is the mean of the two branches' gradients: the
+        // central difference (before the four-fold rule it was one of
+        // the two branches', 0.2 away).
+        EXPECT_NEAR(f0[q], cd, 1e-6 * scale) << "seed " << seed << ", coordinate " << q;
+        EXPECT_NEAR(f0[q], 0.5 * (fp[q] + fm[q]), 1e-9 * scale)
             << "seed " << seed << ", coordinate " << q;
       }
   }
   EXPECT_EQ(kinks, checked);  // every such move crosses the kink
+}
+
+// Five co-circular, coplanar centres (a regular pentagon, radius 0.3, in the
+// plane y = 1) among random centres: a five-fold Voronoi edge, which the
+// rule leaves alone (doc/model.md, "Four-fold edges (3D)"): no four-fold
+// edge is recorded, so the forces are the gradient of the branch the
+// triangulation chose (the remeasured tessellation's, exactly).
+TEST(FourFold3D, FiveFoldEdgesAreLeftAlone) {
+  const Model m = two_types();
+  Config3 c = square_and_random(4);
+  const double pi = 3.141592653589793;
+  // Replace the square by a pentagon (one more centre: the last random one
+  // goes).
+  c.xyz.resize(3 * 23);
+  c.type.resize(23);
+  std::vector<double> pent;
+  for (int k = 0; k < 5; ++k) {
+    pent.push_back(1.0 + 0.3 * std::cos(2 * pi * k / 5));
+    pent.push_back(1.0);
+    pent.push_back(1.0 + 0.3 * std::sin(2 * pi * k / 5));
+  }
+  c.xyz.erase(c.xyz.begin(), c.xyz.begin() + 12);
+  c.xyz.insert(c.xyz.begin(), pent.begin(), pent.end());
+  c.type.push_back(0);
+  ASSERT_EQ(c.n(), 24);
+  const Tessellation3 t = tessellate_periodic_3d(c.box, c.points());
+  EXPECT_TRUE(t.fourfold.empty());
+  // The edge is there: the energy has a kink at the pentagon (moving a
+  // corner in its plane gives different one-sided derivatives).
+  const double h = 1e-6, e0 = energy_at(c, m, 0, 0.0);
+  const double right = (energy_at(c, m, 0, h) - e0) / h, left = (e0 - energy_at(c, m, 0, -h)) / h;
+  EXPECT_GT(std::fabs(right - left), 1e-3);
+  std::vector<double> f;
+  periodic_forces_3d(c.box, c.points(), c.type.data(), m, f);
+  for (double x : f) EXPECT_TRUE(std::isfinite(x));
+  Tessellation3 b = t;
+  const Points3 all{t.position.data(), t.n_points, 3};
+  remeasure_3d(b, all);
+  std::vector<int> ty(t.n_points);
+  for (int p = 0; p < t.n_points; ++p) ty[p] = c.type[t.origin[p]];
+  std::vector<double> fa(3 * static_cast<size_t>(t.n_points), 0.0), fb = fa;
+  compute_forces_3d(t, all, ty.data(), m, fa.data(), 3);
+  compute_forces_3d(b, all, ty.data(), m, fb.data(), 3);
+  for (size_t q = 0; q < fa.size(); ++q) EXPECT_NEAR(fa[q], fb[q], 1e-12 * (1.0 + std::fabs(fb[q])));
 }

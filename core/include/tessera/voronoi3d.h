@@ -61,6 +61,18 @@ struct Box3 {
   void validate() const;
 };
 
+// A four-fold Voronoi edge: four coplanar, co-circular centres p (indices
+// into the triangulated points, in cyclic order round their circle), whose
+// Voronoi edge, shared by their four cells, runs between end[0] and end[1]
+// (the centres of the co-spherical clusters on either side).  The energy
+// has a kink there; compute_forces_3d takes the mean of the two branches
+// (one diagonal of the square or the other), doc/model.md "Four-fold edges
+// (3D)".
+struct FourFoldEdge3 {
+  std::array<int, 4> p{{-1, -1, -1, -1}};
+  Vec3 end[2];
+};
+
 // The tessellation of n_points points, of which the first n_owned are the
 // cells we want; the rest (ghosts, periodic images) only complete them.
 //
@@ -95,6 +107,11 @@ struct Tessellation3 {
   // tessellate_local_3d was asked not to throw.
   int unbounded_cell = -1;
 
+  // The four-fold edges with an owned corner, found by the builders
+  // (tessellate_local_3d, Mesh3::cells) from the triangulation's adjacency;
+  // cleared by remeasure_3d (a branch has none).
+  std::vector<FourFoldEdge3> fourfold;
+
   // tessellate_periodic_3d: the owned point each point is an image of, and
   // the positions triangulated (stride 3, owned points first).
   std::vector<int> origin;
@@ -120,7 +137,8 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
 // energy is the smooth branch the triangulation stands for, which the
 // forces of compute_forces_3d are the exact gradient of; it is the true
 // energy only while the triangulation stays Delaunay (doc/model.md,
-// "Reliability of the finite and 3D paths").
+// "Reliability of the finite and 3D paths").  t.fourfold is cleared: the
+// forces are then that branch's gradient, also at four-fold edges.
 void remeasure_3d(Tessellation3 &t, const Points3 &pts);
 
 // Whether every tetrahedron of an owned cell has its circumsphere inside the
@@ -151,6 +169,9 @@ struct ForceOutput3 {
 // model.tension_weight()).  cell_virial (optional, 9 per owned cell, order
 // as ForceOutput3::virial) receives the virial sum_p (r_p - r_c) F_p of each
 // cell's own energy term over the points it moves; they add up to the total.
+// The forces are the exact gradient of the energy, except at the four-fold
+// edges of t.fourfold, where they are the mean of the two branches'
+// gradients (the energy has a kink there).
 ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const int *type,
                                const Model &model, double *f, int f_stride,
                                double *cell_energy = nullptr, double *cell_virial = nullptr);

@@ -1,6 +1,6 @@
 // Tessera tests.  SPDX-License-Identifier: GPL-2.0-or-later
 //
-// The fast paths of the polarity step (fix polarity, issue 14) against their
+// The fast paths of the polarity step (fix polarity) against their
 // plain forms, bit for bit, on random and degenerate input: the torque from
 // unit vectors, the rotation of the dipole moments, the tabulated 1/sqrt, the
 // counter-based Gaussian numbers.  Plus the plain forms against independent

@@ -14,14 +14,6 @@
 namespace tessera {
 namespace detail3 {
 
-double tet_flatness(V3 p0, V3 p1, V3 p2, V3 p3) {
-  const V3 e1 = p1 - p0, e2 = p2 - p0, e3 = p3 - p0;
-  double l = 0.0;
-  for (const V3 &e : {e1, e2, e3}) l = std::max({l, std::fabs(e.x), std::fabs(e.y), std::fabs(e.z)});
-  const double det = dot(e1, cross(e2, e3));
-  return l > 0.0 ? std::fabs(det) / (l * l * l) : 0.0;
-}
-
 namespace {
 
 double magnitude(V3 x) { return std::max({std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)}); }
@@ -66,7 +58,7 @@ bool centre_of(TetGraph &graph, const Points3 &pts, long g, V3 *h) {
   for (int s = 0; s < 4; ++s)
     if (q[s] < 0) return false;
   const V3 p0 = load(pts, q[0]), p1 = load(pts, q[1]), p2 = load(pts, q[2]), p3 = load(pts, q[3]);
-  if (!(tet_flatness(p0, p1, p2, p3) >= kFourFoldSliver)) return false;
+  if (!(flatness(p0, p1, p2, p3) >= kFourFoldSliver)) return false;
   *h = circumcentre(p0, p1, p2, p3);
   return true;
 }

@@ -24,9 +24,6 @@ constexpr double kFourFoldUlps = 1e-13;
 // Tetrahedra flatter than this are slivers (voronoi3d.cpp, kSliver).
 constexpr double kFourFoldSliver = 1e-6;
 
-// |det| of the edge vectors over the cube of the longest edge component.
-double tet_flatness(V3 p0, V3 p1, V3 p2, V3 p3);
-
 // The adjacency of a builder's tetrahedra (CGAL's cells, Mesh3's arrays),
 // as opaque ids.  Tetrahedron v of the Tessellation3 has id(v).
 class TetGraph {

@@ -2,11 +2,15 @@
 //
 // Small 3D vector helpers shared by the 3D sources (voronoi3d, mesh3d):
 // the vector type and its operations, points and vertices read as vectors,
-// the circumcentre of a tetrahedron, the parity of a permutation of 0..3.
+// the circumcentre and flatness of a tetrahedron, the parity of a
+// permutation of 0..3.
 // Internal to the core (not installed).
 #pragma once
 
 #include "tessera/voronoi3d.h"
+
+#include <algorithm>
+#include <cmath>
 
 namespace tessera {
 namespace detail3 {
@@ -34,6 +38,16 @@ inline V3 circumcentre(V3 p0, V3 p1, V3 p2, V3 p3) {
   const V3 c23 = cross(e2, e3), c31 = cross(e3, e1), c12 = cross(e1, e2);
   const double s = 0.5 / dot(e1, c23);
   return p0 + s * (dot(e1, e1) * c23 + dot(e2, e2) * c31 + dot(e3, e3) * c12);
+}
+
+// |det| of the edge vectors over the cube of the longest edge component:
+// the flatness of a tetrahedron (0 flat, 1/6.. for a well-shaped one).
+inline double flatness(V3 p0, V3 p1, V3 p2, V3 p3) {
+  const V3 e1 = p1 - p0, e2 = p2 - p0, e3 = p3 - p0;
+  double l = 0.0;
+  for (const V3 &e : {e1, e2, e3}) l = std::max({l, std::fabs(e.x), std::fabs(e.y), std::fabs(e.z)});
+  const double det = dot(e1, cross(e2, e3));
+  return l > 0.0 ? std::fabs(det) / (l * l * l) : 0.0;
 }
 
 // Parity of the permutation (a, b, c, d) of (0, 1, 2, 3): +1 even, -1 odd.

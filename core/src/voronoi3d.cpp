@@ -80,16 +80,6 @@ V3 exact_circumcentre(V3 p0, V3 p1, V3 p2, V3 p3) {
           CGAL::to_double(CGAL::exact(c.z()))};
 }
 
-// |det| of the edge vectors over the cube of the longest edge component:
-// the flatness of a tetrahedron (0 flat, 1/6.. for a well-shaped one).
-double flatness(V3 p0, V3 p1, V3 p2, V3 p3) {
-  const V3 e1 = p1 - p0, e2 = p2 - p0, e3 = p3 - p0;
-  double l = 0.0;
-  for (const V3 &e : {e1, e2, e3}) l = std::max({l, std::fabs(e.x), std::fabs(e.y), std::fabs(e.z)});
-  const double det = dot(e1, cross(e2, e3));
-  return l > 0.0 ? std::fabs(det) / (l * l * l) : 0.0;
-}
-
 }  // namespace
 
 void Box3::validate() const {

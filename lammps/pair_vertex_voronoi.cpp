@@ -50,7 +50,7 @@ PairVertexVoronoi::PairVertexVoronoi(LAMMPS *lmp) : Pair(lmp)
   centroidstressflag = CENTROID_NOTAVAIL;
 
   cut_global = 0.0;
-  tension = tessera::Tension::Edge;
+  keyword_defaults();
   kappa = area0 = gamma = nullptr;
   lambda = nullptr;
   lambda_set = nullptr;
@@ -61,13 +61,9 @@ PairVertexVoronoi::PairVertexVoronoi(LAMMPS *lmp) : Pair(lmp)
   close_d = -1.0;
   close_step = -1;
   tess_step = -1;
-  incremental = 1;
   nextra = 8;
-  reference_every = 0;
-  grow = 1;
   cutghost_saved = -1.0;
   guard_id = std::string("VERTEX_VORONOI_GUARD_") + std::to_string(instance_me);
-  radius = 0.0;
   free_tension = nullptr;
   free_set = 0;
   pvector = stats;

@@ -83,6 +83,7 @@ class PairVertexVoronoi : public Pair {
   void check_sphere_box(double R) const;
 
  protected:
+  void keyword_defaults();    // the pair_style keywords' defaults
   double cut_global;
   bigint ncompute = 0;
   tessera::Tension tension;

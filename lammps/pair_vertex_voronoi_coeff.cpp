@@ -17,6 +17,19 @@
 
 using namespace LAMMPS_NS;
 
+/* The pair_style keywords' defaults: for a new style and for a repeated
+   pair_style line (LAMMPS calls settings() again on the same object). */
+
+void PairVertexVoronoi::keyword_defaults()
+{
+  sphere_on = 0;
+  tension = tessera::Tension::Edge;
+  incremental = 1;
+  grow = 1;
+  reference_every = 0;
+  radius = 0.0;
+}
+
 /* ----------------------------------------------------------------------
    pair_style vertex/voronoi cutoff [tension edge|cell] [... surface sphere cx cy cz R]
 ------------------------------------------------------------------------- */
@@ -38,12 +51,7 @@ void PairVertexVoronoi::settings(int narg, char **arg)
   // 'pair_style vertex/voronoi': every keyword not on the new line takes its
   // default (a repeated line without 'radius' gives confluent cells again,
   // without 'surface' cells in the plane or in space), as for a new style.
-  sphere_on = 0;
-  tension = tessera::Tension::Edge;
-  incremental = 1;
-  grow = 1;
-  reference_every = 0;
-  radius = 0.0;
+  keyword_defaults();
   while (iarg < narg) {
     if (strcmp(arg[iarg], "tension") == 0) {
       if (iarg + 2 > narg)

@@ -74,12 +74,16 @@ V3 centre_of(V3 p0, V3 p1, V3 p2, V3 p3, bool *sliver) {
   return p0 + s * (dot(e1, e1) * c23 + dot(e2, e2) * c31 + dot(e3, e3) * c12);
 }
 
-// Resizes v to n, growing its storage by a small margin rather than the
-// library's doubling (the arrays are kept from step to step and their sizes
-// change by a few per cent at most).
+// Storage for n elements, grown by a small margin rather than the library's
+// doubling (the arrays are kept from step to step and their sizes change by
+// a few per cent at most); fit also resizes v to n.
+template <class Vec>
+void room(Vec &v, size_t n) {
+  if (v.capacity() < n) v.reserve(n + n / 32);
+}
 template <class Vec>
 void fit(Vec &v, size_t n) {
-  if (v.capacity() < n) v.reserve(n + n / 32);
+  room(v, n);
   v.resize(n);
 }
 
@@ -226,9 +230,6 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
   t.face_neighbor.clear();
   t.face_offset.assign(1, 0);
   t.face_vertex.clear();
-  auto room = [](std::vector<int> &v, size_t n) {
-    if (v.capacity() < n) v.reserve(n + n / 32);
-  };
   room(t.cell_offset, static_cast<size_t>(n_owned) + 1);
   room(t.face_neighbor, c_nb_.size());
   room(t.face_offset, c_foff_.size());

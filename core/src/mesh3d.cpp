@@ -117,16 +117,16 @@ int insphere_raw(const double *p0, const double *p1, const double *p2, const dou
 }
 
 
-// Capacity for size() plus 1/32 (and `unit` whole elements' worth of 64
-// more), reallocated if it has less or more than a quarter above that.
+// Capacity for `size` elements plus 1/32 (and `unit` whole elements' worth
+// of 64 more), on an empty vector (after Mesh3::release()).
 template <class Vec>
-void with_margin(Vec &v, std::size_t unit) {
-  const std::size_t want = v.size() + v.size() / 32 + 64 * unit;
-  if (v.capacity() >= want && v.capacity() <= want + want / 4) return;
-  Vec w;
-  w.reserve(want);
-  w.assign(v.begin(), v.end());
-  v.swap(w);
+void reserve_with_margin(Vec &v, std::size_t size, std::size_t unit) {
+  v.reserve(size + size / 32 + 64 * unit);
+}
+
+template <class Vec>
+void release_vec(Vec &v) {
+  Vec().swap(v);
 }
 
 inline void sort3(int *f) {
@@ -169,6 +169,71 @@ int Mesh3::insphere(const Points3 &pts, const int *t, int e) const {
   return -1;
 }
 
+// CGAL's Delaunay triangulation of the points and the far points, exported
+// to tv_, tn_ and vt_; returns the number of tetrahedra.  CGAL's
+// triangulation lives only in this call.
+int Mesh3::triangulate(const Points3 &pts, const long *ids, const int *report) {
+  const int n = pts.n;
+  auto name = [&](int i) { return point_name(report ? report[i] : i, ids); };
+  int nt = 0;
+  DT dt;
+  {
+    std::vector<std::pair<P3, int>> in(n + 8);
+    for (int i = 0; i < n + 8; ++i) in[i] = {cp(pos(pts, i)), i};
+    dt.insert(in.begin(), in.end());
+  }
+  if (static_cast<int>(dt.number_of_vertices()) != n + 8) {
+    std::vector<int> order(n);
+    for (int i = 0; i < n; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      const double *p = pts.p(a), *q = pts.p(b);
+      return std::lexicographical_compare(p, p + 3, q, q + 3);
+    });
+    for (int k = 0; k + 1 < n; ++k) {
+      const double *p = pts.p(order[k]), *q = pts.p(order[k + 1]);
+      if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2])
+        throw Error("tessera: two cell centres at the same position (" + name(order[k]) + " and " +
+                    name(order[k + 1]) + ")");
+    }
+    throw Error("tessera: points were lost by the 3D triangulation");
+  }
+  // Tetrahedra numbered by their smallest point index (a counting sort):
+  // callers keep points in spatial order (LAMMPS sorts atoms), so a point's
+  // star lies in a few cache lines; the owned points' tetrahedra come first.
+  std::vector<int> first(n + 9, 0);
+  auto smallest = [](DT::Cell_handle c) {
+    return std::min(std::min(c->vertex(0)->info(), c->vertex(1)->info()),
+                    std::min(c->vertex(2)->info(), c->vertex(3)->info()));
+  };
+  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
+    c->info() = -1;
+    if (!dt.is_infinite(c)) {
+      ++first[smallest(c) + 1];
+      ++nt;
+    }
+  }
+  for (int i = 0; i < n + 8; ++i) first[i + 1] += first[i];
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) c->info() = first[smallest(c)]++;
+  // Room for a few per cent more tetrahedra (2-3 flips add one) reserved
+  // before the arrays are filled, so that the first flips do not double them
+  // (as push_back would) and no copy is made while CGAL's triangulation lives.
+  reserve_with_margin(tv_, 4 * static_cast<size_t>(nt), 4);
+  reserve_with_margin(tn_, 4 * static_cast<size_t>(nt), 4);
+  tv_.assign(4 * static_cast<size_t>(nt), -1);
+  tn_.assign(4 * static_cast<size_t>(nt), -1);
+  vt_.assign(n + 8, -1);
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
+    const int t = c->info();
+    for (int k = 0; k < 4; ++k) {
+      const int v = c->vertex(k)->info();
+      tv_[4 * t + k] = v;
+      tn_[4 * t + k] = c->neighbor(k)->info();
+      vt_[v] = t;
+    }
+  }
+  return nt;
+}
+
 void Mesh3::build(const Points3 &pts, const long *ids, const int *report) {
   valid_ = false;
   const int n = pts.n;
@@ -208,55 +273,14 @@ void Mesh3::build(const Points3 &pts, const long *ids, const int *report) {
     for (int d = 0; d < 3; ++d)
       far_[k][d] = 0.5 * (lo[d] + hi[d]) + ((k >> d) & 1 ? 32.0 : -32.0) * extent;
 
-  std::vector<std::pair<P3, int>> in(n + 8);
-  for (int i = 0; i < n + 8; ++i) in[i] = {cp(pos(pts, i)), i};
-  DT dt(in.begin(), in.end());
-  if (static_cast<int>(dt.number_of_vertices()) != n + 8) {
-    std::vector<int> order(n);
-    for (int i = 0; i < n; ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](int a, int b) {
-      const double *p = pts.p(a), *q = pts.p(b);
-      return std::lexicographical_compare(p, p + 3, q, q + 3);
-    });
-    for (int k = 0; k + 1 < n; ++k) {
-      const double *p = pts.p(order[k]), *q = pts.p(order[k + 1]);
-      if (p[0] == q[0] && p[1] == q[1] && p[2] == q[2])
-        throw Error("tessera: two cell centres at the same position (" + name(order[k]) + " and " +
-                    name(order[k + 1]) + ")");
-    }
-    throw Error("tessera: points were lost by the 3D triangulation");
-  }
-  // Tetrahedra numbered by their smallest point index (a counting sort):
-  // callers keep points in spatial order (LAMMPS sorts atoms), so a point's
-  // star lies in a few cache lines; the owned points' tetrahedra come first.
-  std::vector<int> first(n + 9, 0);
-  int nt = 0;
-  auto smallest = [](DT::Cell_handle c) {
-    return std::min(std::min(c->vertex(0)->info(), c->vertex(1)->info()),
-                    std::min(c->vertex(2)->info(), c->vertex(3)->info()));
-  };
-  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
-    c->info() = -1;
-    if (!dt.is_infinite(c)) {
-      ++first[smallest(c) + 1];
-      ++nt;
-    }
-  }
-  for (int i = 0; i < n + 8; ++i) first[i + 1] += first[i];
-  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) c->info() = first[smallest(c)]++;
-  tv_.assign(4 * static_cast<size_t>(nt), -1);
-  tn_.assign(4 * static_cast<size_t>(nt), -1);
-  vt_.assign(n + 8, -1);
-  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
-    const int t = c->info();
-    for (int k = 0; k < 4; ++k) {
-      const int v = c->vertex(k)->info();
-      tv_[4 * t + k] = v;
-      tn_[4 * t + k] = c->neighbor(k)->info();
-      vt_[v] = t;
-    }
-  }
-  free_.clear();
+  // The previous mesh is not needed: its arrays are released before CGAL's
+  // triangulation is built, so that the two never coexist (the peak memory
+  // of a rebuild is CGAL's triangulation and the arrays exported from it).
+  release();
+  const int nt = triangulate(pts, ids, report);
+  reserve_with_margin(skip_, nt, 1);
+  reserve_with_margin(tmark_, nt, 1);
+  reserve_with_margin(tmap_, nt, 1);
   skip_.assign(nt, 0);
   dirty_.assign(n + 8, 0);
   dirty_list_.clear();
@@ -267,17 +291,36 @@ void Mesh3::build(const Points3 &pts, const long *ids, const int *report) {
   tmark_.assign(nt, 0);
   pmark_.assign(n + 8, 0);
   tmap_.assign(nt, -1);
-  // Room for a few per cent more tetrahedra (2-3 flips add one), so that the
-  // first flips do not double the per-tetrahedron arrays (as push_back and
-  // resize would), and no slack from an earlier, larger mesh.
-  with_margin(tv_, 4);
-  with_margin(tn_, 4);
-  with_margin(skip_, 1);
-  with_margin(tmark_, 1);
-  with_margin(tmap_, 1);
   stamp_ = 0;
   flips_ = f23_ = f32_ = f44_ = exact_ = 0;
   valid_ = true;
+}
+
+void Mesh3::release() {
+  valid_ = false;
+  cache_ok_ = false;
+  release_vec(tv_);
+  release_vec(tn_);
+  release_vec(free_);
+  release_vec(vt_);
+  release_vec(stack_);
+  release_vec(pending_);
+  release_vec(prev_);
+  release_vec(mid_);
+  release_vec(undo_);
+  release_vec(skip_);
+  release_vec(code_);
+  release_vec(tmark_);
+  release_vec(pmark_);
+  release_vec(tmap_);
+  release_vec(tused_);
+  release_vec(bfs_);
+  release_vec(dirty_);
+  release_vec(dirty_list_);
+  release_vec(c_off_);
+  release_vec(c_nb_);
+  release_vec(c_foff_);
+  release_vec(c_tet_);
 }
 
 std::size_t Mesh3::memory_bytes() const {

@@ -171,6 +171,8 @@ private:
   int insphere(const Points3 &pts, const int *t, int e) const;
   bool less_xyz(const Points3 &pts, int a, int b) const;
   int new_tet();
+  void release();
+  int triangulate(const Points3 &pts, const long *ids, const int *report);
   void rollback();
   int slot_of(int tet, int v) const;
   int slot_of_nb(int tet, int nb) const;

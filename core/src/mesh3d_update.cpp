@@ -64,13 +64,6 @@ int Mesh3::scan(const Points3 &pts) {
 bool Mesh3::repair(const Points3 &pts) {
   const int nt = static_cast<int>(tv_.size() / 4);
   stack_.clear();
-  for (int t = 0; t < nt; ++t) {
-    if (skip_[t]) continue;
-    for (int k = 0; k < 4; ++k) {
-      const int u = tn_[4 * t + k];
-      if (u > t || (u >= 0 && skip_[u])) stack_.push_back(4 * t + k);
-    }
-  }
   // Untangle inverted or flat tetrahedra first (the in-sphere test needs
   // positive ones): rounds over them while some flip succeeds.
   while (!pending_.empty()) {
@@ -103,29 +96,51 @@ bool Mesh3::repair(const Points3 &pts) {
   }
   const long limit = flips_ + 1000 + n_tets();
   bool flipped_this_round = false;
-  for (;;) {
+  // One interior triangle (4 t + k): flipped if it is not locally Delaunay;
+  // false when the flips exceed the limit.
+  auto visit = [&](int code) {
+    const int t = code >> 2, k = code & 3;
+    if (tv_[4 * t] < 0) return true;
+    const int u = tn_[4 * t + k];
+    if (u < 0 || skip_[t] || skip_[u]) return true;
+    if (roi_lo_) {
+      const int f[3] = {tv_[4 * t + kFace[k][0]], tv_[4 * t + kFace[k][1]], tv_[4 * t + kFace[k][2]]};
+      if (outside(f, 3, true)) return true;
+    }
+    if (insphere(pts, &tv_[4 * t], tv_[4 * u + slot_of_nb(u, t)]) <= 0) return true;
+    if (!flip_face(pts, t, k)) {
+      pending_.push_back(code);
+      return true;
+    }
+    flipped_this_round = true;
+    if (++flips_ > limit) {
+      failure_ = "more flips than tetrahedra";
+      return false;
+    }
+    return true;
+  };
+  // The triangles made by a flip (stack_), depth first.
+  auto drain = [&]() {
     while (!stack_.empty()) {
       const int code = stack_.back();
       stack_.pop_back();
-      const int t = code >> 2, k = code & 3;
-      if (tv_[4 * t] < 0) continue;
-      const int u = tn_[4 * t + k];
-      if (u < 0 || skip_[t] || skip_[u]) continue;
-      if (roi_lo_) {
-        const int f[3] = {tv_[4 * t + kFace[k][0]], tv_[4 * t + kFace[k][1]], tv_[4 * t + kFace[k][2]]};
-        if (outside(f, 3, true)) continue;
-      }
-      if (insphere(pts, &tv_[4 * t], tv_[4 * u + slot_of_nb(u, t)]) <= 0) continue;
-      if (!flip_face(pts, t, k)) {
-        pending_.push_back(code);
-        continue;
-      }
-      flipped_this_round = true;
-      if (++flips_ > limit) {
-        failure_ = "more flips than tetrahedra";
-        return false;
-      }
+      if (!visit(code)) return false;
     }
+    return true;
+  };
+  // Every interior triangle of the region once, in a sweep over the
+  // tetrahedra (a stack of them all would hold two ints per tetrahedron);
+  // the triangles of a flip are checked before the sweep goes on.
+  for (int t = 0; t < nt; ++t) {
+    if (skip_[t] || tv_[4 * t] < 0) continue;
+    for (int k = 0; k < 4; ++k) {
+      const int u = tn_[4 * t + k];
+      if (!(u > t || (u >= 0 && skip_[u]))) continue;
+      if (!visit(4 * t + k) || !drain()) return false;
+    }
+  }
+  for (;;) {
+    if (!drain()) return false;
     if (pending_.empty()) break;
     if (!flipped_this_round) {
       // A round over the waiting triangles changed nothing: if one of them
@@ -145,9 +160,8 @@ bool Mesh3::repair(const Points3 &pts) {
       break;
     }
     flipped_this_round = false;
-    // Copied, not swapped: the waiting triangles are few, and a swap would
-    // give pending_ the stack's capacity (every triangle of the region).
-    stack_.assign(pending_.begin(), pending_.end());
+    // Another round over the waiting triangles.
+    stack_.swap(pending_);
     pending_.clear();
   }
   return true;

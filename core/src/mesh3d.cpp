@@ -317,18 +317,18 @@ void Mesh3::release() {
   release_vec(bfs_);
   release_vec(dirty_);
   release_vec(dirty_list_);
-  release_vec(c_off_);
-  release_vec(c_nb_);
-  release_vec(c_foff_);
-  release_vec(c_tet_);
+  for (auto *v : {&k_ring0_, &k_fstart_, &k_rstart_, &k_cells_, &k_first_, &k_nb_, &k_fo_, &k_fv_})
+    release_vec(*v);
 }
 
 std::size_t Mesh3::memory_bytes() const {
   const std::size_t ints = tv_.capacity() + tn_.capacity() + free_.capacity() + vt_.capacity() +
                            stack_.capacity() + pending_.capacity() + tmap_.capacity() +
                            tused_.capacity() + bfs_.capacity() +
-                           3 * undo_.capacity() + dirty_list_.capacity() + c_off_.capacity() +
-                           c_nb_.capacity() + c_foff_.capacity() + c_tet_.capacity();
+                           3 * undo_.capacity() + dirty_list_.capacity() + k_ring0_.capacity() +
+                           k_fstart_.capacity() + k_rstart_.capacity() + k_cells_.capacity() +
+                           k_first_.capacity() + k_nb_.capacity() + k_fo_.capacity() +
+                           k_fv_.capacity();
   return ints * sizeof(int) + skip_.capacity() + dirty_.capacity() + code_.capacity() * sizeof(unsigned short) +
          (prev_.capacity() + mid_.capacity()) * sizeof(double) +
          (tmark_.capacity() + pmark_.capacity()) * sizeof(unsigned);

@@ -94,6 +94,9 @@ void trim(Vec &v) {
   if (v.capacity() > v.size() + v.size() / 4 + 64) v.shrink_to_fit();
 }
 
+// Which cells() filled a Tessellation3 (Tessellation3::mesh_stamp).
+unsigned long stamp_counter = 0;
+
 // Face areas, volume and surface of owned cell i from t.vertices (the
 // formulas of voronoi3d.cpp's measure()).
 void measure_cell(Tessellation3 &t, const Points3 &pts, int i) {
@@ -138,9 +141,11 @@ void Mesh3::next_stamp() const {
 }
 
 // The faces of owned cell i (neighbour, ring of mesh tetrahedra) appended to
-// t's face arrays (the rings in mesh numbering until cells() renumbers
-// them); false if the cell is unbounded.
-bool Mesh3::walk_cell(int i, const long *ids, Tessellation3 &t) const {
+// nbs and ring, with each face's end in ring appended to offs (the rings in
+// mesh numbering until cells() renumbers them); false if the cell is
+// unbounded.
+bool Mesh3::walk_cell(int i, const long *ids, std::vector<int> &nbs, std::vector<int> &offs,
+                      std::vector<int> &ring) const {
   const int n = n_points_;
   next_stamp();
   const unsigned st = stamp_;
@@ -180,7 +185,7 @@ bool Mesh3::walk_cell(int i, const long *ids, Tessellation3 &t) const {
       // counter-clockwise about x_j - x_i.
       int cur = m, va = tv_[4 * m + la], vb = tv_[4 * m + lb];
       do {
-        t.face_vertex.push_back(cur);
+        ring.push_back(cur);
         int sa = 0;
         while (tv_[4 * cur + sa] != va) ++sa;
         const int nx = tn_[4 * cur + sa];
@@ -193,11 +198,116 @@ bool Mesh3::walk_cell(int i, const long *ids, Tessellation3 &t) const {
         vb = vc;
         cur = nx;
       } while (cur != m);
-      t.face_neighbor.push_back(j);
-      t.face_offset.push_back(static_cast<int>(t.face_vertex.size()));
+      nbs.push_back(j);
+      offs.push_back(static_cast<int>(ring.size()));
     }
   }
   return true;
+}
+
+// Pass 1 of cells() when t holds the topology of the last call (rings in
+// t's numbering, tused_ mapping them to mesh tetrahedra): the clean cells'
+// faces and rings stay, moved in place to their new offsets, and the cells
+// whose star a flip touched (or that had no faces) are walked again into
+// side buffers, copied in last.  Clean cells that move towards the front are
+// moved in increasing order and those that move towards the back in
+// decreasing order: a cell's destination then only covers storage already
+// moved or belonging to walked cells.
+void Mesh3::keep_topology(int n_owned, const long *ids, bool throw_if_unbounded,
+                          Tessellation3 &t) const {
+  std::vector<int> &off = t.cell_offset, &nb = t.face_neighbor, &fo = t.face_offset,
+                   &fv = t.face_vertex;
+  for (int &v : fv) v = tused_[v];
+  const size_t cells = static_cast<size_t>(n_owned) + 1;
+  fit(k_ring0_, cells);
+  fit(k_fstart_, cells);
+  fit(k_rstart_, cells);
+  for (size_t i = 0; i < cells; ++i) k_ring0_[i] = fo[off[i]];
+  auto clean = [&](int i) { return !dirty_[i] && off[i + 1] > off[i]; };
+  k_cells_.clear();
+  k_first_.clear();
+  k_nb_.clear();
+  k_fo_.assign(1, 0);
+  k_fv_.clear();
+  int nfaces = 0, nring = 0;
+  for (int i = 0; i < n_owned; ++i) {
+    k_fstart_[i] = nfaces;
+    k_rstart_[i] = nring;
+    if (clean(i)) {
+      nfaces += off[i + 1] - off[i];
+      nring += k_ring0_[i + 1] - k_ring0_[i];
+      continue;
+    }
+    const size_t nf = k_nb_.size(), nr = k_fv_.size();
+    k_cells_.push_back(i);
+    k_first_.push_back(static_cast<int>(nf));
+    if (!walk_cell(i, ids, k_nb_, k_fo_, k_fv_)) {
+      k_nb_.resize(nf);
+      k_fo_.resize(nf + 1);
+      k_fv_.resize(nr);
+      if (throw_if_unbounded) {
+        throw Error("tessera: the cell of " + point_name(i, ids) +
+                    " is unbounded (on the convex hull): the ghost shell is missing");
+      }
+      t.unbounded_cell = i;
+    }
+    nfaces += static_cast<int>(k_nb_.size() - nf);
+    nring += static_cast<int>(k_fv_.size() - nr);
+  }
+  k_fstart_[n_owned] = nfaces;
+  k_rstart_[n_owned] = nring;
+  k_first_.push_back(static_cast<int>(k_nb_.size()));
+  if (static_cast<size_t>(nfaces) > nb.size()) {
+    fit(nb, nfaces);
+    fit(fo, static_cast<size_t>(nfaces) + 1);
+  }
+  if (static_cast<size_t>(nring) > fv.size()) fit(fv, nring);
+
+  auto move_faces = [&](int i) {
+    const int o = off[i], n = k_fstart_[i], len = off[i + 1] - o;
+    const int dr = k_rstart_[i] - k_ring0_[i];
+    if (n <= o) {
+      for (int f = 0; f < len; ++f) {
+        nb[n + f] = nb[o + f];
+        fo[n + f + 1] = fo[o + f + 1] + dr;
+      }
+    } else {
+      for (int f = len - 1; f >= 0; --f) {
+        nb[n + f] = nb[o + f];
+        fo[n + f + 1] = fo[o + f + 1] + dr;
+      }
+    }
+  };
+  auto move_ring = [&](int i) {
+    const int o = k_ring0_[i], n = k_rstart_[i], len = k_ring0_[i + 1] - o;
+    if (n < o)
+      std::copy(fv.begin() + o, fv.begin() + o + len, fv.begin() + n);
+    else if (n > o)
+      std::copy_backward(fv.begin() + o, fv.begin() + o + len, fv.begin() + n + len);
+  };
+  for (int i = 0; i < n_owned; ++i) {
+    if (!clean(i)) continue;
+    if (k_fstart_[i] <= off[i]) move_faces(i);
+    if (k_rstart_[i] < k_ring0_[i]) move_ring(i);
+  }
+  for (int i = n_owned - 1; i >= 0; --i) {
+    if (!clean(i)) continue;
+    if (k_fstart_[i] > off[i]) move_faces(i);
+    if (k_rstart_[i] > k_ring0_[i]) move_ring(i);
+  }
+  for (size_t c = 0; c + 1 < k_first_.size(); ++c) {
+    const int i = k_cells_[c], f0 = k_first_[c], f1 = k_first_[c + 1];
+    const int n = k_fstart_[i], r = k_rstart_[i], r0 = k_fo_[f0];
+    for (int f = f0; f < f1; ++f) {
+      nb[n + (f - f0)] = k_nb_[f];
+      fo[n + (f - f0) + 1] = r + (k_fo_[f + 1] - r0);
+    }
+    std::copy(k_fv_.begin() + r0, k_fv_.begin() + k_fo_[f1], fv.begin() + r);
+  }
+  nb.resize(nfaces);
+  fo.resize(static_cast<size_t>(nfaces) + 1);
+  fv.resize(nring);
+  std::copy(k_fstart_.begin(), k_fstart_.end(), off.begin());
 }
 
 void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long *ids,
@@ -211,7 +321,6 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
   t.unbounded_cell = -1;
   t.origin.clear();
   t.position.clear();
-  tused_.clear();
   next_stamp();
   // tmap_ is all -1 between calls, also when an Error leaves early.
   struct Reset {
@@ -222,36 +331,28 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
   } reset{*this};
 
   // Pass 1, topology: the faces and rings of every owned cell, written into
-  // t with the rings in mesh numbering.  A cell whose star no flip touched
-  // since the last cells() keeps its faces and rings (from the cache c_*);
-  // the others walk their star again.
-  const bool reuse = cache_ok_ && cache_owned_ == n_owned;
-  t.cell_offset.assign(1, 0);
-  t.face_neighbor.clear();
-  t.face_offset.assign(1, 0);
-  t.face_vertex.clear();
-  room(t.cell_offset, static_cast<size_t>(n_owned) + 1);
-  room(t.face_neighbor, c_nb_.size());
-  room(t.face_offset, c_foff_.size());
-  room(t.face_vertex, c_tet_.size());
-  const size_t cap_nb = t.face_neighbor.capacity(), cap_fo = t.face_offset.capacity(),
-               cap_fv = t.face_vertex.capacity();
-  for (int i = 0; i < n_owned; ++i) {
-    if (reuse && !dirty_[i] && c_off_[i + 1] > c_off_[i]) {
-      const int f0 = c_off_[i], f1 = c_off_[i + 1];
-      const int base = static_cast<int>(t.face_vertex.size()) - c_foff_[f0];
-      const size_t nf = t.face_neighbor.size();
-      t.face_neighbor.resize(nf + (f1 - f0));
-      t.face_offset.resize(nf + 1 + (f1 - f0));
-      for (int f = f0; f < f1; ++f) {
-        t.face_neighbor[nf + (f - f0)] = c_nb_[f];
-        t.face_offset[nf + 1 + (f - f0)] = c_foff_[f + 1] + base;
-      }
-      t.face_vertex.insert(t.face_vertex.end(), c_tet_.begin() + c_foff_[f0],
-                           c_tet_.begin() + c_foff_[f1]);
-    } else {
+  // t with the rings in mesh numbering.  When t is the tessellation the last
+  // cells() filled (its stamp), a cell whose star no flip touched since
+  // keeps its faces and rings, moved in place; the others walk their star
+  // again.  There is no second copy of the topology.
+  const bool reuse = cache_ok_ && cache_owned_ == n_owned && t.mesh_stamp != 0 &&
+                     t.mesh_stamp == cache_stamp_ &&
+                     t.cell_offset.size() == static_cast<size_t>(n_owned) + 1 &&
+                     t.tets.size() == tused_.size();
+  t.mesh_stamp = 0;
+  if (reuse) {
+    keep_topology(n_owned, ids, throw_if_unbounded, t);
+  } else {
+    t.cell_offset.assign(1, 0);
+    t.face_neighbor.clear();
+    t.face_offset.assign(1, 0);
+    t.face_vertex.clear();
+    room(t.cell_offset, static_cast<size_t>(n_owned) + 1);
+    const size_t cap_nb = t.face_neighbor.capacity(), cap_fo = t.face_offset.capacity(),
+                 cap_fv = t.face_vertex.capacity();
+    for (int i = 0; i < n_owned; ++i) {
       const size_t nf = t.face_neighbor.size(), nr = t.face_vertex.size();
-      if (!walk_cell(i, ids, t)) {
+      if (!walk_cell(i, ids, t.face_neighbor, t.face_offset, t.face_vertex)) {
         t.face_neighbor.resize(nf);
         t.face_offset.resize(nf + 1);
         t.face_vertex.resize(nr);
@@ -261,22 +362,17 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
         }
         t.unbounded_cell = i;
       }
+      t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
     }
-    t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
+    // Arrays that grew by doubling here (the first call) give the slack back;
+    // storage the caller gave t stays.
+    if (t.face_neighbor.capacity() != cap_nb) trim(t.face_neighbor);
+    if (t.face_offset.capacity() != cap_fo) trim(t.face_offset);
+    if (t.face_vertex.capacity() != cap_fv) trim(t.face_vertex);
   }
-  // Arrays that grew by doubling here (the first call) give the slack back;
-  // storage the caller gave t stays.
-  if (t.face_neighbor.capacity() != cap_nb) trim(t.face_neighbor);
-  if (t.face_offset.capacity() != cap_fo) trim(t.face_offset);
-  if (t.face_vertex.capacity() != cap_fv) trim(t.face_vertex);
-  // The cache for the next call: this topology in mesh numbering (one copy
-  // beside t's; an Error below leaves it invalid, and the next call walks
-  // every cell).
+  // An Error below leaves the topology unusable for the next call.
   cache_ok_ = false;
-  c_off_.assign(t.cell_offset.begin(), t.cell_offset.end());
-  c_nb_.assign(t.face_neighbor.begin(), t.face_neighbor.end());
-  c_foff_.assign(t.face_offset.begin(), t.face_offset.end());
-  c_tet_.assign(t.face_vertex.begin(), t.face_vertex.end());
+  tused_.clear();
 
   // Pass 2: number the tetrahedra of the rings in order of first use (the
   // Tessellation3's numbering), and the polygons in that numbering, in place.
@@ -302,6 +398,7 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
   fit(t.vertices, n_tet);
   fit(t.radius, n_tet);
   std::vector<int> slivers;  // mesh tetrahedra (rare: no allocation without)
+  bool dropped = false;
   for (int id = 0; id < n_tet; ++id) {
     const int m = tused_[id];
     const int *q = &tv_[4 * m];
@@ -354,6 +451,7 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
         break;
       }
     }
+    dropped = any;
     if (any) {
       // Rewrite the polygons without the dropped slivers (a face of
       // slivers only keeps them: an area-0 face) and measure the cells
@@ -419,13 +517,13 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
     } graph(tv_, tn_, tused_, tmap_, n);
     detail3::find_fourfold_edges(t, pts, graph);
   }
-  trim(c_nb_);
-  trim(c_foff_);
-  trim(c_tet_);
   for (const int v : dirty_list_) dirty_[v] = 0;
   dirty_list_.clear();
-  cache_ok_ = true;
+  // The next call may keep this topology (rings through tused_) unless
+  // slivers were dropped from it.
+  cache_ok_ = !dropped;
   cache_owned_ = n_owned;
+  t.mesh_stamp = cache_stamp_ = ++stamp_counter;
 }
 
 }  // namespace tessera

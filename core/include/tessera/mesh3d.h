@@ -88,9 +88,11 @@ public:
   // throws Error if throw_if_unbounded, else sets t.unbounded_cell (and the
   // cell has no faces), as tessellate_local_3d.  Throws Error if an owned
   // point lay outside the last update()'s region of interest (grown by the
-  // buffer): its tetrahedra were not kept.  The faces and rings of the
-  // cells whose stars no flip touched since the previous call are kept from
-  // it (only their geometry is computed again).
+  // buffer): its tetrahedra were not kept.  When t is the tessellation the
+  // previous call filled (t.mesh_stamp), unchanged since, the faces and
+  // rings of the cells whose stars no flip touched are kept in it, moved in
+  // place (only their geometry is computed again); any other t has every
+  // cell walked.  Do not edit the topology of t between calls.
   void cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long *ids = nullptr,
              bool throw_if_unbounded = true) const;
 
@@ -155,11 +157,15 @@ private:
   // Per point: its star changed (a flip) since the last cells().
   mutable std::vector<char> dirty_;
   mutable std::vector<int> dirty_list_;
-  // The owned cells' faces of the last cells(), in mesh numbering: faces
-  // c_off_[i] .. c_off_[i+1]-1 of cell i, face f towards c_nb_[f] with the
-  // ring of tetrahedra c_tet_[c_foff_[f] .. c_foff_[f+1]).  cells() builds
-  // the next ones in the Tessellation3 it fills and copies them here.
-  mutable std::vector<int> c_off_, c_nb_, c_foff_, c_tet_;
+  // The last cells() left its topology in the Tessellation3 it filled
+  // (stamped cache_stamp_), the rings in that tessellation's numbering of
+  // the tetrahedra, mapped to mesh tetrahedra by tused_.  The next cells()
+  // on it keeps the faces of the cells no flip touched (keep_topology), with
+  // these scratch arrays: per owned cell its old ring start and new face and
+  // ring starts; the walked cells, their first faces, and their faces (k_nb_,
+  // k_fo_, k_fv_ as in a Tessellation3).
+  mutable unsigned long cache_stamp_ = 0;
+  mutable std::vector<int> k_ring0_, k_fstart_, k_rstart_, k_cells_, k_first_, k_nb_, k_fo_, k_fv_;
   mutable bool cache_ok_ = false;
   mutable int cache_owned_ = -1;
   mutable unsigned stamp_ = 0;
@@ -188,7 +194,9 @@ private:
   Points3 interpolate(const Points3 &pts, double s);
   bool replace(const Points3 &pts, const int *old_tets, int n_old, int (*nv)[4], int n_new);
   void next_stamp() const;
-  bool walk_cell(int i, const long *ids, Tessellation3 &t) const;
+  bool walk_cell(int i, const long *ids, std::vector<int> &nbs, std::vector<int> &offs,
+                 std::vector<int> &ring) const;
+  void keep_topology(int n_owned, const long *ids, bool throw_if_unbounded, Tessellation3 &t) const;
 };
 
 // The benchmarks' yardstick: a plain CGAL Delaunay_triangulation_3 (default

@@ -112,6 +112,10 @@ struct Tessellation3 {
   // cleared by remeasure_3d (a branch has none).
   std::vector<FourFoldEdge3> fourfold;
 
+  // Set by Mesh3::cells(): which call filled this tessellation (lets the
+  // next call on it keep the faces of the cells no flip changed); 0 if none.
+  unsigned long mesh_stamp = 0;
+
   // tessellate_periodic_3d: the owned point each point is an image of, and
   // the positions triangulated (stride 3, owned points first).
   std::vector<int> origin;

@@ -130,12 +130,31 @@ bool Mesh3::repair(const Points3 &pts) {
   };
   // Every interior triangle of the region once, in a sweep over the
   // tetrahedra (a stack of them all would hold two ints per tetrahedron);
-  // the triangles of a flip are checked before the sweep goes on.
+  // the triangles of a flip are checked before the sweep goes on.  Most
+  // triangles are decided from the circumsphere of the tetrahedron on their
+  // lower-numbered side, computed once for its triangles (clearly_outside:
+  // the opposite point lies well outside, so the triangle is Delaunay, as
+  // the predicate would say); the rest, near ties and flat tetrahedra,
+  // take the in-sphere predicate in visit().
   for (int t = 0; t < nt; ++t) {
     if (skip_[t] || tv_[4 * t] < 0) continue;
+    double v[3], r2 = 0.0;
+    bool sphere = false;
+    long sphere_at = -1;  // flips_ when the sphere was computed (a flip may change t)
     for (int k = 0; k < 4; ++k) {
+      const int *q = &tv_[4 * t];
+      if (q[0] < 0) break;
       const int u = tn_[4 * t + k];
       if (!(u > t || (u >= 0 && skip_[u]))) continue;
+      if (u >= 0 && !skip_[u]) {
+        const double *p0 = pos(pts, q[0]);
+        if (sphere_at != flips_) {
+          sphere = detail3::circumsphere(p0, pos(pts, q[1]), pos(pts, q[2]), pos(pts, q[3]), v, r2);
+          sphere_at = flips_;
+        }
+        const double *e = pos(pts, tv_[4 * u + slot_of_nb(u, t)]);
+        if (sphere && detail3::clearly_outside(p0, v, r2, e)) continue;
+      }
       if (!visit(4 * t + k) || !drain()) return false;
     }
   }

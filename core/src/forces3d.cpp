@@ -172,12 +172,12 @@ ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const
             V3 av{0, 0, 0}, q{0, 0, 0};
             for (int k = 0; k < mr; ++k) u[k] = vv(t.vertices[ring[k]]) - xc;
             for (int k = 0; k < mr; ++k) {
-              av = av + 0.5 * cross(u[k], u[(k + 1) % mr]);
+              av = av + 0.5 * cross(u[k], u[k + 1 < mr ? k + 1 : 0]);
               q = q + u[k];
             }
             q = (1.0 / mr) * q;
             for (int k = 0; k < mr; ++k) {
-              const int k1 = (k + 1) % mr;
+              const int k1 = k + 1 < mr ? k + 1 : 0;
               const V3 de = u[k1] - u[k];
               const V3 piece = dedsf * (0.5 * cross(de, nrm)) +
                                dedv * ((1.0 / 3.0) * (0.5 * cross(de, q) + (0.5 / mr) * av));
@@ -209,13 +209,15 @@ ForceOutput3 compute_forces_3d(const Tessellation3 &t, const Points3 &pts, const
       u.resize(m);
       V3 av{0, 0, 0}, q{0, 0, 0};
       for (int k = 0; k < m; ++k) u[k] = vv(t.vertices[t.face_vertex[o + k]]) - xc;
+      // Neighbours in the ring without a modulo (an integer division each, a
+      // large share of this loop); the same terms in the same order.
       for (int k = 0; k < m; ++k) {
-        av = av + 0.5 * cross(u[k], u[(k + 1) % m]);
+        av = av + 0.5 * cross(u[k], u[k + 1 < m ? k + 1 : 0]);
         q = q + u[k];
       }
       q = (1.0 / m) * q;
       for (int k = 0; k < m; ++k) {
-        const V3 diff = u[(k + 1) % m] - u[(k + m - 1) % m];
+        const V3 diff = u[k + 1 < m ? k + 1 : 0] - u[k > 0 ? k - 1 : m - 1];
         const V3 dS = 0.5 * cross(diff, nrm);
         const V3 dV = (1.0 / 3.0) * (0.5 * cross(diff, q) + (1.0 / m) * av);
         const int v = t.face_vertex[o + k];

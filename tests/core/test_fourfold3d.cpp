@@ -65,20 +65,6 @@ Config3 square_and_random(uint64_t seed) {
   return c;
 }
 
-Model two_types() {
-  Model m(2);
-  m.types[0].K = 1.0;
-  m.types[0].A0 = 0.3;
-  m.types[0].Gamma = 0.2;
-  m.types[1].K = 0.8;
-  m.types[1].A0 = 0.35;
-  m.types[1].Gamma = 0.15;
-  m.set_lambda(0, 0, -0.6);
-  m.set_lambda(1, 1, -0.4);
-  m.set_lambda(0, 1, 0.3);
-  return m;
-}
-
 // The gradient of the branch that is Delaunay at c with coordinate q moved
 // by delta, evaluated at c (forces folded onto the owners).
 std::vector<double> branch_forces(const Config3 &c, const Model &m, int q, double delta) {
@@ -109,7 +95,7 @@ double energy_at(const Config3 &c, const Model &m, int q, double h) {
 }  // namespace
 
 TEST(FourFold3D, CentralDifferenceIsTheMeanOfTheTwoBranchGradients) {
-  const Model m = two_types();
+  const Model m = testutil::two_types_fixed(0.3, 0.35);
   int kinks = 0, checked = 0;
   for (uint64_t seed : {1u, 2u, 3u}) {
     const Config3 c = square_and_random(seed);
@@ -182,7 +168,7 @@ TEST(FourFold3D, CentralDifferenceIsTheMeanOfTheTwoBranchGradients) {
 // edge is recorded, so the forces are the gradient of the branch the
 // triangulation chose (the remeasured tessellation's, exactly).
 TEST(FourFold3D, FiveFoldEdgesAreLeftAlone) {
-  const Model m = two_types();
+  const Model m = testutil::two_types_fixed(0.3, 0.35);
   Config3 c = square_and_random(4);
   const double pi = 3.141592653589793;
   // Replace the square by a pentagon (one more centre: the last random one

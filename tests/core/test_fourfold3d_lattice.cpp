@@ -123,20 +123,6 @@ TEST(FourFold3D, TiltedSimpleCubicHasZeroForcesBothBuilders) {
 
 namespace {
 
-Model two_types() {
-  Model m(2);
-  m.types[0].K = 1.0;
-  m.types[0].A0 = 0.9;
-  m.types[0].Gamma = 0.2;
-  m.types[1].K = 0.8;
-  m.types[1].A0 = 1.1;
-  m.types[1].Gamma = 0.15;
-  m.set_lambda(0, 0, -0.6);
-  m.set_lambda(1, 1, -0.4);
-  m.set_lambda(0, 1, 0.3);
-  return m;
-}
-
 // Forces of the periodic configuration c (types ty), folded; both builders.
 std::vector<double> forces(const Lattice &c, const std::vector<int> &type, const Model &m,
                            bool mesh3, size_t *edges = nullptr) {
@@ -199,7 +185,7 @@ double sum_abs(const std::vector<double> &f) {
 // derivatives whose mean is the force; the forces sum to zero; CGAL and
 // Mesh3 (which break the ties differently) give the same forces.
 TEST(FourFold3D, TwoTypeTiltedSimpleCubicForcesAreTheMeanOfTheOneSidedDerivatives) {
-  const Model m = two_types();
+  const Model m = testutil::two_types_fixed(0.9, 1.1);
   const Lattice c = sc(3, 1.0, 0.3, 1.0, 0.0);
   testutil::Rng rng(5);
   std::vector<int> type(c.n());
@@ -234,7 +220,7 @@ TEST(FourFold3D, TwoTypeTiltedSimpleCubicForcesAreTheMeanOfTheOneSidedDerivative
 // Mesh3 give the same forces, which sum to zero (before the rule the
 // slivers there made them differ by up to the forces' own size).
 TEST(FourFold3D, JitteredSimpleCubic) {
-  const Model m = two_types();
+  const Model m = testutil::two_types_fixed(0.9, 1.1);
   testutil::Rng rng(9);
   Lattice c = sc(3, 1.0, 0.3, 1.0, 0.0);
   std::vector<int> type(c.n());
@@ -272,7 +258,7 @@ TEST(FourFold3D, JitteredSimpleCubic) {
 // routes included, about its centre) add up to the total virial on a
 // two-type tilted simple cubic lattice.
 TEST(FourFold3D, CellVirialsAddUpAtFourFoldEdges) {
-  const Model m = two_types();
+  const Model m = testutil::two_types_fixed(0.9, 1.1);
   const Lattice c = sc(3, 1.0, 0.3, 1.0, 0.0);
   testutil::Rng rng(8);
   std::vector<int> type(c.n());

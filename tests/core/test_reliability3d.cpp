@@ -77,21 +77,6 @@ Lattice3 lattice(int m, double a, const std::vector<std::array<double, 3>> &basi
   return c;
 }
 
-// Two types with face tensions of both signs.
-Model two_types() {
-  Model m(2);
-  m.types[0].K = 1.0;
-  m.types[0].A0 = 0.24;
-  m.types[0].Gamma = 0.2;
-  m.types[1].K = 0.8;
-  m.types[1].A0 = 0.27;
-  m.types[1].Gamma = 0.15;
-  m.set_lambda(0, 0, -0.6);
-  m.set_lambda(1, 1, -0.4);
-  m.set_lambda(0, 1, 0.3);
-  return m;
-}
-
 double energy_of(const Lattice3 &c, const Model &m) {
   std::vector<double> f;
   return periodic_forces_3d(c.box, c.points(), c.type.data(), m, f).energy;
@@ -107,7 +92,6 @@ Model one_type() {
 }
 
 }  // namespace
-
 
 // Uniform lattices whose box is a period of the lattice: every cell is the
 // same polyhedron, so each volume is V/N (the orthogonal box's value) and,
@@ -190,7 +174,7 @@ TEST(Reliability3D, ShearedLatticeCellsAreEqual) {
 // already breaks the exact ties, so this passed before the sliver fix too;
 // it guards the fix's tolerances, which must not swallow real geometry.)
 TEST(Reliability3D, JitteredTiltedFCCForcesMatchCentralDifferences) {
-  const Model m = two_types();
+  const Model m = testutil::two_types_fixed(0.24, 0.27);
   Lattice3 c = lattice(3, 1.0, kFCC, 1.0, 0.3);
   testutil::Rng rng(17);
   for (int &ty : c.type) ty = rng.below(2);
@@ -355,7 +339,7 @@ TEST(Reliability3D, MultifoldEdgesForceIsTheMeanOfTheOneSidedDerivatives) {
   Lattice3 c = lattice(3, 1.0, kSC, 0.0);
   testutil::Rng rng(23);
   for (int &ty : c.type) ty = rng.below(2);
-  const Model m = two_types();
+  const Model m = testutil::two_types_fixed(0.24, 0.27);
   std::vector<double> f;
   periodic_forces_3d(c.box, c.points(), c.type.data(), m, f);
   const double h = 1e-6, e0 = energy_of(c, m);

@@ -209,4 +209,22 @@ inline std::set<std::array<int, 3>> triangle_set(const tessera::Tessellation &t)
   return s;
 }
 
+// Two cell types with face tensions of both signs, fixed values (the 3D
+// four-fold and reliability tests): K 1 and 0.8, Gamma 0.2 and 0.15, Lambda
+// -0.6 (0-0), -0.4 (1-1) and 0.3 (0-1); the preferred volumes a0, a1 fit each
+// test's cell size.
+inline tessera::Model two_types_fixed(double a0, double a1) {
+  tessera::Model m(2);
+  m.types[0].K = 1.0;
+  m.types[0].A0 = a0;
+  m.types[0].Gamma = 0.2;
+  m.types[1].K = 0.8;
+  m.types[1].A0 = a1;
+  m.types[1].Gamma = 0.15;
+  m.set_lambda(0, 0, -0.6);
+  m.set_lambda(1, 1, -0.4);
+  m.set_lambda(0, 1, 0.3);
+  return m;
+}
+
 }  // namespace testutil

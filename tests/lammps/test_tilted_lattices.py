@@ -76,16 +76,18 @@ class TiltedLattices(LammpsTestCase):
     def test_bcc(self):
         self.check("bcc", 1)
 
-    def test_sc(self):
+    def check_sc(self, n):
+        # Simple cubic tilted both ways, with the kept mesh and without.
         for tilt in (1, -1):
-            self.check("sc", 1, tilt=tilt)
-            self.check("sc", 1, inc="no", tilt=tilt)
+            self.check("sc", n, tilt=tilt)
+            self.check("sc", n, inc="no", tilt=tilt)
+
+    def test_sc(self):
+        self.check_sc(1)
 
     @nprocs(2)
     def test_sc_two_ranks(self):
-        for tilt in (1, -1):
-            self.check("sc", 2, tilt=tilt)
-            self.check("sc", 2, inc="no", tilt=tilt)
+        self.check_sc(2)
 
     def two_types(self, n, inc):
         run = self.run_lmp(TWO_TYPES.format(inc=inc), nprocs=n)
@@ -105,9 +107,7 @@ class TiltedLattices(LammpsTestCase):
 
     @nprocs(4)
     def test_sc_four_ranks(self):
-        for tilt in (1, -1):
-            self.check("sc", 4, tilt=tilt)
-            self.check("sc", 4, inc="no", tilt=tilt)
+        self.check_sc(4)
 
     @nprocs(2)
     def test_fcc_two_ranks(self):

@@ -283,8 +283,6 @@ void Mesh3::build(const Points3 &pts, const long *ids, const int *report) {
   reserve_with_margin(tmap_, nt, 1);
   skip_.assign(nt, 0);
   dirty_.assign(n + 8, 0);
-  dirty_list_.clear();
-  cache_ok_ = false;
   prev_.resize(3 * static_cast<size_t>(n));
   for (int i = 0; i < n; ++i)
     for (int d = 0; d < 3; ++d) prev_[3 * i + d] = pts.p(i)[d];
@@ -299,26 +297,16 @@ void Mesh3::build(const Points3 &pts, const long *ids, const int *report) {
 void Mesh3::release() {
   valid_ = false;
   cache_ok_ = false;
-  release_vec(tv_);
-  release_vec(tn_);
-  release_vec(free_);
-  release_vec(vt_);
-  release_vec(stack_);
-  release_vec(pending_);
-  release_vec(prev_);
-  release_vec(mid_);
+  for (auto *v : {&tv_, &tn_, &free_, &vt_, &stack_, &pending_, &tmap_, &tused_, &bfs_,
+                  &dirty_list_, &k_ring0_, &k_fstart_, &k_rstart_, &k_cells_, &k_first_, &k_nb_,
+                  &k_fo_, &k_fv_})
+    release_vec(*v);
+  for (auto *v : {&prev_, &mid_}) release_vec(*v);
+  for (auto *v : {&tmark_, &pmark_}) release_vec(*v);
   release_vec(undo_);
   release_vec(skip_);
-  release_vec(code_);
-  release_vec(tmark_);
-  release_vec(pmark_);
-  release_vec(tmap_);
-  release_vec(tused_);
-  release_vec(bfs_);
   release_vec(dirty_);
-  release_vec(dirty_list_);
-  for (auto *v : {&k_ring0_, &k_fstart_, &k_rstart_, &k_cells_, &k_first_, &k_nb_, &k_fo_, &k_fv_})
-    release_vec(*v);
+  release_vec(code_);
 }
 
 std::size_t Mesh3::memory_bytes() const {

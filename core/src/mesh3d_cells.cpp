@@ -142,8 +142,8 @@ void Mesh3::next_stamp() const {
 
 // The faces of owned cell i (neighbour, ring of mesh tetrahedra) appended to
 // nbs and ring, with each face's end in ring appended to offs (the rings in
-// mesh numbering until cells() renumbers them); false if the cell is
-// unbounded.
+// mesh numbering until cells() renumbers them); false, with nothing
+// appended, if the cell is unbounded (its star is walked before any face).
 bool Mesh3::walk_cell(int i, const long *ids, std::vector<int> &nbs, std::vector<int> &offs,
                       std::vector<int> &ring) const {
   const int n = n_points_;
@@ -205,6 +205,16 @@ bool Mesh3::walk_cell(int i, const long *ids, std::vector<int> &nbs, std::vector
   return true;
 }
 
+// Owned cell i is unbounded (on the convex hull): an Error, or, if the caller
+// asked not to throw, t.unbounded_cell (the cell has no faces).
+void Mesh3::unbounded(int i, const long *ids, bool throw_if_unbounded, Tessellation3 &t) const {
+  if (throw_if_unbounded) {
+    throw Error("tessera: the cell of " + point_name(i, ids) +
+                " is unbounded (on the convex hull): the ghost shell is missing");
+  }
+  t.unbounded_cell = i;
+}
+
 // Pass 1 of cells() when t holds the topology of the last call (rings in
 // t's numbering, tused_ mapping them to mesh tetrahedra): the clean cells'
 // faces and rings stay, moved in place to their new offsets, and the cells
@@ -241,16 +251,7 @@ void Mesh3::keep_topology(int n_owned, const long *ids, bool throw_if_unbounded,
     const size_t nf = k_nb_.size(), nr = k_fv_.size();
     k_cells_.push_back(i);
     k_first_.push_back(static_cast<int>(nf));
-    if (!walk_cell(i, ids, k_nb_, k_fo_, k_fv_)) {
-      k_nb_.resize(nf);
-      k_fo_.resize(nf + 1);
-      k_fv_.resize(nr);
-      if (throw_if_unbounded) {
-        throw Error("tessera: the cell of " + point_name(i, ids) +
-                    " is unbounded (on the convex hull): the ghost shell is missing");
-      }
-      t.unbounded_cell = i;
-    }
+    if (!walk_cell(i, ids, k_nb_, k_fo_, k_fv_)) unbounded(i, ids, throw_if_unbounded, t);
     nfaces += static_cast<int>(k_nb_.size() - nf);
     nring += static_cast<int>(k_fv_.size() - nr);
   }
@@ -351,17 +352,8 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
     const size_t cap_nb = t.face_neighbor.capacity(), cap_fo = t.face_offset.capacity(),
                  cap_fv = t.face_vertex.capacity();
     for (int i = 0; i < n_owned; ++i) {
-      const size_t nf = t.face_neighbor.size(), nr = t.face_vertex.size();
-      if (!walk_cell(i, ids, t.face_neighbor, t.face_offset, t.face_vertex)) {
-        t.face_neighbor.resize(nf);
-        t.face_offset.resize(nf + 1);
-        t.face_vertex.resize(nr);
-        if (throw_if_unbounded) {
-          throw Error("tessera: the cell of " + point_name(i, ids) +
-                      " is unbounded (on the convex hull): the ghost shell is missing");
-        }
-        t.unbounded_cell = i;
-      }
+      if (!walk_cell(i, ids, t.face_neighbor, t.face_offset, t.face_vertex))
+        unbounded(i, ids, throw_if_unbounded, t);
       t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
     }
     // Arrays that grew by doubling here (the first call) give the slack back;

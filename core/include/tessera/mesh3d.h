@@ -197,6 +197,7 @@ private:
   bool walk_cell(int i, const long *ids, std::vector<int> &nbs, std::vector<int> &offs,
                  std::vector<int> &ring) const;
   void keep_topology(int n_owned, const long *ids, bool throw_if_unbounded, Tessellation3 &t) const;
+  void unbounded(int i, const long *ids, bool throw_if_unbounded, Tessellation3 &t) const;
 };
 
 // The benchmarks' yardstick: a plain CGAL Delaunay_triangulation_3 (default

@@ -13,7 +13,6 @@ ComputeStyle(vertex/atom,ComputeVertexAtom);
 #define LMP_COMPUTE_VERTEX_ATOM_H
 
 #include "compute.h"
-#include "tessera_compat.h"
 
 #include <vector>
 
@@ -25,40 +24,19 @@ class ComputeVertexAtom : public Compute {
   ~ComputeVertexAtom() override;
   void init() override;
   void compute_peratom() override;
-  void compute_vector() override;
-  void set_arrays(int) override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
   double memory_usage() override;
-
-  // Neighbour tags remembered per atom for counting neighbour exchanges.
-  static constexpr int MAXNEIGH = 24;
 
  protected:
   int nmax;
   double **values;            // per-atom output, nmax x NCOLS
   std::vector<double> vel;    // stride-3 velocities of owned and ghost atoms
   std::vector<double> coordination, orientation;
-  char *id_fix;
-  tessera_compat::FixStorePerAtom *fix;
   class PairVertexVoronoi *pair;
-  int warned_overflow;
 
   void check_cells();
   void communicate_velocities();
-  double count_multifold();
-  double rosette;  // > 0: count clusters of vertices joined by junctions shorter than this
-  std::vector<int> cluster_offset, cluster_members;
-  double count_new_neighbors();
-  void junction_lengths(double &het, double &total);
-  bigint vector_of = -1;    // pair's compute_count() of the last global vector
-  void neighbor_tags(int, std::vector<tagint> &);
-
-  // Forward communication: velocities (3 values) or one flag per atom.
-  int comm_what = 0;
-  std::vector<double> flag;    // per owned and ghost atom (see count_new_neighbors)
-  void communicate_flags();
-  std::vector<tagint> present;    // sorted tags of owned and ghost atoms
 };
 
 }    // namespace LAMMPS_NS

@@ -49,7 +49,8 @@ timestep 0.01
 fix move all brownian 1.0 1 gamma_t 1.0 rng none
 fix act all polarity 0.1 1.0 neighbor 1.0 noise 0.5 2711
 compute cell all vertex/atom
-thermo_style custom step pe c_cell[1] f_act[1]
+compute tissue all vertex/tissue
+thermo_style custom step pe c_tissue[1] f_act[1]
 run 0
 """)
     me = lmp.extract_setting("world_rank") if hasattr(lmp, "extract_setting") else 0

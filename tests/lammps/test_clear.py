@@ -24,8 +24,9 @@ pair_coeff * * 1.0 1.0 0.1 -0.5
 fix move all brownian 1.0 1 gamma_t 1.0 rng none
 fix act all polarity 0.3 1.0 neighbor 1.0
 compute cell all vertex/atom
+compute tissue all vertex/tissue
 compute edges all vertex/local
-thermo_style custom step pe c_cell[1]
+thermo_style custom step pe c_tissue[1]
 thermo_modify format float %.15g
 thermo 5
 timestep 0.01

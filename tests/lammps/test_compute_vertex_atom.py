@@ -42,7 +42,8 @@ pair_style vertex/voronoi 3.0
 pair_coeff * * {K} {A0} {GAMMA} {LAMBDA}
 {extra}
 compute va all vertex/atom
-thermo_style custom step pe c_va[1] c_va[2] c_va[3]
+compute vt all vertex/tissue
+thermo_style custom step pe c_vt[1] c_vt[2] c_vt[3]
 thermo_modify format float %.15g
 """
 
@@ -173,9 +174,9 @@ class Lattices(LammpsTestCase):
         np.testing.assert_allclose(col["coordination"], 1.0, rtol=1e-14)
         np.testing.assert_allclose(col["orientation"], 0.0, atol=1e-14)
         (row,) = thermo_rows(run.stdout)
-        self.assertAlmostEqual(row["c_va[1]"], HEX_PERIMETER, places=12)
-        self.assertEqual(row["c_va[2]"], 0)
-        self.assertEqual(row["c_va[3]"], 0)    # the first computation
+        self.assertAlmostEqual(row["c_vt[1]"], HEX_PERIMETER, places=12)
+        self.assertEqual(row["c_vt[2]"], 0)
+        self.assertEqual(row["c_vt[3]"], 0)    # the first computation
         # pe is normalised per atom in lj units: the mean cell energy
         self.assertAlmostEqual(row["PotEng"], cell_energy(1.0, HEX_PERIMETER), places=12)
 
@@ -194,10 +195,10 @@ class Lattices(LammpsTestCase):
         np.testing.assert_allclose(col["coordination"], 1.0, rtol=1e-14)
         np.testing.assert_allclose(col["orientation"], math.pi, rtol=1e-14)
         (row,) = thermo_rows(run.stdout)
-        self.assertAlmostEqual(row["c_va[1]"], 4.0, places=12)
+        self.assertAlmostEqual(row["c_vt[1]"], 4.0, places=12)
         # 4 cells meet at every vertex and each cell has 4: as many vertices as
         # cells, each counted once across periodic images and ranks
-        self.assertEqual(row["c_va[2]"], 100)
+        self.assertEqual(row["c_vt[2]"], 100)
 
     def test_square_lattice(self):
         self.check_square(1)
@@ -217,7 +218,7 @@ class Lattices(LammpsTestCase):
                  "displace_atoms moved move 0.1 0.05 0 units box")
         run = self.run_lmp(tissue("sq", ny=10, extra=extra) + "run 0\n", nprocs=nprocs)
         (row,) = thermo_rows(run.stdout)
-        self.assertEqual(row["c_va[2]"], 96)
+        self.assertEqual(row["c_vt[2]"], 96)
 
     def test_square_lattice_one_cell_moved(self):
         for atom in (1, 55, 100):    # corner of the box, middle, opposite corner
@@ -238,7 +239,8 @@ class Lattices(LammpsTestCase):
                  "group left region left\n"
                  "velocity all set 0 1 0")
         script = tissue("sq", ny=10, extra=extra).replace(
-            "compute va all vertex/atom", "compute va left vertex/atom")
+            "compute va all vertex/atom", "compute va left vertex/atom").replace(
+            "compute vt all vertex/tissue", "compute vt left vertex/tissue")
         run = self.run_lmp(script + dump_columns() + "run 0\n", nprocs=nprocs)
         (frame,) = run.dump("cells.dump")
         inside = frame["x"] < 4.5
@@ -250,8 +252,8 @@ class Lattices(LammpsTestCase):
         np.testing.assert_array_equal(col["z"][inside], 4)
         np.testing.assert_allclose(col["orientation"][inside], math.pi / 2, rtol=1e-14)
         (row,) = thermo_rows(run.stdout)
-        self.assertAlmostEqual(row["c_va[1]"], 4.0, places=12)
-        self.assertEqual(row["c_va[2]"], 40)
+        self.assertAlmostEqual(row["c_vt[1]"], 4.0, places=12)
+        self.assertEqual(row["c_vt[2]"], 40)
 
     def test_group(self):
         self.check_group(1)
@@ -311,8 +313,8 @@ class Disordered(LammpsTestCase):
         col = columns(frame)
         self.assertGreater(np.ptp(col["z"]), 0)    # the disorder changed neighbour counts
         (row,) = thermo_rows(run.stdout)
-        self.assertAlmostEqual(row["c_va[1]"], np.mean(col["q"]), places=12)
-        self.assertEqual(row["c_va[2]"], 0)
+        self.assertAlmostEqual(row["c_vt[1]"], np.mean(col["q"]), places=12)
+        self.assertEqual(row["c_vt[2]"], 0)
 
     def test_cell_energy_is_pe_atom(self):
         """Column 5 is the pair style's per-atom energy, also under hybrid/overlay."""
@@ -352,8 +354,8 @@ class Disordered(LammpsTestCase):
 
 
 class NeighbourExchanges(LammpsTestCase):
-    """Global column 3: neighbour pairs that are new since the previous
-    computation of the global vector."""
+    """compute vertex/tissue's element 3: neighbour pairs that are new since
+    the previous computation of the global vector."""
 
     def test_solid_with_tiny_motion(self):
         extra = "fix b all brownian 1e-5 4321 gamma_t 1.0\ntimestep 0.01\nthermo 50"
@@ -361,14 +363,14 @@ class NeighbourExchanges(LammpsTestCase):
         rows = thermo_rows(run.stdout)
         self.assertEqual(len(rows), 11)
         for row in rows:
-            self.assertEqual(row["c_va[3]"], 0)
-            self.assertEqual(row["c_va[2]"], 0)
-            self.assertAlmostEqual(row["c_va[1]"], HEX_PERIMETER, places=3)
+            self.assertEqual(row["c_vt[3]"], 0)
+            self.assertEqual(row["c_vt[2]"], 0)
+            self.assertAlmostEqual(row["c_vt[1]"], HEX_PERIMETER, places=3)
 
     def check_displaced(self, nprocs):
         """Two configurations far apart, so that many atoms change rank
         between them; the count must equal the reference's new pairs."""
-        script = DISORDERED + """thermo_style custom step c_va[3]
+        script = DISORDERED + """thermo_style custom step c_vt[3]
 run 0
 write_dump all custom first.dump id x y modify sort id format float %.17g
 displace_atoms all random 0.35 0.35 0 9127
@@ -377,7 +379,7 @@ write_dump all custom second.dump id x y modify sort id format float %.17g
 run 0
 """
         run = self.run_lmp(script, nprocs=nprocs)
-        counts = [row["c_va[3]"] for row in thermo_rows(run.stdout)]
+        counts = [row["c_vt[3]"] for row in thermo_rows(run.stdout)]
         first = run.dump("first.dump")[0]
         second = run.dump("second.dump")[0]
         before = PeriodicVoronoi(first["x"], first["y"], first["box"]).pairs()
@@ -414,7 +416,7 @@ run 0
         self.assertEqual([int(r["Step"]) for r in rows], [f["step"] for f in frames])
         pairs = [PeriodicVoronoi(f["x"], f["y"], f["box"]).pairs() for f in frames]
         expected = [0] + [len(pairs[k] - pairs[k - 1]) for k in range(1, len(pairs))]
-        counts = [int(r["c_va[3]"]) for r in rows]
+        counts = [int(r["c_vt[3]"]) for r in rows]
         self.assertEqual(counts, expected)
         self.assertGreater(sum(counts), 10)
 
@@ -429,7 +431,7 @@ run 0
         """A cell created between computations makes new pairs with its
         neighbours: a birth, not a neighbour exchange, so not counted."""
         script = tissue("sq", ny=10, extra="displace_atoms all random 0.1 0.1 0 771") + """
-thermo_style custom step atoms c_va[3]
+thermo_style custom step atoms c_vt[3]
 run 0
 write_dump all custom first.dump id x y modify sort id format float %.17g
 create_atoms 1 single 0.5 0.5 0 units box
@@ -446,13 +448,13 @@ run 0
         new = after - before
         self.assertGreaterEqual(len(new), 3)    # the new cell's own edges
         self.assertTrue(all(101 in pair for pair in new))
-        self.assertEqual([r["c_va[3]"] for r in rows], [0, 0, 0])
+        self.assertEqual([r["c_vt[3]"] for r in rows], [0, 0, 0])
 
     def test_deleted_atom(self):
         """When a cell is removed its neighbours close the gap and make new
         pairs among themselves: a death, not a neighbour exchange."""
         script = tissue("hex", ny=10, extra="displace_atoms all random 0.1 0.1 0 771") + """
-thermo_style custom step atoms c_va[3]
+thermo_style custom step atoms c_vt[3]
 run 0
 write_dump all custom first.dump id x y modify sort id format float %.17g
 group gone id 37
@@ -467,7 +469,66 @@ run 0
         before = id_pairs(first)
         after = id_pairs(second)
         self.assertGreaterEqual(len(after - before), 1)    # the gap closed by new pairs
-        self.assertEqual([r["c_va[3]"] for r in rows], [0, 0, 0])
+        self.assertEqual([r["c_vt[3]"] for r in rows], [0, 0, 0])
+
+
+class AtomStyleVariables(LammpsTestCase):
+    """c_ID[I] of compute vertex/atom in an atom-style variable is per-atom
+    column I on every host: the compute has no global vector for the
+    variable to read instead (those values are compute vertex/tissue's)."""
+
+    def test_neighbour_deficit_on_a_hexagonal_lattice(self):
+        # every cell of a perfect hexagonal lattice has 6 neighbours
+        script = tissue() + """variable q atom 6-c_va[4]
+compute qsum all reduce sum v_q
+compute qmax all reduce max v_q
+compute qmin all reduce min v_q
+thermo_style custom step c_qsum c_qmin c_qmax
+dump v all custom 1 q.dump id v_q c_va[4]
+dump_modify v sort id
+run 0
+"""
+        run = self.run_lmp(script)
+        (row,) = thermo_rows(run.stdout)
+        self.assertEqual((row["c_qsum"], row["c_qmin"], row["c_qmax"]), (0, 0, 0))
+        (frame,) = run.dump("q.dump")
+        self.assertEqual(len(frame["id"]), 100)
+        np.testing.assert_array_equal(frame["v_q"], 0)
+        np.testing.assert_array_equal(frame["c_va[4]"], 6)
+
+    def test_every_column_beyond_the_old_vector(self):
+        # column 9 (edge flag) was out of range of the 8 global values
+        script = tissue() + """variable e atom c_va[9]+c_va[3]
+compute esum all reduce sum v_e
+thermo_style custom step c_esum
+run 0
+print "E $(c_esum:%.17g)"
+"""
+        out = self.run_lmp(script).stdout
+        (esum,) = [float(line.split()[1]) for line in out.splitlines() if line.startswith("E ")]
+        self.assertAlmostEqual(esum, 100 * 3.7224194364, delta=1e-7)
+
+
+class Migration(LammpsTestCase):
+    """Scripts written for the compute's former global vector stop."""
+
+    def test_thermo_of_vertex_atom_stops(self):
+        script = tissue().replace("thermo_style custom step pe c_vt[1]", "thermo_style custom step pe c_va[1]")
+        self.assertLammpsError(self.run_lmp(script + "run 0\n", ok=False),
+                               "Thermo compute does not compute vector")
+
+    def test_variable_and_fix_ave_time_of_vertex_atom_stop(self):
+        for extra in ("variable q equal c_va[3]\nthermo_style custom step v_q\nrun 0\n",
+                      "run 0\nprint \"$(c_va[4])\"\n",
+                      "fix a all ave/time 1 1 1 c_va[3]\nrun 0\n"):
+            with self.subTest(extra=extra):
+                run = self.run_lmp(tissue() + extra, ok=False)
+                self.assertLammpsError(run, "compute")
+
+    def test_rosette_names_vertex_tissue(self):
+        script = tissue().replace("compute va all vertex/atom", "compute va all vertex/atom rosette 0.05")
+        self.assertLammpsError(self.run_lmp(script + "run 0\n", ok=False),
+                               "compute vertex/atom va", "'rosette'", "vertex/tissue rosette L")
 
 
 class Errors(LammpsTestCase):
@@ -499,7 +560,7 @@ class Errors(LammpsTestCase):
 
 
 class Rosettes(LammpsTestCase):
-    """compute vertex/atom rosette L: a square lattice jittered by 1e-6 has
+    """compute vertex/tissue rosette L: a square lattice jittered by 1e-6 has
     no exactly four-fold vertex, but every vertex is a cluster of vertices
     joined by a junction far shorter than 1e-3 -- one per cell, counted once
     over ranks and images."""
@@ -508,9 +569,9 @@ class Rosettes(LammpsTestCase):
 displace_atoms all random 1e-6 1e-6 0 8812 units box
 pair_style vertex/voronoi 3.0
 pair_coeff * * 1.0 1.0 0.1 -0.5
-compute exact all vertex/atom
-compute near all vertex/atom rosette 1e-3
-compute tiny all vertex/atom rosette 1e-9
+compute exact all vertex/tissue
+compute near all vertex/tissue rosette 1e-3
+compute tiny all vertex/tissue rosette 1e-9
 thermo_style custom step c_exact[2] c_near[2] c_tiny[2]
 run 0
 """

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 # Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
-"""compute vertex/atom's heterotypic junction values (global values 6-8)
+"""compute vertex/tissue's heterotypic junction values (values 6-8)
 through tessera-lmp: hexagonal tissues in stripes of w rows of each type,
 where a cell's three junctions (counted once) are one in its row and two to
 the row above, so the heterotypic fraction is 2/(3w) and the lengths follow
@@ -44,7 +44,7 @@ boundary p p p
 {extra}
 read_data cells.data
 {pair}
-compute va all vertex/atom
+compute va all vertex/tissue
 thermo_style custom step pe c_va[6] c_va[7] c_va[8]
 run 0
 print "D $(c_va[6]:%.17g) $(c_va[7]:%.17g) $(c_va[8]:%.17g)"
@@ -118,7 +118,7 @@ pair_coeff * * 1.0 1.0 0.1 -0.5
             cols = " ".join("c_l[%d]" % k for k in range(1, 8))
         script_ = head + f"""mass * 1.0
 set type 1 type/fraction 2 0.4 7731
-compute va all vertex/atom
+compute va all vertex/tissue
 compute l all vertex/local
 dump f all local 1 faces.dump {cols}
 dump_modify f format float %.17g

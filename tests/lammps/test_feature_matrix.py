@@ -18,6 +18,7 @@ import re
 import numpy as np
 
 import lmptest
+from feature_outputs import OutputChecks
 from feature_models import (COEFFS_2D, COEFFS_3D, COEFFS_FINITE, SPHERE_C, SPHERE_R, dim_of,
                             local_rows, model_script, printed, read_matrix)
 from lmptest import LammpsTestCase
@@ -25,7 +26,7 @@ from lmptest import LammpsTestCase
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-class FeatureMatrix(LammpsTestCase):
+class FeatureMatrix(OutputChecks, LammpsTestCase):
     """One test per (model, feature); methods are added from the data file."""
 
     def run_lmp(self, script, **kw):
@@ -90,14 +91,15 @@ print "EM $(pe:%.17g)"
 
     def check_vertex_atom(self, model):
         script = model_script(model) + """compute c all vertex/atom
+compute t all vertex/tissue
 compute e all reduce sum c_c[5]
 compute a all reduce sum c_c[1]
-thermo_style custom step pe c_e c_a c_c[1] c_c[2] c_c[3] c_c[4] c_c[5] vol
+thermo_style custom step pe c_e c_a c_t[1] c_t[2] c_t[3] c_t[4] c_t[5] vol
 dump d all custom 1 cells.dump id type x y z c_c[1] c_c[2] c_c[3] c_c[4] c_c[5] c_c[6] c_c[7] c_c[8] c_c[9]
 dump_modify d format float %.17g
 run 0
 print "T $(pe:%.17g) $(c_e:%.17g) $(c_a:%.17g) $(vol:%.17g)"
-print "V $(c_c[1]:%.17g) $(c_c[2]:%.17g) $(c_c[3]:%.17g) $(c_c[4]:%.17g) $(c_c[5]:%.17g)"
+print "V $(c_t[1]:%.17g) $(c_t[2]:%.17g) $(c_t[3]:%.17g) $(c_t[4]:%.17g) $(c_t[5]:%.17g)"
 """
         run = self.run_lmp(script)
         pe, esum, asum, vol = printed(run, "T")[0]
@@ -503,7 +505,8 @@ thermo_style custom step pe
         results = []
         for n in (1, 2, 4):
             script = model_script(model, data="cfg.data") + """compute c all vertex/atom
-thermo_style custom step pe c_c[1]
+compute t all vertex/tissue
+thermo_style custom step pe c_t[1]
 dump d all custom 1 f.dump id fx fy fz c_c[1] c_c[2]
 dump_modify d format float %.17g sort id
 run 0
@@ -517,12 +520,12 @@ print "E $(pe:%.17g)"
                 np.testing.assert_allclose(f[col], results[0][1][col], rtol=0, atol=1e-10, err_msg=col)
 
     def check_rosette(self, model):
-        # compute vertex/atom rosette L: clusters of Voronoi vertices joined by
+        # compute vertex/tissue rosette L: clusters of Voronoi vertices joined by
         # junctions shorter than L, counted as (nearly) multifold vertices;
         # more with a longer L, and 0 on a jittered tissue for a tiny L.
-        script = model_script(model) + """compute r1 all vertex/atom rosette 1e-9
-compute r2 all vertex/atom rosette 0.15
-compute r3 all vertex/atom rosette 0.5
+        script = model_script(model) + """compute r1 all vertex/tissue rosette 1e-9
+compute r2 all vertex/tissue rosette 0.15
+compute r3 all vertex/tissue rosette 0.5
 thermo_style custom step c_r1[2] c_r2[2] c_r3[2]
 run 0
 print "R $(c_r1[2]) $(c_r2[2]) $(c_r3[2])"

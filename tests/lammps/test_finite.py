@@ -114,9 +114,10 @@ class Analytic(LammpsTestCase):
         xy = [(0.0, 0.0), (5.0, 0.3), (5.0 + d * 0.6, 0.3 + d * 0.8)]
         run = self.run_lmp(script("s s p", two_types=False, extra="""
 compute c all vertex/atom
+compute t all vertex/tissue
 dump d all custom 1 cells.dump id c_c[1] c_c[2] c_c[8] c_c[9]
 dump_modify d sort id format float %.17g
-thermo_style custom step pe c_c[4] c_c[5]
+thermo_style custom step pe c_t[4] c_t[5]
 thermo_modify norm no format float %.17g
 run 0
 print "E $(pe:%.17g)"

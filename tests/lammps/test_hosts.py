@@ -150,9 +150,10 @@ pair_coeff * * 1.0 1.0 0.1 -0.5
 fix move all brownian 1.0 5 gamma_t 1.0 rng none
 fix act all polarity 0.5 1.0
 compute cell all vertex/atom
-thermo_style custom step pe c_cell[1]
+compute tissue all vertex/tissue
+thermo_style custom step pe c_tissue[1]
 run 0
-print "Q $(c_cell[1]:%.10f)"
+print "Q $(c_tissue[1]:%.10f)"
 run 2
 """
 

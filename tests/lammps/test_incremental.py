@@ -17,13 +17,13 @@ pair_coeff * * quadratic 1.0 1.0 1.0 4.2
 timestep 0.01
 fix move all brownian 1.0 1234 gamma_t 1.0 rng none
 fix act all polarity 1.0 1.0 noise 1.0 8821
-compute cell all vertex/atom
+compute tissue all vertex/tissue
 compute pt all pair vertex/voronoi
-thermo_style custom step pe c_cell[3] c_pt[3] c_pt[4] c_pt[5]
+thermo_style custom step pe c_tissue[3] c_pt[3] c_pt[4] c_pt[5]
 thermo_modify norm no
 thermo {steps // 10}
 run {steps}
-variable t1 equal c_cell[3]
+variable t1 equal c_tissue[3]
 print "STATS $(c_pt[3]) $(c_pt[4]) $(c_pt[5])"
 """
 
@@ -34,7 +34,7 @@ def stats(run):
 
 
 def t1_total(run):
-    """Sum of the T1 counts printed by thermo (column c_cell[3])."""
+    """Sum of the T1 counts printed by thermo (column c_tissue[3])."""
     lines = run.stdout.split("Step")[1].split("Loop time")[0].strip().splitlines()[1:]
     # (skipping the style's messages, such as its warning about a step longer than a cell)
     return sum(float(l.split()[2]) for l in lines if l.split()[0].isdigit())

@@ -211,12 +211,13 @@ class Lattices(LammpsTestCase):
             "pair_coeff * * %r %r %r %r\n" % TYPES[1],
             f"pair_coeff * * quadratic {KV} {V0} {KS} {S0}\n") + """
 compute cells all vertex/atom
-thermo_style custom step pe c_cells[1] c_cells[2]
+compute tissue all vertex/tissue
+thermo_style custom step pe c_tissue[1] c_tissue[2]
 thermo_modify norm no
 dump d all custom 1 c.dump id fx fy fz c_cells[1] c_cells[2] c_cells[3] c_cells[4]
 dump_modify d sort id format float %.17g
 run 0
-print "R $(pe:%.17g) $(c_cells[1]:%.17g) $(c_cells[2]:%.17g)"
+print "R $(pe:%.17g) $(c_tissue[1]:%.17g) $(c_tissue[2]:%.17g)"
 """
         run = self.run_lmp(script)
         fr = run.dump("c.dump")[0]
@@ -287,15 +288,16 @@ class NeighbourExchanges(LammpsTestCase):
     def test_against_voro(self):
         run = self.run_lmp(tissue3d(disp=0.05, two_types=False) + """
 compute cells all vertex/atom
+compute tissue all vertex/tissue
 compute vl all voronoi/atom neighbors yes
-thermo_style custom step pe c_cells[3]
+thermo_style custom step pe c_tissue[3]
 dump n all local 1 n.dump c_vl[1] c_vl[2] c_vl[3]
 run 0
 displace_atoms all random 0.25 0.25 0.25 991 units box
 undump n
 dump n2 all local 1 n2.dump c_vl[1] c_vl[2] c_vl[3]
 run 0
-print "X $(c_cells[3])"
+print "X $(c_tissue[3])"
 """)
         text = run.text("n.dump") + run.text("n2.dump")
         pairs = []

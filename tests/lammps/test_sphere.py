@@ -320,10 +320,11 @@ class Ranks(LammpsTestCase):
         R = 8.0
         a0 = 4 * math.pi * R * R / 200
         script = head(R, cut=3 * math.sqrt(a0)) + tissue_coeffs(a0) + """compute c all vertex/atom
+compute t all vertex/tissue
 fix p all polarity 0.5 1.0 neighbor 0.5
 fix b all brownian 1.0 1 gamma_t 1.0 rng none
 timestep 0.02
-thermo_style custom step pe c_c[1]
+thermo_style custom step pe c_t[1]
 thermo_modify norm no
 thermo 10
 dump d all custom 30 end.dump id x y z mux muy muz fx fy fz c_c[1]

@@ -10,7 +10,9 @@
    directions.  Local array (rank 0): loop index, enclosed area, length,
    number of cells, centroid x y, kind (1 outer, 0 hole, -1 wraps around a
    periodic direction).  Global vector: holes, total hole area, loops,
-   wrapping loops.
+   wrapping loops, and the largest hole (area, centroid x y, length, cells);
+   with 'min_area A' holes smaller than A (the gaps at three-cell corners)
+   are left out of the global values.
 ------------------------------------------------------------------------- */
 
 #include "compute_vertex_loops.h"
@@ -37,22 +39,40 @@ using namespace LAMMPS_NS;
 namespace {
 
 constexpr int NCOLS = 7;
+constexpr int NVALUES = 9;
 constexpr int ARC_DOUBLES = 7;    // cell ID, next ID, cx, cy, r, phi, theta
 
 }    // namespace
 
 /* ----------------------------------------------------------------------
-   compute ID all vertex/loops
+   compute ID all vertex/loops [min_area A]
 ------------------------------------------------------------------------- */
 
 ComputeVertexLoops::ComputeVertexLoops(LAMMPS *lmp, int narg, char **arg) :
-    Compute(lmp, narg, arg), nmax(0), rows(nullptr), pair(nullptr), loops_of(-1), warned(0)
+    Compute(lmp, narg, arg), nmax(0), rows(nullptr), pair(nullptr), loops_of(-1), warned(0),
+    min_area(0.0)
 {
-  if (narg > 3)
-    error->all(FLERR,
-               "Illegal compute vertex/loops command: unexpected argument '{}' (it takes none: "
-               "'compute ID all vertex/loops')",
-               arg[3]);
+  int iarg = 3;
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "min_area") == 0) {
+      if (iarg + 2 > narg)
+        error->all(FLERR,
+                   "compute vertex/loops {}: keyword 'min_area' needs an area A (holes smaller "
+                   "than A are not counted), e.g. 'min_area 0.1'",
+                   id);
+      min_area = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (!(min_area >= 0.0) || !std::isfinite(min_area))
+        error->all(FLERR,
+                   "compute vertex/loops {}: min_area must be a finite area >= 0, got '{}'", id,
+                   arg[iarg + 1]);
+      iarg += 2;
+    } else {
+      error->all(FLERR,
+                 "Illegal compute vertex/loops command: unexpected argument '{}' (known: "
+                 "min_area A; 'compute ID all vertex/loops [min_area A]')",
+                 arg[iarg]);
+    }
+  }
   if (igroup != 0)
     error->all(FLERR,
                "compute vertex/loops {}: the loops are those of the whole tissue; use group "
@@ -72,7 +92,7 @@ ComputeVertexLoops::ComputeVertexLoops(LAMMPS *lmp, int narg, char **arg) :
   size_local_rows = 0;
   size_local_cols = NCOLS;
   vector_flag = 1;
-  size_vector = 4;
+  size_vector = NVALUES;
   extvector = 0;
   vector = new double[size_vector];
   for (int k = 0; k < size_vector; k++) vector[k] = 0.0;
@@ -212,12 +232,16 @@ void ComputeVertexLoops::find_loops()
     warned = 1;
   }
 
+  // The holes (at least min_area), and the largest of them (the first in
+  // the table's order on a tie): 0 for each of its values if there is none.
   double holes = 0.0, hole_area = 0.0, wrapping = 0.0;
+  const double *largest = nullptr;
   for (int l = 0; l < nloops; l++) {
     const double *row = &table[static_cast<size_t>(l) * NCOLS];
-    if (row[6] == 0.0) {
+    if (row[6] == 0.0 && row[1] >= min_area) {
       holes += 1.0;
       hole_area += row[1];
+      if (!largest || row[1] > largest[1]) largest = row;
     } else if (row[6] < 0.0) {
       wrapping += 1.0;
     }
@@ -226,6 +250,11 @@ void ComputeVertexLoops::find_loops()
   vector[1] = hole_area;
   vector[2] = nloops;
   vector[3] = wrapping;
+  vector[4] = largest ? largest[1] : 0.0;    // area
+  vector[5] = largest ? largest[4] : 0.0;    // centroid x
+  vector[6] = largest ? largest[5] : 0.0;    // centroid y
+  vector[7] = largest ? largest[2] : 0.0;    // length
+  vector[8] = largest ? largest[3] : 0.0;    // cells on it
 }
 
 void ComputeVertexLoops::compute_vector()

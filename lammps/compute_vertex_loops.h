@@ -33,6 +33,7 @@ class ComputeVertexLoops : public Compute {
   class PairVertexVoronoi *pair;
   bigint loops_of;   // pair's compute_count() of the loops found last
   int warned;
+  double min_area;    // holes below this area are left out of the global values
   std::vector<double> table;    // the loops, 7 values each (every rank)
   void find_loops();
   void sphere_error();    // stops: a sphere has no free boundary

@@ -12,7 +12,9 @@ periodic tissue with a hole; identities that hold for any configuration,
 checked along Brownian runs of jittered tissues on 1 and 2 ranks (a
 colony's outer loop encloses its cells and its holes; the cells and holes of
 a tissue filling a periodic box, orthogonal or triclinic, tile the box,
-also with a wound across the box's edges); and the errors."""
+also with a wound across the box's edges); the largest hole and the
+'min_area' keyword against the analytic area of the gap at a three-cell
+corner and the geometry of a removed cell's hole; and the errors."""
 
 import math
 
@@ -364,6 +366,99 @@ compute loops all vertex/loops
         run = self.run_lmp(three, ok=False)
         self.assertLammpsError(run, "is for 2d")
 
+
+def corner_gap_area(a, r):
+    """The gap between three discs of radius r centred on an equilateral
+    triangle of side a (a/2 < r < a/sqrt(3): the discs overlap in pairs but
+    leave the centre uncovered): the triangle less the three 60-degree
+    sectors, plus the three half-lenses the sectors overlap in."""
+    lens = 2 * r * r * math.acos(a / (2 * r)) - 0.5 * a * math.sqrt(4 * r * r - a * a)
+    return math.sqrt(3) / 4 * a * a - math.pi * r * r / 2 + 1.5 * lens
+
+
+class LargestHole(LammpsTestCase):
+    """Global values 5-9 (the largest hole) and 'min_area': a periodic
+    hexagonal tissue of finite cells of radius r between half the spacing
+    and the hexagons' circumradius has a gap at every three-cell corner
+    (two per cell), of the area corner_gap_area; with a cell removed, its
+    hole is the largest, of the area hole_geometry gives."""
+
+    r = 0.6
+    nx, ny = 8, 8
+
+    def run_tissue(self, removed, min_area=None, nprocs=1):
+        sites = hex_sites(self.nx, self.ny) + np.array([0.1, 0.2])
+        kept = np.delete(sites, removed, axis=0)
+        data = data_file(kept, (0.0, self.nx * A, 0.0, self.ny * H))
+        keyword = "" if min_area is None else f" min_area {min_area!r}"
+        values = " ".join("$(c_loops[%d]:%%.17g)" % k for k in range(1, 10))
+        script = f"""
+dimension 2
+units lj
+atom_style atomic
+boundary p p p
+{"processors 2 1 1" if nprocs == 2 else ""}
+read_data cells.data
+pair_style vertex/voronoi {2 * self.r + 0.1} radius {self.r}
+pair_coeff * * quadratic 1.0 1.2 0.1 3.9 free 0.2
+compute loops all vertex/loops{keyword}
+thermo_style custom step pe c_loops[1] c_loops[5]
+run 0
+print "G {values}"
+"""
+        run = self.run_lmp(script, nprocs=nprocs, files={"cells.data": data})
+        g = [[float(w) for w in line.split()[1:]] for line in run.stdout.splitlines()
+             if line.startswith("G ")][0]
+        return g, kept, sites
+
+    def test_corner_gaps_of_a_perfect_tissue(self):
+        gap = corner_gap_area(A, self.r)
+        self.assertTrue(A / 2 < self.r < A / math.sqrt(3) and 0 < gap < 0.01)
+        n = self.nx * self.ny
+        g, _, _ = self.run_tissue([])
+        self.assertEqual(g[0], 2 * n)
+        self.assertAlmostEqual(g[1], 2 * n * gap, delta=1e-9)
+        self.assertAlmostEqual(g[4], gap, delta=1e-12)    # the largest is one of them
+        self.assertEqual(g[8], 3)                          # between three cells
+        # above the gaps' area: no hole, and the largest hole's values are 0
+        g, _, _ = self.run_tissue([], min_area=2 * gap)
+        self.assertEqual(g[:2] + g[4:], [0, 0, 0, 0, 0, 0, 0])
+        self.assertEqual(g[2], 2 * n)                       # the loops are all still there
+
+    def check_wound(self, nprocs):
+        removed = 3 * self.nx + 4
+        gap = corner_gap_area(A, self.r)
+        n = self.nx * self.ny
+        for min_area in (None, 10 * gap):
+            with self.subTest(min_area=min_area):
+                g, kept, sites = self.run_tissue([removed], min_area, nprocs)
+                # corners within 0.9 of the removed site: the hole's only (the
+                # gaps beyond its ring of cells are 1.2 away)
+                area, length, corners = hole_geometry(kept, self.r, sites[removed], within=0.9)
+                self.assertEqual(corners, 6)
+                gaps = 2 * n - 6 if min_area is None else 0    # the hole took 6 corners
+                self.assertEqual(g[0], 1 + gaps)
+                self.assertAlmostEqual(g[1], area + gaps * gap, delta=1e-9)
+                self.assertAlmostEqual(g[4], area, delta=1e-10)
+                np.testing.assert_allclose(g[5:7], sites[removed], atol=1e-9)
+                self.assertAlmostEqual(g[7], length, delta=1e-10)
+                self.assertEqual(g[8], 6)
+
+    def test_wound(self):
+        self.check_wound(1)
+
+    @nprocs(2)
+    def test_wound_two_ranks(self):
+        self.check_wound(2)
+
+    def test_bad_min_area(self):
+        data = data_file([(0.3, -0.2)], (-2.0, 2.0, -2.0, 2.0))
+        for value, fragment in (("-1", "min_area must be a finite area >= 0"),
+                                ("", "'min_area' needs an area A")):
+            run = self.run_lmp(script("f f p").replace("compute loops all vertex/loops",
+                                                       "compute loops all vertex/loops min_area " + value),
+                               files={"cells.data": data}, ok=False)
+            self.assertLammpsError(run, "compute vertex/loops loops", fragment)
 
 if __name__ == "__main__":
     lmptest.main()

@@ -4,7 +4,7 @@
 pair_style vertex/voronoi, fix polarity and compute vertex/atom; every block of
 steps Python reads the per-cell shape index and polarity as numpy arrays and
 prints the mean shape index and the polar order it computes itself, next to
-the values LAMMPS computes (they agree).
+the values LAMMPS computes (compute vertex/tissue, fix polarity; they agree).
 
     /usr/bin/python3 examples/python/tissue.py [--cells-x 10] [--steps 200] [--blocks 5]
     mpirun -np 2 /usr/bin/python3 examples/python/tissue.py
@@ -65,7 +65,7 @@ run 0
         q = cells[:, 2]
         n = mu[:, :2] / np.linalg.norm(mu[:, :2], axis=1)[:, None]
         polar = float(np.hypot(*n.mean(axis=0)))
-        q_lammps = lmp.extract_compute("cell", LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR)[0]
+        q_lammps = lmp.extract_compute("tissue", LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR)[0]
         polar_lammps = lmp.extract_fix("act", LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR, 0)
         if me == 0:
             print("%6d  %.6f  %.6f  %.6f  %.6f" % (lmp.get_thermo("step"), q.mean(), q_lammps,

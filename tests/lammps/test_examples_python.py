@@ -36,7 +36,7 @@ class BrownianMsdExample(LammpsTestCase):
 
 class TissueExample(LammpsTestCase):
     """tissue.py: the shape index and polar order Python computes from the
-    gathered per-cell arrays equal LAMMPS's own (compute vertex/atom's mean,
+    gathered per-cell arrays equal LAMMPS's own (compute vertex/tissue's mean,
     fix polarity's vector)."""
 
     def check(self, nranks):

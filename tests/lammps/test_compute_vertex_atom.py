@@ -3,9 +3,11 @@
 """compute vertex/atom run through tessera-lmp, against analytic values (hexagonal
 and square lattices, uniform velocities) and against an independent periodic
 Voronoi tessellation computed here with scipy (Qhull) for disordered
-configurations: per-atom columns, ghost velocities, multifold vertices counted
-once over ranks and periodic images, neighbour exchanges with memory that
-migrates between ranks, 1 rank == 2 ranks == 4 ranks, and the errors."""
+configurations: per-atom columns (also read by atom-style variables), ghost
+velocities; compute vertex/tissue's multifold vertices counted once over ranks
+and periodic images and neighbour exchanges with memory that migrates between
+ranks (also while cells divide and die); 1 rank == 2 ranks == 4 ranks, and
+the errors (including scripts written for the former global vector)."""
 
 import math
 
@@ -13,6 +15,8 @@ import numpy as np
 from scipy.spatial import Voronoi
 
 import lmptest
+from feature_models import local_rows
+from feature_outputs import exchanges, neighbour_pairs
 from lmptest import LammpsTestCase, nprocs
 
 # pair_coeff * * K A0 Gamma Lambda used throughout (edge tension convention).
@@ -426,6 +430,46 @@ run 0
     @nprocs(2)
     def test_fluid_two_ranks(self):
         self.check_fluid(2)
+
+    def check_fluid_with_events(self, nprocs):
+        """A fluid tissue whose cells also divide and die during the run: the
+        count at each thermo step equals the new neighbour pairs between the
+        dumped junctions of the previous and this step among the cells that
+        existed at both and that no birth or death touched
+        (feature_outputs.exchanges, written from the documented rule)."""
+        extra = ("pair_coeff * * 1.0 1.0 0.1 -0.8\n"
+                 "fix b all brownian 0.1 4321 gamma_t 1.0\n"
+                 "fix div all cell/divide rate 0.4 seed 771 separation 0.05\n"
+                 "fix die all cell/death rate 0.3 seed 772\n"
+                 "timestep 0.01\n"
+                 "thermo 25\n"
+                 "compute l all vertex/local\n"
+                 "dump a all custom 25 ids.dump id\n"
+                 "dump f all local 25 junctions.dump c_l[1] c_l[2] c_l[3] c_l[4] c_l[5] c_l[6] c_l[7]\n"
+                 "dump_modify f format float %.17g")
+        script = tissue(extra=extra).replace("thermo_style custom step pe c_vt[1] c_vt[2] c_vt[3]",
+                                             "thermo_style custom step atoms c_vt[3] f_div[2] f_die[2]")
+        run = self.run_lmp(script + "run 300\n", nprocs=nprocs)
+        rows = thermo_rows(run.stdout)
+        ids = [f["id"] for f in run.dump("ids.dump")]
+        frames = local_rows(run, "junctions.dump")
+        self.assertEqual(len(rows), 13)
+        self.assertEqual((len(ids), len(frames)), (13, 13))
+        pairs = [neighbour_pairs(f, 2, False) for f in frames]
+        expected = [0] + [exchanges(pairs[k - 1], pairs[k], ids[k - 1], ids[k])[0]
+                          for k in range(1, len(pairs))]
+        counts = [int(r["c_vt[3]"]) for r in rows]
+        self.assertEqual(counts, expected)
+        self.assertGreater(sum(counts), 10)
+        self.assertGreater(rows[-1]["f_div[2]"], 5)
+        self.assertGreater(rows[-1]["f_die[2]"], 5)
+
+    def test_fluid_with_divisions_and_deaths(self):
+        self.check_fluid_with_events(1)
+
+    @nprocs(2)
+    def test_fluid_with_divisions_and_deaths_two_ranks(self):
+        self.check_fluid_with_events(2)
 
     def test_created_atom(self):
         """A cell created between computations makes new pairs with its

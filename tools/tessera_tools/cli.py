@@ -350,6 +350,35 @@ def _moduli_table(args, states, ref, ref_name):
           + ("standard errors over the states)" if len(states) > 1 else "fit errors, none for one Hessian state)"))
 
 
+def _other_energy(m, fnorm_max):
+    """The error when the dump's own forces (fx fy) vanish but those of the energy given here do
+    not: the run minimised another energy, so G and B of this one are not its moduli."""
+    if "dump_fnorm" not in m or m["dump_fnorm"] > fnorm_max:
+        return None
+    missing = [c for c in ("d_area0", "d_ka", "d_kp", "d_perim0") if c not in m["cells"]]
+    return (f"the dump's own forces (fx fy) have fnorm {m['dump_fnorm']:.3g}, a minimum, but the energy "
+            f"given here has fnorm {m['fnorm']:.3g} there (forces differ by up to {m['force_mismatch']:.3g}): "
+            "the run's energy is not this one, so its moduli would be wrong. Give the run's pair_coeff values "
+            "(--coeff or --quadratic, --tension) and dump the per-cell properties the run defines"
+            + (f" (of {' '.join(missing)})" if missing else "")
+            + " with the state; positions written with fewer digits than 'format float %.17g' also "
+              "shift the forces")
+
+
+def _fnorm_cause(m):
+    """The likely cause of a large fnorm at a Hessian state, in words."""
+    tail = "so G and B are not its moduli"
+    if "dump_fnorm" in m:
+        return (f"not an energy minimum (the dump's own forces fx fy have fnorm {m['dump_fnorm']:.3g} too), "
+                f"{tail}; minimise further (smaller ftol, min_style fire) or raise --fnorm-max")
+    missing = [c for c in ("d_area0", "d_ka", "d_kp", "d_perim0") if c not in m["cells"]]
+    return (f"not an energy minimum for the energy given here, {tail}. Either the state is not minimised (minimise "
+            "further: smaller ftol, min_style fire) or the run's energy differs from this one: other "
+            "pair_coeff values than --coeff/--quadratic, or per-cell parameters the dump does not carry"
+            + (f" ({' '.join(missing)})" if missing else "")
+            + "; dump fx fy with the state to tell which, or raise --fnorm-max")
+
+
 def cmd_moduli(args):
     from .dump import read_dump
     from .moduli import Model, fit_quasistatic, frame_moduli, seed_average
@@ -416,8 +445,14 @@ def cmd_moduli(args):
             if "eigenvalues" in m:
                 print(f"  spectrum: {m['zero_modes']} zero modes (2 are translations), {m['negative_modes']} "
                       f"negative, lowest non-zero eigenvalue {m['lowest_nonzero']:.6g} energy/length^2 per mass")
+            if m["cells"]:
+                print(f"  per-cell parameters from the dump: {' '.join(m['cells'])} (they replace the types' "
+                      "values, as in pair vertex/voronoi)")
             if m["fnorm"] > args.fnorm_max:
-                bad.append(f"{label}: fnorm {m['fnorm']:.3g} > {args.fnorm_max:g}")
+                other = _other_energy(m, args.fnorm_max)
+                if other:
+                    raise SystemExit(f"tessera-tools moduli: {label}: {other}")
+                bad.append(f"{label}: fnorm {m['fnorm']:.3g} > {args.fnorm_max:g}: " + _fnorm_cause(m))
         else:
             print(f"{label}: no Hessian ({s['hessian_error'].splitlines()[0][:160]}); quasistatic route only")
         q = s["qs"]
@@ -462,8 +497,7 @@ def cmd_moduli(args):
     if args.table:
         _moduli_table(args, states, ref, ref_name)
     for line in bad:
-        print(f"warning: {line}: not an energy minimum, so G and B are not its moduli; minimise further "
-              f"(smaller ftol, min_style fire) or raise --fnorm-max", file=sys.stderr)
+        print(f"warning: {line}", file=sys.stderr)
     for s in states:
         if s["hessian"] is None:
             print(f"warning: {s['path']}: no Hessian route ({s['hessian_error'].splitlines()[0][:160]}); "

@@ -33,8 +33,11 @@ class Event:
 
 
 def read_events(paths):
-    """The events of one or more logs, in the order they happened (by step; at one step the
-    deaths first, as they free no IDs the divisions use; then by cell ID)."""
+    """The events of one or more logs, in the order they happened: by step; at one step the
+    divisions first, then the deaths (a cell that both fixes picked at one step died after
+    dividing if there is a division line: had the death come first, the division would not
+    have happened, nor been logged, so the death is its daughter's that kept the atom ID);
+    then by cell ID."""
     if isinstance(paths, str):
         paths = [paths]
     events = []
@@ -54,7 +57,7 @@ def read_events(paths):
                 except ValueError:
                     raise LineageError(f"{where}: unreadable number in {line.strip()!r}") from None
                 events.append(ev)
-    events.sort(key=lambda e: (e.step, 0 if e.kind == "death" else 1, e.id))
+    events.sort(key=lambda e: (e.step, 0 if e.kind == "divide" else 1, e.id))
     return events
 
 

@@ -32,11 +32,12 @@ using namespace FixConst;
 using namespace cell_events;
 
 static const char SYNTAX[] =
-    "fix ID group cell/death rate R | area Amin, seed S [region ID] [min N]";
+    "fix ID group cell/death rate R | area Amin, seed S [region ID] [min N] [file path]";
 
 FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), region(nullptr), pair(nullptr)
 {
+  clock = update->atime + (double) (update->ntimestep - update->atimestep) * update->dt;
   trigger = -1;
   seed = -1;
   rate = area_min = 0.0;
@@ -82,6 +83,8 @@ FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
       if (min_cells < 0)
         error->all(FLERR,
                    "fix cell/death: min N must be >= 0 cells (0: every cell may die), got {}", v);
+    } else if (strcmp(kw, "file") == 0) {
+      log.configure(lmp, id, "cell/death", v);
     } else {
       error->all(FLERR, "fix cell/death: unknown keyword '{}'; syntax: {}", kw, SYNTAX);
     }
@@ -111,6 +114,7 @@ int FixCellDeath::setmask()
 
 void FixCellDeath::init()
 {
+  log.open();
   region = nullptr;
   if (!region_id.empty()) {
     region = find_region(domain, region_id);
@@ -132,6 +136,7 @@ void FixCellDeath::setup(int /*vflag*/)
 
 void FixCellDeath::end_of_step()
 {
+  clock += update->dt;
   decide();
 }
 
@@ -192,6 +197,7 @@ void FixCellDeath::pre_exchange()
   while (i < atom->nlocal) {
     const auto found = pending.find(atom->tag[i]);
     if (found != pending.end() && found->second < room) {
+      log.add("death", atom->tag[i], 0, 0, atom->x[i]);
       atom->avec->copy(atom->nlocal - 1, i, 1);
       atom->nlocal--;
       ndel++;
@@ -204,6 +210,7 @@ void FixCellDeath::pre_exchange()
   MPI_Allreduce(&ndel, &nall, 1, MPI_INT, MPI_SUM, world);
   atom->natoms -= nall;
   events.record(nall, update->ntimestep);
+  log.flush(clock + update->dt);    // the time of this step (end_of_step advances the clock)
   if (atom->map_style) {
     atom->nghost = 0;
     atom->map_init();
@@ -222,12 +229,27 @@ double FixCellDeath::compute_vector(int n)
   return events.vector(n, update->ntimestep);
 }
 
+/* The global record: a marker -1 (older files start with the event count,
+   which is >= 0), the event count, the step of the last event, the clock. */
+
 void FixCellDeath::write_restart(FILE *fp)
 {
-  if (comm->me == 0) events.write_restart(fp);
+  if (comm->me != 0) return;
+  double list[4] = {-1.0, (double) events.total, (double) events.last_step, clock};
+  const int size = sizeof(list);
+  fwrite(&size, sizeof(int), 1, fp);
+  fwrite(list, sizeof(double), 4, fp);
 }
 
 void FixCellDeath::restart(char *buf)
 {
-  events.restart(buf);
+  log.continuing();
+  const double *list = reinterpret_cast<const double *>(buf);
+  if (list[0] >= 0.0) {    // an older file: no clock, keep LAMMPS's time
+    events.restart(buf);
+    return;
+  }
+  events.total = static_cast<bigint>(list[1]);
+  events.last_step = static_cast<bigint>(list[2]);
+  clock = list[3];
 }

@@ -13,6 +13,7 @@ FixStyle(cell/death,FixCellDeath);
 #define LMP_FIX_CELL_DEATH_H
 
 #include "cell_event_count.h"
+#include "cell_event_log.h"
 #include "fix.h"
 
 #include <string>
@@ -37,6 +38,7 @@ class FixCellDeath : public Fix {
   enum Trigger { RATE, AREA };
   int trigger, seed;
   double rate, area_min;
+  double clock;    // the time of the current step, kept by restart files (for the event log)
   bigint min_cells;
   std::string region_id;
   class Region *region;
@@ -44,6 +46,7 @@ class FixCellDeath : public Fix {
   // Cells that die at the next step -> their place in the sorted list (min N).
   std::unordered_map<tagint, bigint> pending;
   cell_events::EventCount events;
+  cell_events::EventLog log;    // keyword file
 
   void decide();
 };

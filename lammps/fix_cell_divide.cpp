@@ -39,7 +39,7 @@ using namespace cell_events;
 static const char SYNTAX[] =
     "fix ID group cell/divide rate R | cycle T spread s | area Ac, seed S [axis "
     "random|long|short|polarity] [separation d] [growth none|linear] [region ID] [max N] "
-    "[noise eta]";
+    "[noise eta] [file path]";
 
 FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), decide_time(0.0), cap_warned(false), region(nullptr), pair(nullptr),
@@ -170,6 +170,10 @@ FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
                    "turn by a uniform angle in [-eta, eta]), got {}",
                    arg[iarg + 1]);
       iarg += 2;
+    } else if (strcmp(kw, "file") == 0) {
+      need(iarg, 1, kw);
+      log.configure(lmp, id, "cell/divide", arg[iarg + 1]);
+      iarg += 2;
     } else {
       error->all(FLERR, "fix cell/divide: unknown keyword '{}'; syntax: {}", kw, SYNTAX);
     }
@@ -230,6 +234,7 @@ int FixCellDivide::setmask()
 
 void FixCellDivide::init()
 {
+  log.open();
   region = nullptr;
   if (!region_id.empty()) {
     region = find_region(domain, region_id);
@@ -550,6 +555,7 @@ void FixCellDivide::pre_exchange()
     const tagint mother = atom->tag[i];
     atom->tag[j] = maxtag_all + 1 + rank->second;
     double **x = atom->x;
+    log.add("divide", mother, mother, atom->tag[j], x[i]);
     const double h = 0.5 * separation;
     for (int d = 0; d < domain->dimension; d++) {
       x[i][d] -= h * u[d];
@@ -581,6 +587,7 @@ void FixCellDivide::pre_exchange()
   MPI_Allreduce(&ncreated, &nall, 1, MPI_INT, MPI_SUM, world);
   atom->natoms += nall;
   events.record(nall, update->ntimestep);
+  log.flush(clock + update->dt);    // the time of this step (pre_force advances the clock)
   if (atom->map_style) {
     atom->map_init();
     atom->map_set();
@@ -614,6 +621,7 @@ void FixCellDivide::write_restart(FILE *fp)
 
 void FixCellDivide::restart(char *buf)
 {
+  log.continuing();
   const double *list = reinterpret_cast<const double *>(buf);
   if (list[0] >= 0.0) {    // an older file: no clock, keep LAMMPS's time
     events.restart(buf);

@@ -13,6 +13,7 @@ FixStyle(cell/divide,FixCellDivide);
 #define LMP_FIX_CELL_DIVIDE_H
 
 #include "cell_event_count.h"
+#include "cell_event_log.h"
 #include "fix.h"
 
 #include <string>
@@ -73,6 +74,7 @@ class FixCellDivide : public Fix {
   std::unordered_map<tagint, std::array<double, 3>> pending;    // division axis
   std::unordered_map<tagint, tagint> daughter_tag;
   cell_events::EventCount events;
+  cell_events::EventLog log;    // keyword file
 
   double draw_cycle(tagint, uint64_t) const;
   void cell_axis(int, double *) const;

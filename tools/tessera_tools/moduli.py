@@ -134,10 +134,18 @@ class HessianResult:
                                          shape=(m, m))
 
 
-def run_hessian(box, xy, model, types=None, exe=None):
+# Per-cell parameters of pair vertex/voronoi (fix property/atom names, as dump columns) and
+# tessera-hessian's names for them.
+CELL_COLUMNS = {"d_area0": "area0", "d_ka": "ka", "d_kp": "kp", "d_perim0": "perim0"}
+
+
+def run_hessian(box, xy, model, types=None, exe=None, cells=None):
     """Run tessera-hessian on points xy (N x 2) in box (tessera_tools.dump.Box or (xlo, xhi, ylo, yhi, xy)).
 
-    types: 1-based types per point (default all 1).  Raises RuntimeError with
+    types: 1-based types per point (default all 1).  cells: optional per-cell
+    parameters {"area0"|"ka"|"kp"|"perim0": N values} (LAMMPS's d_area0, d_ka,
+    d_kp, d_perim0, quadratic-form values); each replaces the type's value for
+    every cell, as in pair vertex/voronoi.  Raises RuntimeError with
     tessera-hessian's message on failure (e.g. a multifold vertex).
     """
     if hasattr(box, "xlo"):
@@ -148,10 +156,20 @@ def run_hessian(box, xy, model, types=None, exe=None):
     n = len(xy)
     types = np.ones(n, dtype=int) if types is None else np.asarray(types, dtype=int)
     nt = len(model.K)
-    out = [" ".join(repr(float(v)) for v in b) + f" {n} {nt} {model.tension}"]
+    cells = {k: np.asarray(v, dtype=float).reshape(-1) for k, v in (cells or {}).items()}
+    for k, v in cells.items():
+        if k not in CELL_COLUMNS.values():
+            raise ValueError(f"per-cell parameter {k!r}: expected one of {', '.join(CELL_COLUMNS.values())}")
+        if len(v) != n:
+            raise ValueError(f"per-cell parameter {k!r} has {len(v)} values for {n} points")
+    names = list(cells)
+    out = [" ".join(repr(float(v)) for v in b) + f" {n} {nt} {model.tension}"
+           + (" cells " + " ".join(names) if names else "")]
     out += [f"{model.K[t]!r} {model.A0[t]!r} {model.Gamma[t]!r}" for t in range(nt)]
     out += [" ".join(repr(float(v)) for v in row) for row in model.Lambda]
-    out += [f"{x!r} {y!r} {t}" for (x, y), t in zip(xy.tolist(), types.tolist())]
+    extra = np.column_stack([cells[k] for k in names]).tolist() if names else [[]] * n
+    out += [f"{x!r} {y!r} {t}" + "".join(f" {float(v)!r}" for v in e)
+            for (x, y), t, e in zip(xy.tolist(), types.tolist(), extra)]
     proc = subprocess.run([find_hessian_exe(exe)], input="\n".join(out) + "\n", capture_output=True,
                           text=True, check=False)
     if proc.returncode != 0:
@@ -190,7 +208,8 @@ def moduli(res, dense_limit=4000):
     out = dict(G=G, B=B, E=4 * B * G / (B + G), nu=(B - G) / (B + G), pressure=pressure,
                shear_stress=-res.virial[2] / V, G_affine=res.born_shear / V,
                B_affine=(res.born_dilation / V + 2 * pressure) / 4, energy=res.energy, area=V, n=res.n,
-               max_force=float(np.abs(res.force).max()), fnorm=float(np.linalg.norm(res.force)))
+               max_force=float(np.abs(res.force).max()), fnorm=float(np.linalg.norm(res.force)),
+               force_vector=res.force)
     if lam is not None:
         tol = 1e-9 * max(1.0, np.abs(lam).max())
         out.update(eigenvalues=lam, zero_modes=int(np.sum(np.abs(lam) <= tol)),
@@ -198,10 +217,30 @@ def moduli(res, dense_limit=4000):
     return out
 
 
+def frame_cells(frame):
+    """The per-cell parameters a dump frame carries (columns d_area0, d_ka, d_kp, d_perim0),
+    as run_hessian's ``cells``."""
+    return {name: frame[col] for col, name in CELL_COLUMNS.items() if col in frame}
+
+
 def frame_moduli(frame, model, exe=None, dense_limit=4000):
-    """moduli() of a tessera_tools.dump.Frame (positions x y, optional type column)."""
+    """moduli() of a tessera_tools.dump.Frame (positions x y, optional type column, and the
+    per-cell parameters d_area0, d_ka, d_kp, d_perim0 where the dump has them).
+
+    The result also holds 'cells' (the per-cell columns used) and, when the dump has the
+    forces fx fy, 'dump_fnorm' (their 2-norm) and 'force_mismatch' (the largest difference
+    between them and the forces of the energy used here): a state whose own forces vanish
+    while this energy's do not was run with another energy (other coefficients, or per-cell
+    parameters the dump does not carry)."""
     types = frame["type"] if "type" in frame else None
-    return moduli(run_hessian(frame.box, frame.positions(), model, types, exe), dense_limit)
+    cells = frame_cells(frame)
+    out = moduli(run_hessian(frame.box, frame.positions(), model, types, exe, cells), dense_limit)
+    out["cells"] = [col for col in CELL_COLUMNS if col in frame]
+    if "fx" in frame and "fy" in frame:
+        f = np.column_stack([frame["fx"], frame["fy"]]).astype(float)
+        out["dump_fnorm"] = float(np.linalg.norm(f))
+        out["force_mismatch"] = float(np.abs(f.reshape(-1) - out["force_vector"]).max())
+    return out
 
 
 def fit_quasistatic(path):

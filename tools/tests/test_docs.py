@@ -64,5 +64,56 @@ class SelfContained(unittest.TestCase):
         self.assertEqual(bad, [], "broken or outside links:\n" + "\n".join(bad))
 
 
+def _minutes(text):
+    """The largest time in a runtime cell such as '5 min idle, 11 min shared', '30 s', '1 h', in minutes."""
+    unit = {"s": 1 / 60, "min": 1.0, "h": 60.0}
+    found = [float(v.split("-")[-1]) * unit[u] for v, u in re.findall(r"([0-9.]+(?:-[0-9.]+)?) ?(s|min|h)\b", text)]
+    return max(found) if found else None
+
+
+def gallery_rows(path):
+    with open(path) as f:
+        text = f.read()
+    rows = {}
+    for line in text.splitlines():
+        m = re.match(r"\| `(studies/[^`]+)` \| ([^|]+) \| (.+) \|$", line)
+        if m:
+            rows[m.group(1)] = (m.group(2).strip(), m.group(3).strip())
+    return rows
+
+
+class StatedRuntimes(unittest.TestCase):
+    """The runtimes the README and the gallery state are the same, and none is below what the
+    study's own report measured (its 'Runtime: N s wall', or for runs one at a time the sum of
+    their wall times)."""
+
+    def test_readme_table_is_the_gallery(self):
+        self.assertEqual(gallery_rows(os.path.join(ROOT, "README.md")),
+                         gallery_rows(os.path.join(ROOT, "studies", "GALLERY.md")))
+
+    def test_not_below_the_reports(self):
+        rows = gallery_rows(os.path.join(ROOT, "studies", "GALLERY.md"))
+        self.assertGreater(len(rows), 5)
+        low = []
+        for command, (runtime, link) in rows.items():
+            report = os.path.join(ROOT, re.search(r"\]\(([^)]+)\)", link).group(1))
+            with open(report) as f:
+                text = " ".join(f.read().split())
+            measured = [float(v) / 60 for v in re.findall(r"Runtime: ([0-9.]+) s wall", text)]
+            if re.search(r"with 1 LAMMPS runs side by side", text):
+                measured += [float(v) for v in re.findall(r"took ([0-9.]+) min of wall time in all", text)]
+            stated = _minutes(runtime)
+            self.assertIsNotNone(stated, f"{command}: no time in '{runtime}'")
+            if measured and stated < max(measured):
+                low.append(f"{command}: states '{runtime}', its report measured {max(measured):.1f} min")
+        self.assertEqual(low, [], "\n".join(low))
+
+    def test_minutes(self):
+        self.assertEqual(_minutes("5 min idle, 11 min shared"), 11)
+        self.assertEqual(_minutes("30 s"), 0.5)
+        self.assertEqual(_minutes("1.5-4 min"), 4)
+        self.assertEqual(_minutes("10 min idle, 1 h shared"), 60)
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -220,6 +220,78 @@ class WithHessian(unittest.TestCase):
         self.assertGreater(fnorm, 1e-3)
         self.assertRegex(err, r"warning: .*off.dump: fnorm [0-9.e+-]+ > 1e-06.*not an energy minimum")
 
+    def per_cell_state(self):
+        """A jittered hexagonal tissue of one type whose cells carry two sets of quadratic-form
+        parameters (KA, A0, KP, P0) as the per-cell columns d_ka d_area0 d_kp d_perim0."""
+        a = math.sqrt(2 / math.sqrt(3))
+        pts, box = hex_lattice(4, 4, a=a)
+        pts = pts + np.random.default_rng(7).normal(scale=0.03, size=pts.shape)
+        sets = np.array([(1.0, 1.0, 1.0, 3.7), (1.6, 1.1, 0.5, 3.95)])
+        kind = np.arange(len(pts)) % 3 == 0
+        par = sets[kind.astype(int)]
+        return pts, box, kind, sets, par
+
+    def test_per_cell_parameters(self):
+        """The Hessian route uses the dump's per-cell parameters: G equals that of the same
+        tissue written with two types (the per-type rewrite), and the affine (Born) shear
+        modulus equals central differences of the quadratic-form energy of scipy's Voronoi
+        cells under x += gamma y.  The types' own values (--quadratic) differ from both sets."""
+        from tessera_tools.dump import Box
+        from tessera_tools.voronoi import periodic_voronoi, _polygon_area, _polygon_perimeter
+
+        pts, box, kind, sets, par = self.per_cell_state()
+        write_dump(self.path("pc.dump"), [frame_from(pts, box, d_ka=par[:, 0], d_area0=par[:, 1],
+                                                     d_kp=par[:, 2], d_perim0=par[:, 3])])
+        code, out, err = run("moduli", self.path("pc.dump"), "--quadratic", "1", "1", "1", "3.6")
+        self.assertEqual(code, 0, err)
+        self.assertIn("per-cell parameters from the dump: d_area0 d_ka d_kp d_perim0", out)
+        G = numbers_after(out, "G")[0]
+        G_affine = float(re.search(r"affine G ([-0-9.e+]+)", out).group(1))
+        # The per-type rewrite: type t has set t; heterotypic Lambda is the mean of the two.
+        types = [moduli_mod.Model.quadratic(*row) for row in sets]
+        lam = np.array([[types[0].Lambda[0, 0], 0.0], [0.0, types[1].Lambda[0, 0]]])
+        lam[0, 1] = lam[1, 0] = 0.5 * (lam[0, 0] + lam[1, 1])
+        model = moduli_mod.Model([t.K[0] for t in types], [t.A0[0] for t in types],
+                                 [t.Gamma[0] for t in types], lam)
+        ref = moduli_mod.moduli(moduli_mod.run_hessian(box, pts, model, kind.astype(int) + 1))
+        self.assertAlmostEqual(G, ref["G"], places=7)
+        self.assertAlmostEqual(G_affine, ref["G_affine"], places=7)
+
+        def energy(gamma):
+            b = Box(box.xlo, box.xhi, box.ylo, box.yhi, xy=gamma * box.ly)
+            q = pts + np.column_stack([gamma * (pts[:, 1] - box.ylo), np.zeros(len(pts))])
+            t = periodic_voronoi(q, b)
+            A = np.array([_polygon_area(p) for p in t.polygons])
+            P = np.array([_polygon_perimeter(p) for p in t.polygons])
+            return float(np.sum(par[:, 0] * (A - par[:, 1]) ** 2 + par[:, 2] * (P - par[:, 3]) ** 2))
+
+        h = 1e-4
+        born = (energy(h) - 2 * energy(0.0) + energy(-h)) / h ** 2
+        self.assertAlmostEqual(G_affine, born / box.area, places=5)
+        # Ignoring the per-cell columns gives another G (what the route did before).
+        write_dump(self.path("plain.dump"), [frame_from(pts, box)])
+        code, out0, err0 = run("moduli", self.path("plain.dump"), "--quadratic", "1", "1", "1", "3.6")
+        self.assertGreater(abs(numbers_after(out0, "G")[0] - G), 1e-3)
+
+    def test_other_energy_is_refused_with_its_cause(self):
+        """A dump whose own forces vanish where the energy given here has forces was run with
+        another energy: refused (no table row), naming the per-cell columns it lacks.  Without
+        fx fy the warning names both possible causes."""
+        a = math.sqrt(2 / math.sqrt(3))
+        pts, box = hex_lattice(4, 4, a=a)
+        pts = pts + np.random.default_rng(2).normal(scale=0.03, size=pts.shape)
+        n = len(pts)
+        write_dump(self.path("f.dump"), [frame_from(pts, box, fx=np.zeros(n), fy=np.zeros(n))])
+        table = self.path("t.csv")
+        code, out, err = run("moduli", self.path("f.dump"), "--quadratic", "1", "1", "1", "3.6", "--table", table)
+        self.assertNotEqual(code, 0)
+        self.assertRegex(err, r"dump's own forces \(fx fy\) have fnorm 0.*d_area0 d_ka d_kp d_perim0")
+        self.assertFalse(os.path.exists(table))
+        write_dump(self.path("nf.dump"), [frame_from(pts, box)])
+        code, out, err = run("moduli", self.path("nf.dump"), "--quadratic", "1", "1", "1", "3.6")
+        self.assertEqual(code, 0, err)
+        self.assertRegex(err, r"not minimised.*per-cell parameters the dump does not carry.*dump fx fy")
+
     def test_multifold_vertex_uses_the_strain_steps(self):
         """A square lattice has multifold vertices: no Hessian; with --quasistatic the slopes are
         the moduli (here of synthetic steps, G = 0.25, B = 1.5), without it a clear error."""

@@ -37,7 +37,9 @@ class FixCellDeath : public Fix {
   enum Trigger { RATE, AREA };
   int trigger, seed;
   double rate, area_min;
-  bigint min_cells;
+  bigint min_cells;    // the floor in use (min N, or the model's default)
+  bigint min_user = -1;    // min N as given, or -1
+  int warned_floor = 0;    // the floor held back deaths (said once per run)
   std::string region_id;
   class Region *region;
   class PairVertexVoronoi *pair;

@@ -28,6 +28,15 @@ Fix *FixVertexGuard::creator(LAMMPS *lmp, int narg, char **arg)
   return new FixVertexGuard(lmp, narg, arg);
 }
 
+/* After the other fixes' init (the guard is added last), so that their own,
+   more specific checks speak first. */
+
+void FixVertexGuard::init()
+{
+  warned = 0;
+  if (pair) pair->check_integrators();
+}
+
 int FixVertexGuard::setmask()
 {
   return POST_INTEGRATE | END_OF_STEP;

@@ -34,7 +34,7 @@ class FixVertexGuard : public Fix {
  public:
   FixVertexGuard(class LAMMPS *, int, char **);
   int setmask() override;
-  void init() override { warned = 0; }
+  void init() override;
   void setup(int) override { record(); }
   // The positions of the step's last force computation, once the step is
   // complete (not at post_force: fix brownian/heun computes forces twice

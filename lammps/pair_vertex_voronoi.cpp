@@ -164,7 +164,6 @@ void PairVertexVoronoi::init_style()
                  i, i, i);
   check_cutoff_range();
   check_sort_bins();
-  check_integrators();
 
   // The ghost shell is complete only if atoms have moved less than half the
   // skin since the last rebuild, which needs a distance check every step.

@@ -80,6 +80,9 @@ class PairVertexVoronoi : public Pair {
   // owned atom moved in it (-1: not measured); the lost-atom error uses it
   // to tell the integrator's losses from the other commands'.
   double step_move_local = -1.0;
+  // Two fixes that integrate the positions of the same cells: an error
+  // naming both (called by the step guard's init, after the other fixes').
+  void check_integrators() const;
   // 'surface sphere cx cy cz R': the cells live on a sphere (the unit of
   // pair_vertex_voronoi_sphere.cpp).  Its centre, and its radius now (an
   // equal-style variable is evaluated at each call).
@@ -156,7 +159,6 @@ class PairVertexVoronoi : public Pair {
   bigint natoms_seen = -1;    // the atom count at the last force computation
   // The run's start checks (pair_vertex_voronoi_checks.cpp).
   void check_cutoff_range() const;
-  void check_integrators() const;
   void check_sort_bins() const;
   int incremental_given = 0;    // 1 if the pair_style line gave 'incremental'
   // The ghost shell grew 8 times within one step and still was too thin.

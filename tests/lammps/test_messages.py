@@ -135,6 +135,18 @@ class Table(LammpsTestCase):
                    ["atoms are left at step", "atoms were added since the last force computation",
                     "separation d"], ["timestep"], nprocs=4)
 
+    def test_cutoff_at_the_lower_bound_grows(self):
+        # 1/100 cell diameter is still usable: the shell grows to a complete
+        # one and the energy is that of a run with a wide cutoff
+        pe, out = [], []
+        for cut in (0.0101, 3.0):
+            run = self.run_lmp(lmptest.tissue(6, 3) + f"pair_style vertex/voronoi {cut}\n" + COEFF +
+                               "thermo_modify norm no\nrun 0\nprint \"E $(pe:%.15g)\"\n")
+            pe.append(float([l for l in run.stdout.splitlines() if l.startswith("E ")][0].split()[1]))
+            out.append(run.stdout)
+        self.assertIn("cutoff grown from 0.0101", out[0])
+        self.assertAlmostEqual(pe[0], pe[1], delta=1e-10)
+
     def test_settings_line_3d_names_incremental(self):
         for mode in ("no", "check"):
             run = self.run_lmp(cubes(extra=f" incremental {mode}") + "run 0\n")

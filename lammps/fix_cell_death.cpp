@@ -31,6 +31,9 @@ using namespace LAMMPS_NS;
 using namespace FixConst;
 using namespace cell_events;
 
+// The fewest cells a tessellation of a sphere has (a tetrahedron's).
+static constexpr bigint SPHERE_MIN_CELLS = 4;
+
 static const char SYNTAX[] =
     "fix ID group cell/death rate R | area Amin, seed S [region ID] [min N] [file path]";
 
@@ -79,7 +82,7 @@ FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
         error->all(FLERR, "fix cell/death: region '{}' does not exist; define it with 'region' first",
                    region_id);
     } else if (strcmp(kw, "min") == 0) {
-      min_cells = utils::bnumeric(FLERR, v, false, lmp);
+      min_cells = min_user = utils::bnumeric(FLERR, v, false, lmp);
       if (min_cells < 0)
         error->all(FLERR,
                    "fix cell/death: min N must be >= 0 cells (0: every cell may die), got {}", v);
@@ -121,6 +124,15 @@ void FixCellDeath::init()
     if (!region) error->all(FLERR, "fix cell/death: region '{}' no longer exists", region_id);
   }
   pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  // A tessellation of a sphere needs 4 cells: there the floor is at least 4.
+  const bool sphere = pair && pair->on_sphere();
+  if (sphere && min_user >= 0 && min_user < SPHERE_MIN_CELLS)
+    error->all(FLERR,
+               "fix cell/death: min {} is below the {} cells a tessellation of a sphere needs "
+               "(pair_style vertex/voronoi ... surface sphere); use 'min {}' or more",
+               min_user, SPHERE_MIN_CELLS, SPHERE_MIN_CELLS);
+  min_cells = min_user >= 0 ? min_user : sphere ? SPHERE_MIN_CELLS : 1;
+  warned_floor = 0;
   if (!pair && trigger == AREA)
     error->all(FLERR,
                "fix cell/death: the area trigger needs pair_style vertex/voronoi (its "
@@ -173,7 +185,18 @@ void FixCellDeath::decide()
     // Each keeps its place in the list, for the check at the event.
     std::vector<std::pair<double, tagint>> all = gather_sorted(mine, world);
     const bigint room = MAX((bigint) 0, atom->natoms - min_cells);
-    if ((bigint) all.size() > room) all.resize(room);
+    if ((bigint) all.size() > room) {
+      if (!warned_floor && comm->me == 0)
+        error->warning(FLERR,
+                       "fix cell/death {}: at step {} {} cells would die, but the floor 'min {}'{} "
+                       "keeps {} of them alive: the tissue keeps at least {} cells (said once per "
+                       "run)",
+                       id, update->ntimestep, all.size(), min_cells,
+                       min_user < 0 ? " (the default)" : "", (bigint) all.size() - room,
+                       min_cells);
+      warned_floor = 1;
+      all.resize(room);
+    }
     std::unordered_set<tagint> local;
     for (const auto &m : mine) local.insert(m.second);
     pending.clear();

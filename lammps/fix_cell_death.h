@@ -39,7 +39,9 @@ class FixCellDeath : public Fix {
   int trigger, seed;
   double rate, area_min;
   double clock;    // the time of the current step, kept by restart files (for the event log)
-  bigint min_cells;
+  bigint min_cells;    // the floor in use (min N, or the model's default)
+  bigint min_user = -1;    // min N as given, or -1
+  int warned_floor = 0;    // the floor held back deaths (said once per run)
   std::string region_id;
   class Region *region;
   class PairVertexVoronoi *pair;

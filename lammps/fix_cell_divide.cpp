@@ -252,6 +252,17 @@ void FixCellDivide::init()
     error->all(FLERR,
                "fix cell/divide: growth linear changes each cell's preferred area, which needs "
                "'fix property/atom d_area0' (and 'set group all d_area0 A0')");
+  // Daughters go d/2 either way from the mother; a periodic box wraps an
+  // atom only once, and d beyond its length has no meaning (LAMMPS would
+  // lose the daughters).
+  const double prd[3] = {domain->xprd, domain->yprd, domain->zprd};
+  for (int d = 0; d < domain->dimension; d++)
+    if (domain->periodicity[d] && separation >= prd[d])
+      error->all(FLERR,
+                 "fix cell/divide: separation {} is not smaller than the periodic box length {} "
+                 "along {}: the daughters, {} from the mother, would be lost; use a separation "
+                 "below a cell diameter (default 0.1)",
+                 separation, prd[d], "xyz"[d], 0.5 * separation);
 }
 
 /* The base preferred area of cells that have none yet (before the first run,

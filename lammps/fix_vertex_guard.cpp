@@ -28,9 +28,18 @@ Fix *FixVertexGuard::creator(LAMMPS *lmp, int narg, char **arg)
   return new FixVertexGuard(lmp, narg, arg);
 }
 
+/* After the other fixes' init (the guard is added last), so that their own,
+   more specific checks speak first. */
+
+void FixVertexGuard::init()
+{
+  warned = 0;
+  if (pair) pair->check_integrators();
+}
+
 int FixVertexGuard::setmask()
 {
-  return POST_INTEGRATE | POST_FORCE;
+  return POST_INTEGRATE | END_OF_STEP;
 }
 
 void FixVertexGuard::record()
@@ -71,11 +80,13 @@ std::string FixVertexGuard::describe(int i, double moved, double size) const
   double d = -1.0;
   if (static_cast<int>(x0.size()) == dim * atom->nlocal)
     pair->closest_neighbour(i, x0.data(), j, d);
-  const char *what = dim == 3 ? "cbrt(V0)" : "sqrt(A0)";
+  const bool sphere = pair->on_sphere();
+  const char *what = dim == 3 && !sphere ? "cbrt(V0)" : "sqrt(A0)";
   std::string text = fmt::format(
-      "atom {} moved by {:.3g} in the step from {} to {}, more than a cell diameter {} = {:.3g}: "
-      "the timestep does not resolve the forces of step {}",
-      atom->tag[i], moved, step0, update->ntimestep, what, size, step0);
+      "atom {} moved by {:.3g}{} in the step from {} to {}, more than a cell diameter {} = "
+      "{:.3g}: the timestep does not resolve the forces of step {}",
+      atom->tag[i], moved, sphere ? " on the sphere (the chord from its old to its new place)" : "",
+      step0, update->ntimestep, what, size, step0);
   if (d >= 0.0)
     text += fmt::format(" (its closest Voronoi neighbour then, atom {}, was {:.3g} away", j, d);
   else
@@ -106,19 +117,32 @@ void FixVertexGuard::post_integrate()
   const double big = std::numeric_limits<double>::max();
   const double lost2 = lost < std::sqrt(big) ? lost * lost : big;
   int worst = -1;
-  double worst_moved2 = 0.0;
+  double worst_moved2 = 0.0, step_max2 = 0.0;
+  // On a sphere an integrator moves the cells in space and the surface's
+  // fix (after this one) puts them back on the sphere: the move is from the
+  // old place to the new one's projection, at most 2R.
+  const bool sphere = valid && pair->on_sphere();
+  const double *c = sphere ? pair->sphere_centre() : nullptr;
+  const double R = sphere ? pair->sphere_radius() : 0.0;
+  double dx[3] = {0.0, 0.0, 0.0};
+  auto displacement = [&](int i) {
+    for (int d = 0; d < dim; d++) dx[d] = x[i][d] - x0[dim * i + d];
+    if (!sphere) return;
+    const double u[3] = {x[i][0] - c[0], x[i][1] - c[1], x[i][2] - c[2]};
+    const double l = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    if (!(l > 0.0) || !std::isfinite(l)) return;
+    for (int d = 0; d < 3; d++) dx[d] = c[d] + R * u[d] / l - x0[3 * i + d];
+  };
   for (int i = 0; valid && i < n; i++) {
+    displacement(i);
     double moved2 = 0.0;
-    for (int d = 0; d < dim; d++) {
-      const double dx = x[i][d] - x0[dim * i + d];
-      moved2 += dx * dx;
-    }
+    for (int d = 0; d < dim; d++) moved2 += dx[d] * dx[d];
     if (!(moved2 <= lost2)) {    // also NaN
       // The distance without overflow of its square.
       double big_d = 0.0, sum = 0.0;
-      for (int d = 0; d < dim; d++) big_d = MAX(big_d, std::fabs(x[i][d] - x0[dim * i + d]));
+      for (int d = 0; d < dim; d++) big_d = MAX(big_d, std::fabs(dx[d]));
       for (int d = 0; d < dim; d++) {
-        const double q = (x[i][d] - x0[dim * i + d]) / big_d;
+        const double q = dx[d] / big_d;
         sum += q * q;
       }
       const double moved = big_d * std::sqrt(sum);
@@ -132,16 +156,17 @@ void FixVertexGuard::post_integrate()
                    atom->tag[i], step0, update->ntimestep);
       error->one(FLERR,
                  "pair_style vertex/voronoi: {}; it would be lost (limit {:.3g} for this domain "
-                 "decomposition). Use a smaller timestep, 'fix dt/reset' to limit the "
-                 "displacement per step, or the second-order integrator fix brownian/heun",
-                 describe(i, moved, pair->cell_size(type[i])), lost);
+                 "decomposition). To resolve the forces, {}",
+                 describe(i, moved, pair->cell_size(type[i])), lost, pair->step_advice());
     }
+    step_max2 = MAX(step_max2, moved2);
     if (moved2 > size2[type[i]] && moved2 > worst_moved2) {
       worst = i;
       worst_moved2 = moved2;
     }
   }
   const double worst_moved = std::sqrt(worst_moved2);
+  pair->step_move_local = valid ? std::sqrt(step_max2) : -1.0;
   if (warned) return;
   // The largest such step over all ranks, reported by rank 0 (other ranks
   // have no screen).
@@ -161,7 +186,6 @@ void FixVertexGuard::post_integrate()
   if (comm->me == 0)
     error->warning(FLERR,
                    "pair_style vertex/voronoi: {}. The run goes on, but such steps are not "
-                   "accurate; use a smaller timestep, 'fix dt/reset' or fix brownian/heun "
-                   "(reported once per run)",
-                   text);
+                   "accurate; {} (reported once per run)",
+                   text, pair->step_advice());
 }

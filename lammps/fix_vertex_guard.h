@@ -34,9 +34,12 @@ class FixVertexGuard : public Fix {
  public:
   FixVertexGuard(class LAMMPS *, int, char **);
   int setmask() override;
-  void init() override { warned = 0; }
+  void init() override;
   void setup(int) override { record(); }
-  void post_force(int) override { record(); }
+  // The positions of the step's last force computation, once the step is
+  // complete (not at post_force: fix brownian/heun computes forces twice
+  // per step, the first time at its predicted positions).
+  void end_of_step() override { record(); }
   void post_integrate() override;
   PairVertexVoronoi *pair = nullptr;
 

@@ -162,6 +162,8 @@ void PairVertexVoronoi::init_style()
                  "pair_style vertex/voronoi: no cell parameters for atom type {}; add "
                  "'pair_coeff {} {} K A0 Gamma Lambda'",
                  i, i, i);
+  check_cutoff_range();
+  check_sort_bins();
 
   // The ghost shell is complete only if atoms have moved less than half the
   // skin since the last rebuild, which needs a distance check every step.
@@ -191,6 +193,7 @@ void PairVertexVoronoi::init_style()
   // No neighbor list is requested: the tessellation needs only the ghost atoms.
   for (double &v : stats) v = 0.0;
   close_d = -1.0;
+  step_move_local = -1.0;
 }
 
 /* The core's model from the per-type values and the junction tensions:
@@ -265,8 +268,9 @@ void PairVertexVoronoi::print_model() const
     msg = fmt::format("pair_style vertex/voronoi: cutoff {:.6g} tension {} radius {:.6g} (finite "
                       "cells)\n", cut_global, tname, radius);
   else if (three)
-    msg = fmt::format("pair_style vertex/voronoi: cutoff {:.6g} tension {} grow {} (3d cells)\n",
-                      cut_global, tname, grow ? "yes" : "no");
+    msg = fmt::format("pair_style vertex/voronoi: cutoff {:.6g} tension {} incremental {} grow {} "
+                      "reference {} (3d cells)\n", cut_global, tname, inc_name[incremental],
+                      grow ? "yes" : "no", reference_every);
   else
     msg = fmt::format(
         "pair_style vertex/voronoi: cutoff {:.6g} tension {} incremental {} grow {} reference {}\n",

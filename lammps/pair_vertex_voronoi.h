@@ -73,6 +73,16 @@ class PairVertexVoronoi : public Pair {
   // owned atoms at owned_x (dimension values per atom, recorded then).
   double cell_size(int type) const;
   bool closest_neighbour(int i, const double *owned_x, tagint &j, double &d) const;
+  // What limits the step of an integrator that moved cells too far: a
+  // smaller timestep, 'fix dt/reset', and fix brownian/heun unless in use.
+  std::string step_advice() const;
+  // Set by the step guard after each integration: the largest distance an
+  // owned atom moved in it (-1: not measured); the lost-atom error uses it
+  // to tell the integrator's losses from the other commands'.
+  double step_move_local = -1.0;
+  // Two fixes that integrate the positions of the same cells: an error
+  // naming both (called by the step guard's init, after the other fixes').
+  void check_integrators() const;
   // 'surface sphere cx cy cz R': the cells live on a sphere (the unit of
   // pair_vertex_voronoi_sphere.cpp).  Its centre, and its radius now (an
   // equal-style variable is evaluated at each call).
@@ -146,6 +156,13 @@ class PairVertexVoronoi : public Pair {
   void note_closest_pair();
   void note_closest_pair(int i, int q, double d2);
   void check_lost_atoms();
+  bigint natoms_seen = -1;    // the atom count at the last force computation
+  // The run's start checks (pair_vertex_voronoi_checks.cpp).
+  void check_cutoff_range() const;
+  void check_sort_bins() const;
+  int incremental_given = 0;    // 1 if the pair_style line gave 'incremental'
+  // The ghost shell grew 8 times within one step and still was too thin.
+  [[noreturn]] void ghost_shell_failed() const;
   std::string guard_id;
   double ghost_width() const;
   // 'surface sphere' (pair_vertex_voronoi_sphere.cpp: parsing, restart

@@ -237,7 +237,7 @@ void Vertex3d::compute(int eflag, int vflag)
 {
   const double t0 = MPI_Wtime();
   for (int pass = 0; tessellate(); pass++) {
-    if (pass == 8) error->all(FLERR, "pair_style vertex/voronoi: the ghost shell did not converge");
+    if (pass == 8) pair->ghost_shell_failed();
     pair->ev_init(eflag, vflag);
   }
   const double t1 = MPI_Wtime();

@@ -96,15 +96,23 @@ void PairVertexVoronoi::note_closest_pair(int i, int q, double d2)
   close_step = update->ntimestep;
 }
 
-/* Atoms lost since the last step (moved out of the box or past a
-   neighbouring rank in one step): say so before the tessellation of what is
-   left fails, with the closest pair of the previous step. */
+/* Atoms lost since the last force computation: say so before the
+   tessellation of what is left fails, and why.  LAMMPS drops an atom that
+   is outside the box (a periodic box wraps it once), or past the
+   neighbouring rank's sub-domain, when atoms are exchanged.  Atoms added
+   since (fix cell/divide, fix deposit) point at where they were placed; an
+   integration step that moved no atom far points at commands that set
+   positions; otherwise the step was too large for the forces. */
 
 void PairVertexVoronoi::check_lost_atoms()
 {
   bigint n = atom->nlocal, ntotal = 0;
   MPI_Allreduce(&n, &ntotal, 1, MPI_LMP_BIGINT, MPI_SUM, world);
-  if (ntotal == atom->natoms) return;
+  const bigint seen = natoms_seen;
+  if (ntotal == atom->natoms) {
+    natoms_seen = atom->natoms;
+    return;
+  }
   if (output && output->thermo && output->thermo->lostflag != Thermo::ERROR) return;
   // The globally closest pair of the last force computation.
   struct {
@@ -121,11 +129,40 @@ void PairVertexVoronoi::check_lost_atoms()
           ? fmt::format("; at step {} the closest centres were atoms {} and {}, {:.3g} apart", when,
                         ids[0], ids[1], best.d)
           : std::string();
+  // The largest move of the last integration step (-1 on every rank: none).
+  double moved = -1.0;
+  MPI_Allreduce(&step_move_local, &moved, 1, MPI_DOUBLE, MPI_MAX, world);
+  double smax = 0.0;
+  for (int i = 1; i <= atom->ntypes; i++) smax = MAX(smax, cell_size(i));
+  const std::string head = fmt::format(
+      "pair_style vertex/voronoi: {} of {} atoms are left at step {}: the others were lost "
+      "(LAMMPS drops an atom outside the box, a periodic box wraps it only once, or past a "
+      "neighbouring rank's domain)",
+      ntotal, atom->natoms, update->ntimestep);
+  if (update->setupflag)
+    error->all(FLERR,
+               "{}, before the first step of this run: a command since the last force computation "
+               "(set, displace_atoms, create_atoms, change_box, read_dump, ...) put them out of the "
+               "box; keep the atoms inside it",
+               head);
+  if (seen >= 0 && atom->natoms > seen)
+    error->all(FLERR,
+               "{}. {} atoms were added since the last force computation (by fix cell/divide, "
+               "fix deposit, create_atoms, ...), and the lost ones are likely among them: place new atoms "
+               "inside the box and near their neighbours (fix cell/divide's separation d puts the "
+               "daughters d/2 from the mother: keep it below a cell diameter; fix deposit's "
+               "region must lie inside the box, which with shrink-wrapped boundaries 'boundary "
+               "s' is only as large as the atoms)",
+               head, atom->natoms - seen);
+  if (moved >= 0.0 && moved <= smax)
+    error->all(FLERR,
+               "{}. The last integration step moved no atom further than {:.3g} (less than a cell "
+               "diameter, {:.3g}), so the timestep did not lose them: a command or fix that sets "
+               "positions or changes the box (set, displace_atoms, change_box, a fix) put them "
+               "out of the box{}",
+               head, moved, smax, closest);
   error->all(FLERR,
-             "pair_style vertex/voronoi: {} of {} atoms are left at step {}: the others were lost "
-             "(moved out of the box, or past a neighbouring rank's domain in one step; during a "
-             "run usually because the forces were too large for the timestep: two centres nearly "
-             "colliding, or very stiff parameters){}. Use a smaller timestep, 'fix dt/reset', or "
-             "fix brownian/heun",
-             ntotal, atom->natoms, update->ntimestep, closest);
+             "{}; during a run usually because the forces were too large for the timestep (two "
+             "centres nearly colliding, or very stiff parameters){}. To resolve the forces, {}",
+             head, closest, step_advice());
 }

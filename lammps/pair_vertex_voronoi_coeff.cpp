@@ -25,6 +25,7 @@ void PairVertexVoronoi::keyword_defaults()
   sphere_on = 0;
   tension = tessera::Tension::Edge;
   incremental = 1;
+  incremental_given = 0;
   grow = 1;
   reference_every = 0;
   radius = 0.0;
@@ -41,10 +42,10 @@ void PairVertexVoronoi::settings(int narg, char **arg)
                "Illegal pair_style vertex/voronoi command: expected 'pair_style vertex/voronoi "
                "cutoff [tension edge|cell]'");
   cut_global = utils::numeric(FLERR, arg[0], false, lmp);
-  if (!(cut_global > 0.0))
+  if (!(cut_global > 0.0) || !std::isfinite(cut_global))
     error->all(FLERR,
-               "pair_style vertex/voronoi: cutoff must be > 0, got {}; use about 2.5 to 3 "
-               "cell diameters",
+               "pair_style vertex/voronoi: cutoff must be > 0 and finite, got {}; use "
+               "about 2.5 to 3 cell diameters",
                arg[0]);
   int iarg = 1;
   // LAMMPS calls settings() again on the same object when a script repeats
@@ -69,6 +70,7 @@ void PairVertexVoronoi::settings(int narg, char **arg)
     } else if (strcmp(arg[iarg], "incremental") == 0) {
       if (iarg + 2 > narg)
         error->all(FLERR, "pair_style vertex/voronoi: keyword 'incremental' needs a value (yes or no)");
+      incremental_given = 1;
       if (strcmp(arg[iarg + 1], "yes") == 0)
         incremental = 1;
       else if (strcmp(arg[iarg + 1], "no") == 0)
@@ -162,6 +164,19 @@ void PairVertexVoronoi::coeff(int narg, char **arg)
     if (!std::isfinite(free_value))
       error->all(FLERR, "{}: free tension must be finite, got {}", where, arg[narg - 1]);
     narg -= 2;
+  }
+
+  if (narg == 3 && strcmp(arg[2], "quadratic") == 0) {
+    if (same)
+      error->all(FLERR,
+                 "{}: 'quadratic' needs the four values KA A0 KP P0 of the cells of this type: "
+                 "'pair_coeff I I quadratic KA A0 KP P0'",
+                 where);
+    error->all(FLERR,
+               "{}: 'quadratic' needs a value: the extra tension sigma of the junctions between "
+               "the two types, 'pair_coeff I J quadratic sigma' (e.g. 'pair_coeff {} {} quadratic "
+               "0.1')",
+               where, arg[0], arg[1]);
   }
 
   // pair_coeff I J Lambda_IJ, or pair_coeff I J quadratic sigma: the extra

@@ -212,7 +212,7 @@ void VertexConfluent::compute(int eflag, int vflag)
   // Each pass that widens the ghost shell re-acquires the atoms; then the
   // energy/virial accumulators are set up again for the new atom count.
   for (int pass = 0; tessellate(); pass++) {
-    if (pass == 8) error->all(FLERR, "pair_style vertex/voronoi: the ghost shell did not converge");
+    if (pass == 8) pair->ghost_shell_failed();
     pair->ev_init(eflag, vflag);
     prepare();
   }

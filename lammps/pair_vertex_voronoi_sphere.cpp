@@ -187,6 +187,11 @@ void VertexSphere::init()
     error->all(FLERR,
                "pair_style vertex/voronoi: finite cells ('radius') are not available on a sphere; "
                "the cells on a sphere are confluent (they cover it)");
+  if (pair->incremental_given)
+    error->all(FLERR,
+               "pair_style vertex/voronoi: 'incremental' keeps the 2d or 3d triangulation between "
+               "steps; on a sphere every step is a from-scratch triangulation, so it would have no "
+               "effect: remove 'incremental' from the pair_style line");
   if (pair->reference_every > 0)
     error->all(FLERR,
                "pair_style vertex/voronoi: 'reference' times the incremental 2d triangulation; "
@@ -310,7 +315,7 @@ void VertexSphere::compute(int eflag, int vflag)
   R = pair->sphere_radius();
   pair->check_sphere_box(R);
   for (int pass = 0; tessellate(); pass++) {
-    if (pass == 8) error->all(FLERR, "pair_style vertex/voronoi: the ghost shell did not converge");
+    if (pass == 8) pair->ghost_shell_failed();
     pair->ev_init(eflag, vflag);
   }
   const double t1 = MPI_Wtime();

@@ -2,12 +2,175 @@
 # Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
 """Input that used to be accepted without a word or answered with a
 misleading message: each now stops with an error naming the argument, the
-value and the fix (or prints the settings that apply)."""
+value and the fix (or prints the settings that apply).  Most cases are rows
+of one table, CASES: a script, whether it fails, the fragments its ERROR or
+WARNING line must contain and those it must not."""
+
+import re
 
 import lmptest
-from lmptest import LammpsTestCase
+from lmptest import LammpsTestCase, nprocs
 
 BASE = lmptest.tissue(6, 3) + "pair_style vertex/voronoi 3.0\n"
+
+COEFF = "pair_coeff * * 1 1 0.1 -0.5\n"
+BROWNIAN = "fix b all brownian 1.0 1 gamma_t 1.0 rng none\n"
+
+
+def cubes(cutoff=3.0, region="region box block 0 4 0 4 0 4", extra=""):
+    """A 3d simple cubic lattice of unit cubes (or 64 of them in `region`'s box)."""
+    return f"""units lj
+atom_style dipole
+boundary p p p
+{region}
+create_box 1 box
+lattice sc 1.0
+region cube block 0 4 0 4 0 4
+create_atoms 1 region cube
+mass 1 1.0
+pair_style vertex/voronoi {cutoff}{extra}
+pair_coeff * * 1 1 0.1 -0.5
+"""
+
+
+def sphere(extra="", a0=2.8):
+    """40 cells at random places of a box, put on a sphere of radius 3
+    (area 113, about 2.8 per cell) by the pair style."""
+    return f"""units lj
+atom_style dipole
+boundary f f f
+region box block 0 20 0 20 0 20
+create_box 1 box
+create_atoms 1 random 40 123 box
+mass 1 1.0
+set group all dipole/random 5 1.0
+pair_style vertex/voronoi 8 surface sphere 10 10 10 3{extra}
+pair_coeff * * 1 {a0} 0.1 -0.2
+"""
+
+
+# (name, script, fails, fragments of the ERROR (fails) or WARNING line, fragments it must not have)
+CASES = [
+    # cutoffs LAMMPS cannot use: rejected before LAMMPS's communication sees them
+    ("cutoff_1e300", lmptest.tissue(6, 3) + "pair_style vertex/voronoi 1e300\n" + COEFF + "run 0\n",
+     True, ["cutoff 1e+300 is outside the usable range 0.01 to 100", "sqrt(A0) = 1",
+            "'pair_style vertex/voronoi 3'"], ["far too small"]),
+    ("cutoff_1e10", lmptest.tissue(6, 3) + "pair_style vertex/voronoi 1e10\n" + COEFF + "run 0\n",
+     True, ["outside the usable range", "multiplies the ghost atoms"], ["far too small"]),
+    ("cutoff_1e-6", lmptest.tissue(6, 3) + "pair_style vertex/voronoi 1e-6\n" + COEFF + "run 0\n",
+     True, ["cutoff 1e-06 is outside the usable range", "cannot grow that far"],
+     ["did not converge"]),
+    ("cutoff_3d_1e10", cubes(1e10) + "run 0\n",
+     True, ["outside the usable range", "cbrt(V0) = 1"], ["far too small"]),
+    ("cutoff_inf", lmptest.tissue(6, 3) + "pair_style vertex/voronoi 1e400\n",
+     True, ["cutoff must be > 0 and finite, got 1e400"], []),
+    # LAMMPS's atom sort overflows its bin count for a huge box (no neighbor
+    # list: LAMMPS's own check of the box against the bins is skipped)
+    ("box_1e12_3d", cubes(region="region box block 0 1e12 0 1e12 0 1e12") + "run 0\n",
+     True, ["too large for LAMMPS's atom sort", "2147483647", "'atom_modify sort 0 0.0'"], []),
+    # pair_coeff quadratic without its values
+    ("quadratic_without_sigma", lmptest.tissue(6, 3, ntypes=2) +
+     "pair_style vertex/voronoi 3.0\n" + COEFF + "pair_coeff 1 2 quadratic\nrun 0\n",
+     True, ["pair_coeff 1 2: 'quadratic' needs a value", "sigma", "pair_coeff 1 2 quadratic 0.1"],
+     ["Expected floating point"]),
+    ("quadratic_without_values", BASE + "pair_coeff 1 1 quadratic\n",
+     True, ["'quadratic' needs the four values KA A0 KP P0"], ["Expected floating point"]),
+    # two integrators on the same cells
+    ("brownian_and_heun", BASE + COEFF + BROWNIAN +
+     "fix h all brownian/heun 1.0 1 gamma_t 1.0 rng none\nrun 1\n",
+     True, ["fix b (brownian, group all) and fix h (brownian/heun, group all)",
+            "36 cells", "'unfix'"], []),
+    ("heun_and_nve", BASE + COEFF + "fix h all brownian/heun 1.0 1 gamma_t 1.0 rng none\n"
+     "fix n all nve\nrun 1\n", True, ["fix h (brownian/heun", "fix n (nve"], []),
+    # keywords the model does not use
+    ("incremental_on_sphere", sphere(" incremental no") + "run 0\n",
+     True, ["'incremental'", "on a sphere", "remove 'incremental'"], []),
+    ("free_on_confluent_cells", BASE + "pair_coeff * * 1 1 0.1 -0.5 free 0.3\nrun 0\n",
+     False, ["'free' tensions are ignored without 'radius r'"], []),
+    # daughters placed past a periodic box
+    ("separation_past_the_box", BASE + COEFF + BROWNIAN +
+     "fix d all cell/divide rate 1.0 seed 5 separation 30\nrun 5\n",
+     True, ["fix cell/divide: separation 30 is not smaller than the periodic box length",
+            "below a cell diameter"], ["timestep"]),
+    # atoms put out of the box between runs: not the timestep's fault
+    ("lost_by_set", BASE + COEFF + "set atom 5 x 1e6\nrun 0\n",
+     True, ["35 of 36 atoms are left at step 0", "before the first step of this run", "set,"],
+     ["timestep"]),
+    # fix cell/death on a sphere: 4 cells at least
+    ("death_min_0_on_sphere", sphere() + BROWNIAN + "fix d all cell/death rate 5.0 seed 7 min 0\n"
+     "run 1\n", True, ["fix cell/death: min 0 is below the 4 cells", "'min 4'"], []),
+    ("death_default_floor_on_sphere", sphere() + BROWNIAN +
+     "fix d all cell/death rate 5.0 seed 7\ntimestep 0.1\nrun 50\n",
+     False, ["fix cell/death d:", "the floor 'min 4' (the default)", "at least 4 cells"], []),
+]
+
+
+class Table(LammpsTestCase):
+    def check(self, name, script, fails, want, avoid, nprocs=1):
+        run = self.run_lmp(script, nprocs=nprocs, ok=not fails)
+        kind = "ERROR" if fails else "WARNING"
+        if fails:
+            self.assertNotEqual(run.returncode, 0, run.output[-3000:])
+        lines = [l for l in run.output.splitlines() if kind in l and all(w in l for w in want)]
+        self.assertTrue(lines, "%s: no %s line with all of %r:\n%s"
+                        % (name, kind, want, run.output[-3000:]))
+        for a in avoid:
+            self.assertNotIn(a, lines[0], name)
+        return run
+
+    def test_cases(self):
+        for name, script, fails, want, avoid in CASES:
+            with self.subTest(name):
+                self.check(name, script, fails, want, avoid)
+
+    @nprocs(4)
+    def test_daughters_lost_past_a_rank(self):
+        # separation 5 in an 8.6 x 5.6 box on 4 ranks along x (sub-domains
+        # 2.1 wide): a daughter 2.5 from its mother can be lost on the
+        # exchange; the error points at the atoms added, not at the timestep
+        script = lmptest.tissue(8, 3).replace("lattice", "processors 4 1 1\nlattice") + \
+            "pair_style vertex/voronoi 3.0\n" + COEFF + BROWNIAN + \
+            "fix d all cell/divide rate 2.0 seed 5 separation 5\ntimestep 0.01\nrun 20\n"
+        self.check("daughters_lost", script, True,
+                   ["atoms are left at step", "atoms were added since the last force computation",
+                    "separation d"], ["timestep"], nprocs=4)
+
+    def test_cutoff_at_the_lower_bound_grows(self):
+        # 1/100 cell diameter is still usable: the shell grows to a complete
+        # one and the energy is that of a run with a wide cutoff
+        pe, out = [], []
+        for cut in (0.0101, 3.0):
+            run = self.run_lmp(lmptest.tissue(6, 3) + f"pair_style vertex/voronoi {cut}\n" + COEFF +
+                               "thermo_modify norm no\nrun 0\nprint \"E $(pe:%.15g)\"\n")
+            pe.append(float([l for l in run.stdout.splitlines() if l.startswith("E ")][0].split()[1]))
+            out.append(run.stdout)
+        self.assertIn("cutoff grown from 0.0101", out[0])
+        self.assertAlmostEqual(pe[0], pe[1], delta=1e-10)
+
+    def test_settings_line_3d_names_incremental(self):
+        for mode in ("no", "check"):
+            run = self.run_lmp(cubes(extra=f" incremental {mode}") + "run 0\n")
+            line = [l for l in run.stdout.splitlines()
+                    if l.startswith("pair_style vertex/voronoi: cutoff")][0]
+            self.assertIn(f"incremental {mode}", line)
+            self.assertIn("(3d cells)", line)
+
+    def test_sphere_step_guard(self):
+        # active cells on a sphere of R = 3 with fix brownian/heun and a
+        # timestep far too large: the move is measured on the sphere (a chord,
+        # at most 2R), the cell size is sqrt(A0), the step is from 0 to 1,
+        # and fix brownian/heun is not suggested to its own user
+        run = self.run_lmp(sphere() + "fix h all brownian/heun 1.0 1 gamma_t 1.0 rng none\n"
+                           "fix p all polarity 300 1.0\ntimestep 1\nrun 3\n")
+        warn = [l for l in run.output.splitlines() if "WARNING" in l and "moved by" in l]
+        self.assertEqual(len(warn), 1, run.output[-3000:])
+        self.assertIn("sqrt(A0) = 1.67", warn[0])
+        self.assertIn("on the sphere", warn[0])
+        self.assertIn("the step from 0 to 1", warn[0])
+        self.assertNotIn("cbrt", warn[0])
+        self.assertNotIn("fix brownian/heun", warn[0])
+        moved = float(re.search(r"moved by (\S+)", warn[0]).group(1))
+        self.assertLessEqual(moved, 6.0 * (1 + 1e-3))
 
 
 class Messages(LammpsTestCase):

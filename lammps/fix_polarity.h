@@ -43,6 +43,12 @@ class FixPolarity : public Fix, public CoupledDof {
   tessera::Tessellation none;  // an empty tessellation when no neighbours are needed
   std::vector<unsigned char> has_v;
   std::vector<unsigned char> in_group;    // 1 for atoms of the fix group (when it is not all)
+  // Cells on a sphere: positions of the owned and ghost atoms at the last
+  // force computation (post_force), the state whose tessellation the
+  // alignment reads, whatever an integrator defined earlier did since.
+  std::vector<double> state_x;
+  void record_state_positions();
+  const double *state_position(int i) const;
 
   void init_angles();
   void fresh_angles(int from, int to);    // fresh_angle() of the atoms from..to-1 that need one

@@ -120,21 +120,15 @@ const double *FixPolarity::state_position(int i) const
 
 /* Calls term(i, j) for every owned cell i and each of its Voronoi
    neighbours j (contacts longer than 1e-9 of i's boundary) in the cells of
-   pair vertex/voronoi, which must be those of state_step. */
+   pair vertex/voronoi recorded at the force computation of state_step. */
 
 template <class Term> void FixPolarity::for_each_neighbour(bigint state_step, Term &&term)
 {
   const int nlocal = atom->nlocal;
-  const tessera::CellView &v = pair->cells();
-  const tessera::Contacts t = v.contacts();
-  if (pair->cells_step() != state_step || t.n_owned != nlocal)
-    error->one(FLERR,
-               "fix polarity: the tessellation of pair vertex/voronoi is from step {}, the "
-               "polarities need it for step {}",
-               pair->cells_step(), state_step);
+  const tessera::Contacts t = recorded_contacts(state_step);
   for (int i = 0; i < nlocal; i++)
     for (int f = t.offset[i]; f < t.offset[i + 1]; f++)
-      if (t.size[f] > 1e-9 * v.boundary(i)) term(i, t.neighbor[f]);
+      if (t.size[f] > 1e-9 * rec_boundary[i]) term(i, t.neighbor[f]);
 }
 
 /* The field h_i = J_S sum_j n_j + J_G (n_i.g) g + J_V vhat_i of every

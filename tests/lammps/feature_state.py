@@ -48,3 +48,37 @@ write_dump all custom end.dump id xu yu zu mux muy muz modify format float %.17g
             for what, got in runs.items():
                 np.testing.assert_allclose(got, after, rtol=0, atol=1e-11,
                                            err_msg=f"{integrator}, {what}")
+
+    def check_deform_output(self, model):
+        d = dim_of(model)
+        strain = "x erate 0.5 y erate -0.3" + (" z erate 0.2" if d == 3 and model != "sphere" else "")
+        columns = ("c_c[1]", "c_c[2]", "c_c[5]")
+        script = model_script(model) + f"""fix b all brownian 1.0 1 gamma_t 1.0 rng none
+fix def all deform 1 {strain} remap x
+compute c all vertex/atom
+compute a all reduce sum c_c[1]
+timestep 0.005
+thermo_style custom step pe c_a vol
+dump d all custom 5 cells.dump id {' '.join(columns)}
+dump_modify d format float %.17g sort id
+run 5
+print "A $(c_a:%.17g) $(vol:%.17g)"
+write_data end.data
+"""
+        run = self.run_lmp(script)
+        area, vol = printed(run, "A")[0]
+        if model == "sphere":
+            self.assertAlmostEqual(area, 4 * np.pi * SPHERE_R ** 2, delta=1e-9 * area)
+        elif not model.startswith("finite"):
+            self.assertAlmostEqual(area, vol, delta=1e-9 * vol)    # the cells tile the box shown
+        shown = run.dump("cells.dump")[-1]
+        again = self.run_lmp(model_script(model, data="end.data") + f"""compute c all vertex/atom
+dump d all custom 1 cells.dump id {' '.join(columns)}
+dump_modify d format float %.17g sort id
+run 0
+""", files={"end.data": run.text("end.data")}).dump("cells.dump")[0]
+        np.testing.assert_array_equal(shown["id"], again["id"])
+        for col in columns:
+            scale = np.abs(again[col]).max()
+            np.testing.assert_allclose(shown[col], again[col], rtol=0, atol=1e-9 * scale,
+                                       err_msg=col)

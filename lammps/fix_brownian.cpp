@@ -30,7 +30,7 @@ static constexpr int MAX_MARSAGLIA_SEED = 900000000;
 /* ---------------------------------------------------------------------- */
 
 FixBrownianTessera::FixBrownianTessera(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), random(nullptr)
+    Fix(lmp, narg, arg), random(nullptr), chatter(lmp)
 {
   if (narg < 5)
     error->all(FLERR,
@@ -166,6 +166,7 @@ void FixBrownianTessera::initial_integrate(int /*vflag*/)
                "Fix {} (ID {}): the timestep must be > 0 to take a step (the velocity is the "
                "displacement over dt), got {}; set it with 'timestep'",
                style, id, dt);
+  chatter.begin(groupbit);
   const bool three_d = domain->dimension == 3;
   switch (noise) {
     case NOISE_UNIFORM:
@@ -177,6 +178,7 @@ void FixBrownianTessera::initial_integrate(int /*vflag*/)
     default:
       three_d ? move<NOISE_NONE, 1>() : move<NOISE_NONE, 0>();
   }
+  chatter.end(style, id, groupbit, dt);
 }
 
 /* ----------------------------------------------------------------------

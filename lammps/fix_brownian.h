@@ -12,6 +12,7 @@
 #define TESSERA_FIX_BROWNIAN_H
 
 #include "fix.h"
+#include "integrator_chatter.h"
 
 namespace LAMMPS_NS {
 
@@ -38,6 +39,7 @@ class FixBrownianTessera : public Fix {
   double mobility;       // velocity per unit force: ftm2v / gamma_t
   double noise_scale;    // multiplies one random number to give one displacement component
   class RanMars *random;
+  IntegratorChatter chatter;    // warns once when the steps oscillate (period two)
 
   double parse_number(const char *what, const char *text);
   void set_step();

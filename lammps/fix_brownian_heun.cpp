@@ -110,6 +110,7 @@ void FixBrownianHeun::initial_integrate(int /*vflag*/)
 
   // Coupled degrees of freedom, predictor: every rate at the start state
   // before any of them moves.
+  chatter.begin(groupbit);
   int nlocal = atom->nlocal;
   double *base = saved ? saved[0] : nullptr;
   if (!coupled.empty()) drift_velocity();
@@ -153,6 +154,7 @@ void FixBrownianHeun::initial_integrate(int /*vflag*/)
     coupled[c]->coupled_advance(scratch.data() + coupled_offset[c], ncoupled);
 
   three_d ? correct<1>() : correct<0>();
+  chatter.end(style, id, groupbit, dt);
 }
 
 /* ----------------------------------------------------------------------

@@ -274,6 +274,7 @@ void FixPolarity::setup(int vflag)
 
 void FixPolarity::post_force(int /*vflag*/)
 {
+  record_contacts();
   if (domain->dimension == 3) {
     post_force_3d();
     return;
@@ -362,11 +363,7 @@ void FixPolarity::initial_integrate(int /*vflag*/)
   tau.resize(nlocal);
 
   if (params.J_S != 0.0) {
-    const tessera::Contacts t = pair->cells().contacts();
-    if (pair->cells_step() != update->ntimestep - 1 || t.n_owned != nlocal)
-      error->one(FLERR,
-                 "fix polarity: the tessellation of pair vertex/voronoi is not from the "
-                 "previous step");
+    const tessera::Contacts t = recorded_contacts(update->ntimestep - 1);
     tessera::polarity_torque_vec(t, unit.data(), 2, params, vhat.data(), has_v.data(),
                                  tau.data());
   } else {
@@ -414,6 +411,43 @@ void FixPolarity::initial_integrate(int /*vflag*/)
   else
     for (int i = 0; i < nlocal; i++)
       if (!active || active[i]) tessera::rotate_polarities_reference(1, &unit[2 * i], &dth[i], mu[i], nullptr);
+}
+
+/* The neighbour lists (and 3d surfaces) of the pair style's cells, now,
+   at a force computation (only 'neighbor' alignment reads them). */
+
+void FixPolarity::record_contacts()
+{
+  if (params.J_S == 0.0 || !pair) return;
+  const tessera::CellView &v = pair->cells();
+  const tessera::Contacts t = v.contacts();
+  rec_step = pair->cells_step();
+  const int n = t.n_owned;
+  rec_offset.assign(t.offset, t.offset + n + 1);
+  const int m = n > 0 ? t.offset[n] : 0;
+  rec_neighbor.assign(t.neighbor, t.neighbor + m);
+  rec_size.assign(t.size, t.size + m);
+  rec_boundary.resize(n);
+  for (int i = 0; i < n; i++) rec_boundary[i] = v.boundary(i);
+}
+
+/* The recorded neighbour lists, which must be those of state_step and of
+   the atoms now owned. */
+
+tessera::Contacts FixPolarity::recorded_contacts(bigint state_step)
+{
+  const int n = rec_offset.empty() ? 0 : static_cast<int>(rec_offset.size()) - 1;
+  if (rec_step != state_step || n != atom->nlocal)
+    error->one(FLERR,
+               "fix polarity: the tessellation of pair vertex/voronoi is from step {} with {} "
+               "cells, the polarities need it for step {} with {}",
+               rec_step, n, state_step, atom->nlocal);
+  tessera::Contacts t;
+  t.n_owned = n;
+  t.offset = rec_offset.data();
+  t.neighbor = rec_neighbor.data();
+  t.size = rec_size.data();
+  return t;
 }
 
 /* Polar order |<n>| and nematic order <cos 2(theta - phi_G)> over the group. */
@@ -492,12 +526,7 @@ void FixPolarity::angle_torques(bigint state_step)
   }
   tau.resize(nlocal);
   if (params.J_S != 0.0) {
-    const tessera::Contacts t = pair->cells().contacts();
-    if (pair->cells_step() != state_step || t.n_owned != nlocal)
-      error->one(FLERR,
-                 "fix polarity: the tessellation of pair vertex/voronoi is from step {}, the "
-                 "integrator needs it for step {}",
-                 pair->cells_step(), state_step);
+    const tessera::Contacts t = recorded_contacts(state_step);
     tessera::polarity_torque_vec(t, unit.data(), 2, params, vhat.data(), has_v.data(),
                                  tau.data());
   } else {

@@ -43,6 +43,22 @@ class FixPolarity : public Fix, public CoupledDof {
   tessera::Tessellation none;  // an empty tessellation when no neighbours are needed
   std::vector<unsigned char> has_v;
   std::vector<unsigned char> in_group;    // 1 for atoms of the fix group (when it is not all)
+  // Cells on a sphere: positions of the owned and ghost atoms at the last
+  // force computation (post_force), the state whose tessellation the
+  // alignment reads, whatever an integrator defined earlier did since.
+  std::vector<double> state_x;
+  void record_state_positions();
+  const double *state_position(int i) const;
+  // The Voronoi neighbours (and, 3d, each cell's surface) of the owned cells
+  // at the last force computation, copied then from the pair style's view:
+  // the pair style may tessellate again for output after fix deform changed
+  // the box at the end of a step, and the next angle update must still use
+  // the state whose forces move the cells (fix_polarity.cpp).
+  std::vector<int> rec_offset, rec_neighbor;
+  std::vector<double> rec_size, rec_boundary;
+  bigint rec_step = -1;
+  void record_contacts();
+  tessera::Contacts recorded_contacts(bigint state_step);
 
   void init_angles();
   void fresh_angles(int from, int to);    // fresh_angle() of the atoms from..to-1 that need one

@@ -67,6 +67,7 @@ void FixPolarity::init_angles_3d()
 
 void FixPolarity::post_force_3d()
 {
+  record_state_positions();
   double **mu = atom->mu;
   double **f = atom->f;
   double **v = atom->v;
@@ -89,23 +90,45 @@ void FixPolarity::post_force_3d()
   }
 }
 
+/* Cells on a sphere: the positions of owned and ghost atoms now, at a
+   force computation.  The field (transport between neighbours, tangent
+   planes) and the noise's axis of the next angle update read these, not
+   atom->x: an integrator defined before this fix has moved the owned atoms
+   by then but not their ghost copies, and the update must see the state
+   whose tessellation it uses (the same on any number of ranks and in any
+   order of the fixes). */
+
+void FixPolarity::record_state_positions()
+{
+  if (!pair || !pair->on_sphere()) return;
+  const int nall = atom->nlocal + atom->nghost;
+  state_x.resize(3 * static_cast<size_t>(nall));
+  double **x = atom->x;
+  for (int i = 0; i < nall; i++)
+    for (int d = 0; d < 3; d++) state_x[3 * i + d] = x[i][d];
+}
+
+const double *FixPolarity::state_position(int i) const
+{
+  if (3 * static_cast<size_t>(i) + 3 > state_x.size())
+    error->one(FLERR,
+               "fix polarity {}: internal error: no position of atom {} recorded at the last "
+               "force computation",
+               id, atom->tag[i]);
+  return &state_x[3 * static_cast<size_t>(i)];
+}
+
 /* Calls term(i, j) for every owned cell i and each of its Voronoi
    neighbours j (contacts longer than 1e-9 of i's boundary) in the cells of
-   pair vertex/voronoi, which must be those of state_step. */
+   pair vertex/voronoi recorded at the force computation of state_step. */
 
 template <class Term> void FixPolarity::for_each_neighbour(bigint state_step, Term &&term)
 {
   const int nlocal = atom->nlocal;
-  const tessera::CellView &v = pair->cells();
-  const tessera::Contacts t = v.contacts();
-  if (pair->cells_step() != state_step || t.n_owned != nlocal)
-    error->one(FLERR,
-               "fix polarity: the tessellation of pair vertex/voronoi is from step {}, the "
-               "polarities need it for step {}",
-               pair->cells_step(), state_step);
+  const tessera::Contacts t = recorded_contacts(state_step);
   for (int i = 0; i < nlocal; i++)
     for (int f = t.offset[i]; f < t.offset[i + 1]; f++)
-      if (t.size[f] > 1e-9 * v.boundary(i)) term(i, t.neighbor[f]);
+      if (t.size[f] > 1e-9 * rec_boundary[i]) term(i, t.neighbor[f]);
 }
 
 /* The field h_i = J_S sum_j n_j + J_G (n_i.g) g + J_V vhat_i of every
@@ -239,7 +262,7 @@ void FixPolarity::noise_3d(int i, double scale, bigint step, double *w) const
   const tagint t = atom->tag[i];
   if (pair && pair->on_sphere()) {
     const double *c = pair->sphere_centre();
-    const double *x = atom->x[i];
+    const double *x = state_position(i);
     const double u[3] = {x[0] - c[0], x[1] - c[1], x[2] - c[2]};
     const double l = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
     const double a = scale * gaussian(seed ^ 0x5bd1e995ULL, 3 * static_cast<uint64_t>(t), step);
@@ -252,7 +275,8 @@ void FixPolarity::noise_3d(int i, double scale, bigint step, double *w) const
 
 /* Cells on a sphere (pair_style vertex/voronoi ... surface sphere): the
    polarities are tangent (unit, of owned and ghost atoms, projected onto the
-   tangent plane at their positions), and the field is
+   tangent plane at their positions at the last force computation,
+   record_state_positions()), and the field is
      h_i = J_S sum_j T_ji n_j + J_V vhat_i
    with T_ji the parallel transport from j to i along their geodesic
    (tessera::sphere_transport) and vhat_i the direction of the velocity's
@@ -265,10 +289,13 @@ void FixPolarity::field_sphere(bigint state_step)
 {
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
-  double **x = atom->x;
   const double *cc = pair->sphere_centre();
   const tessera::Vec3 c{cc[0], cc[1], cc[2]};
-  auto at = [&](int i) { return tessera::Vec3{x[i][0], x[i][1], x[i][2]}; };
+  if (state_x.size() < 3 * static_cast<size_t>(nall)) state_position(nall - 1);    // stops
+  auto at = [&](int i) {
+    const double *x = &state_x[3 * static_cast<size_t>(i)];
+    return tessera::Vec3{x[0], x[1], x[2]};
+  };
   for (int i = 0; i < nall; i++) {
     double *n = &unit[3 * i];
     if (n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0) continue;

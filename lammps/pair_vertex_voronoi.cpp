@@ -531,6 +531,7 @@ void PairVertexVoronoi::accumulate(double energy, int nw)
                "parameters or the cells' sizes are far outside the model's reduced units)",
                update->ntimestep, energy);
   tess_step = update->ntimestep;
+  record_view_state();
   unit->view().energy = cell_e.data();
   if (vflag_atom) {
     for (int i = 0; i < nlocal; i++) {
@@ -601,11 +602,6 @@ const tessera::CellView &PairVertexVoronoi::cells() const
 {
   static const tessera::ConfluentCells none;
   return unit ? unit->cells() : none;
-}
-
-bool PairVertexVoronoi::cells_current() const
-{
-  return unit && tess_step == update->ntimestep && unit->cells().n_owned() == atom->nlocal;
 }
 
 /* Cell diameter of a type (1-based), the step guard's limit: sqrt(A0) in

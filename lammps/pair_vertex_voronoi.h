@@ -17,6 +17,7 @@ PairStyle(vertex/voronoi,PairVertexVoronoi);
 #include "tessera/cells.h"
 #include "tessera/energy.h"
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -61,10 +62,16 @@ class PairVertexVoronoi : public Pair {
   // for the timestep cells_step() until atoms are exchanged or sorted.
   const tessera::CellView &cells() const;
   bigint cells_step() const { return tess_step; }
-  // Whether cells() describes the current timestep's atoms.
-  bool cells_current() const;
-  // Force computations since the style was created (never reset): tells
-  // computes whether the cells changed since they last looked.
+  // Whether cells() describes the current timestep's atoms.  When the
+  // forces of this timestep were computed but the box or the owned atoms'
+  // positions changed since (fix deform at the end of the step), the cells
+  // of the current state are computed first (collective: call on every
+  // rank), the forces, energy and virial staying those of the step
+  // (pair_vertex_voronoi_view.cpp).
+  bool cells_current();
+  // Force computations, and computations of the cells for output after the
+  // state changed (cells_current()), since the style was created (never
+  // reset): tells computes whether the cells changed since they last looked.
   bigint compute_count() const { return ncompute; }
   // Finite Voronoi radius r, or 0 (confluent or 3D cells).
   double finite_radius() const { return radius; }
@@ -163,6 +170,14 @@ class PairVertexVoronoi : public Pair {
   int incremental_given = 0;    // 1 if the pair_style line gave 'incremental'
   // The ghost shell grew 8 times within one step and still was too thin.
   [[noreturn]] void ghost_shell_failed() const;
+  // The state the cells were computed for: box and a hash of the owned
+  // atoms' positions (pair_vertex_voronoi_view.cpp).
+  double view_box[9] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  std::uint64_t view_hash = 0;
+  void record_view_state();
+  std::uint64_t position_hash() const;
+  bool view_matches_state();
+  void refresh_view();
   std::string guard_id;
   double ghost_width() const;
   // 'surface sphere' (pair_vertex_voronoi_sphere.cpp: parsing, restart

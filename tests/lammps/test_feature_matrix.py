@@ -19,6 +19,7 @@ import numpy as np
 
 import lmptest
 from feature_outputs import OutputChecks
+from feature_state import StateChecks
 from feature_models import (COEFFS_2D, COEFFS_3D, COEFFS_FINITE, SPHERE_C, SPHERE_R, dim_of,
                             local_rows, model_script, printed, read_matrix)
 from lmptest import LammpsTestCase
@@ -26,7 +27,7 @@ from lmptest import LammpsTestCase
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-class FeatureMatrix(OutputChecks, LammpsTestCase):
+class FeatureMatrix(OutputChecks, StateChecks, LammpsTestCase):
     """One test per (model, feature); methods are added from the data file."""
 
     def run_lmp(self, script, **kw):
@@ -745,7 +746,7 @@ def _make(model, feature, expect):
             with self.assertRaises(AssertionError) as caught:
                 check(self, model)
             self.assertIn(fragment, str(caught.exception))
-    if feature == "ranks":
+    if feature in ("ranks", "fix_order"):
         test.nprocs = 4
     test.__doc__ = f"{model} x {feature}: {expect}"
     return test

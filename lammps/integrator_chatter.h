@@ -1,0 +1,60 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   Detection of an explicit overdamped integrator that chatters: forward
+   Euler (and Heun) past its stability limit does not blow up at once when
+   the forces are nonlinear, it oscillates about the state with period two
+   (each step overshoots and the next one comes back), so the energy
+   alternates and a run looks plausible.  Used by fix brownian and fix
+   brownian/heun (doc/fix_brownian.rst, "Chatter").
+------------------------------------------------------------------------- */
+
+#ifndef LMP_TESSERA_INTEGRATOR_CHATTER_H
+#define LMP_TESSERA_INTEGRATOR_CHATTER_H
+
+#include "lmptype.h"
+#include "pointers.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class IntegratorChatter : protected Pointers {
+ public:
+  // Over the last STEPS steps, the mean correlation of successive
+  // displacements below which the steps chatter, and how much the squared
+  // displacements may shrink over those steps (a decaying oscillation,
+  // which converges, is no chatter).
+  static constexpr int STEPS = 50;
+  static constexpr double ANTI = -0.3;
+  static constexpr double DECAY = 0.1;
+  // Steps whose RMS displacement is below this times the box length are at
+  // the positions' round-off and start the watch anew.
+  static constexpr double FLOOR = 1e-10;
+
+  explicit IntegratorChatter(class LAMMPS *lmp) : Pointers(lmp) {}
+  // At the start of a step, before v is overwritten: v holds the previous
+  // step's displacement over dt (fix brownian and brownian/heun store it
+  // so); it is kept.
+  void begin(int groupbit);
+  // At the end of the step, when v holds this step's displacement over dt.
+  // Collective (one MPI_Allreduce).  Warns once per fix (style, id) when
+  // over the last STEPS steps the two displacement fields were on average
+  // anti-parallel (weighted by their lengths) without dying out.
+  void end(const char *style, const char *id, int groupbit, double dt);
+  // The correlation sum(v_old.v_new) / sqrt(sum v_old^2 sum v_new^2) of
+  // the last step observed (0 when either is zero).
+  double last_correlation() const { return corr; }
+
+ private:
+  std::vector<double> corrs, sizes;    // the last steps' correlations and squared displacements
+  double corr = 0.0;
+  bool warned = false;
+  std::vector<double> before;    // v of the group's atoms at begin() (3 per atom)
+  int nbefore = -1;              // nlocal at begin()
+};
+
+}    // namespace LAMMPS_NS
+
+#endif

@@ -1,0 +1,130 @@
+/* ----------------------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   pair_style vertex/voronoi: the cells that output reads describe the
+   state output shows.  In a LAMMPS step the forces are computed before the
+   end of the step, where fix deform changes the box and remaps the
+   positions; output (dumps, thermo) comes after it.  The pair style
+   records the state its cells were computed for (the box and a hash of the
+   owned atoms' positions); when a consumer asks for the cells of this step
+   (cells_current()) and that state changed since, the cells of the current
+   state are computed again, without changing the forces, the energy or the
+   virial of the step.
+------------------------------------------------------------------------- */
+
+#include "pair_vertex_voronoi.h"
+
+#include "pair_vertex_voronoi_model.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "update.h"
+
+#include <cstring>
+#include <vector>
+
+using namespace LAMMPS_NS;
+
+namespace {
+
+inline std::uint64_t mix64(std::uint64_t z)
+{
+  z += 0x9e3779b97f4a7c15ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+}    // namespace
+
+/* A hash of the bits of the owned atoms' positions, in their order. */
+
+std::uint64_t PairVertexVoronoi::position_hash() const
+{
+  std::uint64_t h = static_cast<std::uint64_t>(atom->nlocal);
+  double **x = atom->x;
+  for (int i = 0; i < atom->nlocal; i++)
+    for (int d = 0; d < 3; d++) {
+      std::uint64_t b;
+      std::memcpy(&b, &x[i][d], sizeof b);
+      h = mix64(h ^ b);
+    }
+  return h;
+}
+
+void PairVertexVoronoi::record_view_state()
+{
+  for (int d = 0; d < 3; d++) {
+    view_box[d] = domain->boxlo[d];
+    view_box[3 + d] = domain->boxhi[d];
+  }
+  view_box[6] = domain->xy;
+  view_box[7] = domain->xz;
+  view_box[8] = domain->yz;
+  view_hash = position_hash();
+}
+
+/* Whether the box and, on every rank, the owned positions are those the
+   cells were computed for (collective). */
+
+bool PairVertexVoronoi::view_matches_state()
+{
+  const double now[9] = {domain->boxlo[0], domain->boxlo[1], domain->boxlo[2],
+                         domain->boxhi[0], domain->boxhi[1], domain->boxhi[2],
+                         domain->xy,       domain->xz,       domain->yz};
+  int same = std::memcmp(now, view_box, sizeof now) == 0 && position_hash() == view_hash;
+  int all = 0;
+  MPI_Allreduce(&same, &all, 1, MPI_INT, MPI_MIN, world);
+  return all != 0;
+}
+
+bool PairVertexVoronoi::cells_current()
+{
+  int ok = unit && tess_step == update->ntimestep && unit->cells().n_owned() == atom->nlocal;
+  int all = 0;
+  MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, world);
+  if (!all) return false;
+  if (!view_matches_state()) refresh_view();
+  return true;
+}
+
+/* The cells of the current state: ghost atoms brought to the owners'
+   positions in the current box, the model's unit run again without energy
+   or virial tallies, and the forces of the step put back (the next step
+   moves the cells with them).  The cells count as new for the computes
+   that keep results per force computation (compute_count()), so the
+   neighbour-exchange count compares the new cells with the ones it saw
+   last, once. */
+
+void PairVertexVoronoi::refresh_view()
+{
+  comm->forward_comm();
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  std::vector<double> f_step(3 * static_cast<size_t>(nall));
+  std::vector<tagint> tags(atom->tag, atom->tag + nall);
+  double **f = atom->f;
+  for (int i = 0; i < nall; i++)
+    for (int d = 0; d < 3; d++) f_step[3 * i + d] = f[i][d];
+  for (int i = 0; i < nall; i++) f[i][0] = f[i][1] = f[i][2] = 0.0;
+  ncompute++;
+  ev_init(0, 0);
+  unit->compute(0, 0);
+  int moved = atom->nlocal != nlocal || atom->nlocal + atom->nghost != nall;
+  for (int i = 0; !moved && i < nall; i++) moved = atom->tag[i] != tags[i];
+  int any = 0;
+  MPI_Allreduce(&moved, &any, 1, MPI_INT, MPI_MAX, world);
+  if (any)
+    error->all(FLERR,
+               "pair_style vertex/voronoi at step {}: the box or the positions changed after "
+               "this step's forces (e.g. fix deform), and the cells of the new state needed a "
+               "wider ghost shell, which cannot be acquired before the next step; use a larger "
+               "cutoff in pair_style vertex/voronoi",
+               update->ntimestep);
+  f = atom->f;
+  for (int i = 0; i < nall; i++)
+    for (int d = 0; d < 3; d++) f[i][d] = f_step[3 * i + d];
+}

@@ -1,0 +1,87 @@
+#!/usr/bin/python3
+# Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
+"""fix brownian and fix brownian/heun warn once when their steps oscillate
+with period two (chatter), on linear force fields whose behaviour is
+analytic: F = -A (r - c) with A = a I + b J (J the rotation by 90 degrees),
+so that each step multiplies r - c by a known matrix.  Forward Euler:
+I - dt A, for b = 0 the number m = 1 - a dt (anti-parallel steps for
+a dt > 1, growing for a dt > 2).  Heun: I - dt A + (dt A)^2 / 2, which for
+a dt = 1 is m = (1 - (b dt)^2) / 2 (real: period two for b dt > 1, growing
+for b dt > sqrt(3)).  A case must warn exactly when |m| > 1 and m < 0; the
+distance from c after N steps, |m|^N times the start, shows that the run is
+the analytic case."""
+
+import math
+
+import lmptest
+from lmptest import LammpsTestCase
+
+WARNING = "reversed direction from step to step"
+
+# integrator, a, b, dt, m (the analytic multiplier per step), warns
+CASES = {
+    "euler_past_limit": ("brownian", 20.2, 0.0, 0.1, -1.02, True),
+    "euler_decaying_oscillation": ("brownian", 15.0, 0.0, 0.1, -0.5, False),
+    "euler_monotonic": ("brownian", 5.0, 0.0, 0.1, 0.5, False),
+    "heun_past_limit": ("brownian/heun", 10.0, 3.04 ** 0.5 * 10.0, 0.1, -1.02, True),
+    "heun_decaying_oscillation": ("brownian/heun", 10.0, 15.0, 0.1, -0.625, False),
+}
+STEPS = 80
+START = ((5.2, 5.0), (4.9, 5.1), (5.0, 4.85))
+
+
+def script(integrator, a, b, dt):
+    atoms = "".join(f"create_atoms 1 single {x} {y} 0.0 units box\n" for x, y in START)
+    return f"""units lj
+dimension 2
+atom_style atomic
+atom_modify map array
+boundary p p p
+region box block 0 10 0 10 -0.5 0.5
+create_box 1 box
+{atoms}mass 1 1.0
+pair_style zero 1.0
+pair_coeff * *
+variable fx atom -{a!r}*(x-5)+{b!r}*(y-5)
+variable fy atom -{a!r}*(y-5)-{b!r}*(x-5)
+fix f all addforce v_fx v_fy 0.0
+fix b all {integrator} 1.0 1 gamma_t 1.0 rng none
+timestep {dt!r}
+thermo 20
+run {STEPS}
+print "D $(sqrt((x[1]-5)^2+(y[1]-5)^2):%.17g)"
+"""
+
+
+class Chatter(LammpsTestCase):
+    def check(self, name):
+        integrator, a, b, dt, m, warns = CASES[name]
+        if warns and integrator == "brownian" and self.plugin_host:
+            self.skipTest("on this host fix brownian is upstream BROWNIAN's, which does not watch")
+        run = self.run_lmp(script(integrator, a, b, dt))
+        d = [float(line.split()[1]) for line in run.stdout.splitlines() if line.startswith("D ")]
+        r0 = math.hypot(START[0][0] - 5, START[0][1] - 5)
+        self.assertAlmostEqual(d[0], r0 * abs(m) ** STEPS, delta=1e-9 * max(d[0], 1e-6) + 1e-12)
+        warnings = [line for line in run.output.splitlines() if WARNING in line]
+        if warns:
+            self.assertEqual(len(warnings), 1, run.output[-3000:])
+            for cure in ("smaller timestep", "fix dt/reset"):
+                self.assertIn(cure, warnings[0])
+        else:
+            self.assertEqual(warnings, [], run.output[-3000:])
+
+
+def _make(name):
+    def test(self):
+        self.check(name)
+    integrator, a, b, dt, m, warns = CASES[name]
+    test.__doc__ = f"{integrator}, multiplier {m} per step: {'warns' if warns else 'silent'}"
+    return test
+
+
+for _name in CASES:
+    setattr(Chatter, "test_" + _name, _make(_name))
+
+
+if __name__ == "__main__":
+    lmptest.main()

@@ -407,4 +407,46 @@ set group all d_u 1.0
                          "variable a0 atom 1-(id==4)\n")
 
 
+class Bath(LammpsTestCase):
+    def test_finite_cells_steady_state(self):
+        """Finite cells exchange across their contact edges and with a bath
+        across their free arcs; the steady state against the linear system
+        (L + diag(Pb F + k)) u = Pb F cb solved by numpy, with L built from
+        compute vertex/local's contact edges and F from its free arcs."""
+        from feature_models import local_rows, model_script
+        P, Pb, cb, k = 1.0, 2.0, 1.5, 0.5
+        run = self.run_lmp(model_script("finite_open") + f"""
+fix sp all property/atom d_u
+set group all d_u 0.0
+fix s all cell/signal exchange d_u {P} bath d_u {Pb} {cb} degrade d_u {k}
+timestep 0.05
+run 1200
+compute pu all property/atom d_u
+compute l all vertex/local
+dump d all custom 1 u.txt id c_pu
+dump_modify d sort id format float %.17g
+dump e all local 1 l.txt c_l[1] c_l[2] c_l[7]
+dump_modify e format float %.17g
+run 0
+""")
+        f = run.dump("u.txt")[-1]
+        rows = local_rows(run, "l.txt")[-1]
+        index = {int(t): n for n, t in enumerate(f["id"])}
+        n = len(index)
+        M = np.diag(np.full(n, k))
+        b = np.zeros(n)
+        for cell, nb, size in rows:
+            i = index[int(cell)]
+            if int(nb) == 0:    # a free arc
+                M[i, i] += Pb * size
+                b[i] += Pb * size * cb
+            else:
+                j = index[int(nb)]
+                M[i, i] += P * size
+                M[i, j] -= P * size
+        self.assertGreater(b.sum(), 0)
+        self.assertGreater((b == 0).sum(), 0)    # inner cells reached only by exchange
+        np.testing.assert_allclose(f["c_pu"], np.linalg.solve(M, b), rtol=1e-9)
+
+
 lmptest.main()

@@ -401,6 +401,13 @@ set group all d_u 1.0
         self.fails("fix s all cell/signal exchange d_u 100 substeps 1", "substeps auto",
                    setup="set atom 3 d_u 5.0\n")
 
+    def test_adapt_unknown_property(self):
+        self.fails("fix ad all cell/adapt 1 d_perim0 v_p", "d_perim0 is no per-atom property",
+                   "property/atom d_perim0", setup="variable p atom 3.8\n")
+
+    def test_mean_unknown_property(self):
+        self.fails("compute m all cell/neighbor/mean d_x", "d_x", "property/atom d_x")
+
     def test_adapt_nonpositive_area(self):
         self.fails("fix ad all cell/adapt 1 d_area0 v_a0", "d_area0", "cell 4", "step 0",
                    setup="fix p2 all property/atom d_area0\nset group all d_area0 1.0\n"

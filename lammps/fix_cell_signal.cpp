@@ -26,7 +26,6 @@
 #include "error.h"
 #include "force.h"
 #include "input.h"
-#include "junction_mean.h"
 #include "modify.h"
 #include "pair_vertex_voronoi.h"
 #include "tessera_compat.h"
@@ -279,13 +278,36 @@ int FixCellSignal::substeps(double dt)
   const int *mask = atom->mask;
   weight.assign(nlocal, 0.0);
   freelen.assign(nlocal, 0.0);
-  for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    for (int k = v.piece_begin(i); k < v.piece_end(i); k++) {
-      const int j = v.piece_neighbor(k);
-      if (j >= 0 && (mask[j] & groupbit)) weight[i] += v.piece_size(k);
+  // The shared pieces in compressed rows (tessera::Contacts: no free arcs).
+  const tessera::Contacts c = v.contacts();
+  if (igroup == 0) {
+    row_offset = c.offset;
+    row_index = c.neighbor;
+    row_size = c.size;
+    for (int i = 0; i < nlocal; i++) {
+      for (int k = c.offset[i]; k < c.offset[i + 1]; k++) weight[i] += c.size[k];
+      freelen[i] = v.free_length(i);
     }
-    freelen[i] = v.free_length(i);
+  } else {
+    nb_offset.assign(nlocal + 1, 0);
+    nb_index.clear();
+    nb_size.clear();
+    for (int i = 0; i < nlocal; i++) {
+      if (mask[i] & groupbit) {
+        for (int k = c.offset[i]; k < c.offset[i + 1]; k++) {
+          const int j = c.neighbor[k];
+          if (j < 0 || !(mask[j] & groupbit)) continue;
+          nb_index.push_back(j);
+          nb_size.push_back(c.size[k]);
+          weight[i] += c.size[k];
+        }
+        freelen[i] = v.free_length(i);
+      }
+      nb_offset[i + 1] = static_cast<int>(nb_index.size());
+    }
+    row_offset = nb_offset.data();
+    row_index = nb_index.data();
+    row_size = nb_size.data();
   }
   if (nsub_fixed) return nsub_fixed;
   double fastest = 0.0, all;
@@ -313,12 +335,21 @@ double hill_value(int kind, double vmax, double K, double n, double x)
 }
 }    // namespace
 
+/* The junction-weighted mean of x over owned cell i's group neighbours
+   (as junction_mean(), from this step's rows). */
+
+double FixCellSignal::mean_of(int i, const double *x) const
+{
+  double sum = 0.0;
+  for (int k = row_offset[i]; k < row_offset[i + 1]; k++) sum += row_size[k] * x[row_index[k]];
+  return weight[i] > 0.0 ? sum / weight[i] : 0.0;
+}
+
 /* This substep's rates of every species on the owned group cells, from the
    values on owned and ghost cells. */
 
 void FixCellSignal::rates()
 {
-  const tessera::CellView &v = pair->cells();
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
   rate.assign(fields.size() * static_cast<size_t>(nlocal), 0.0);
@@ -332,10 +363,8 @@ void FixCellSignal::rates()
       double sum = -fd.k * u[i] + fd.Pb * freelen[i] * (fd.cb - u[i]);
       if (fd.P > 0.0) {
         double ex = 0.0;
-        for (int k = v.piece_begin(i); k < v.piece_end(i); k++) {
-          const int j = v.piece_neighbor(k);
-          if (j >= 0 && (mask[j] & groupbit)) ex += v.piece_size(k) * (u[j] - u[i]);
-        }
+        for (int k = row_offset[i]; k < row_offset[i + 1]; k++)
+          ex += row_size[k] * (u[row_index[k]] - u[i]);
         sum += fd.P * ex;
       }
       r[i] = sum;
@@ -351,7 +380,7 @@ void FixCellSignal::rates()
     const double *x = atom->dvector[fields[p.input].index];
     for (int i = 0; i < nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
-      const double in = p.mean ? junction_mean(v, i, x, mask, groupbit) : x[i];
+      const double in = p.mean ? mean_of(i, x) : x[i];
       r[i] += hill_value(p.kind == HILL ? 1 : 0, p.vmax, p.K, p.n, in);
     }
   }
@@ -364,7 +393,6 @@ void FixCellSignal::advance(double dt)
 {
   tessera_compat::forward_comm(comm, this);
   rates();
-  const tessera::CellView &v = pair->cells();
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
   for (size_t f = 0; f < fields.size(); f++) {
@@ -385,7 +413,7 @@ void FixCellSignal::advance(double dt)
           term = p.value[i];
         else {
           const double *x = atom->dvector[fields[p.input].index];
-          const double in = p.mean ? junction_mean(v, i, x, mask, groupbit) : x[i];
+          const double in = p.mean ? mean_of(i, x) : x[i];
           term = hill_value(p.kind == HILL ? 1 : 0, p.vmax, p.K, p.n, in);
         }
         if (!(term >= 0.0) || !std::isfinite(term)) {

@@ -57,6 +57,14 @@ class FixCellSignal : public Fix {
   class PairVertexVoronoi *pair;
   std::vector<double> rate;    // nspecies x nlocal
   std::vector<double> weight, freelen;    // per owned atom: junction sizes to group cells, free arcs
+  // This step's junctions of each owned group cell with group cells
+  // (compressed rows: local index and size), read once from the cells.
+  // For group all, the cells' own rows; else a filtered copy.
+  std::vector<int> nb_offset, nb_index;
+  std::vector<double> nb_size;
+  const int *row_offset = nullptr, *row_index = nullptr;
+  const double *row_size = nullptr;
+  double mean_of(int i, const double *x) const;
 
   int field_of(const char *arg, const char *keyword);
   void check_cells(const char *when);

@@ -176,6 +176,29 @@ run 400
     def test_conserved_through_divisions(self):
         self.check_ranks("fix div all cell/divide rate 0.5 seed 7 split d_u split d_w max 130\n", True)
 
+    def test_group(self):
+        """A fix on a group exchanges among its cells only: their total stays,
+        the other cells keep their values."""
+        data = random_tissue(self)
+        run = self.run_lmp(CONSERVE.replace("fix s all cell/signal", "group half id <= 48\n"
+                                            "group rest subtract all half\n"
+                                            "fix s half cell/signal") + """
+variable uu atom c_pu
+compute pu all property/atom d_u
+compute rest rest reduce sum v_uu
+compute restmax rest reduce max v_uu
+thermo_style custom step f_s[1] c_rest c_restmax
+thermo_modify format float %.17g norm no
+thermo 100
+run 400
+""", files={"cfg.data": data})
+        rows = thermo_rows(run)
+        u = np.array([r["f_s[1]"] for r in rows])
+        np.testing.assert_allclose(u, u[0], rtol=1e-13, atol=0)
+        self.assertEqual(len({r["c_rest"] for r in rows}), 1)
+        self.assertEqual(len({r["c_restmax"] for r in rows}), 1)
+        self.assertNotEqual(u[0], rows[0]["c_rest"])
+
     def test_copy_without_split(self):
         """Without 'split' the daughters copy the mother's value: the total grows."""
         data = random_tissue(self)

@@ -37,7 +37,8 @@ static const char SYNTAX[] =
 ComputeCellNeighborMean::ComputeCellNeighborMean(LAMMPS *lmp, int narg, char **arg) :
     Compute(lmp, narg, arg), nmax(0), vout(nullptr), aout(nullptr), pair(nullptr)
 {
-  if (narg < 4) error->all(FLERR, "compute cell/neighbor/mean: give at least one value; syntax: {}", SYNTAX);
+  if (narg < 4)
+    error->all(FLERR, "compute cell/neighbor/mean: give at least one value; syntax: {}", SYNTAX);
   for (int iarg = 3; iarg < narg; iarg++) {
     Input in;
     in.text = arg[iarg];
@@ -104,17 +105,17 @@ void ComputeCellNeighborMean::resolve(Input &in)
                  in.name);
     Compute *c = modify->compute[in.index];
     if (!c->peratom_flag)
-      error->all(FLERR, "compute cell/neighbor/mean: value '{}': compute {} gives no per-atom values",
+      error->all(FLERR,
+                 "compute cell/neighbor/mean: value '{}': compute {} gives no per-atom values",
                  in.text, in.name);
     if ((in.column == 0) != (c->size_peratom_cols == 0) || in.column > c->size_peratom_cols)
-      error->all(FLERR,
-                 "compute cell/neighbor/mean: value '{}': compute {} gives {}; use {}", in.text,
-                 in.name,
+      error->all(FLERR, "compute cell/neighbor/mean: value '{}': compute {} gives {}; use {}",
+                 in.text, in.name,
                  c->size_peratom_cols ? fmt::format("{} per-atom columns", c->size_peratom_cols)
                                       : std::string("a per-atom vector"),
-                 c->size_peratom_cols ? fmt::format("c_{}[I] with 1 <= I <= {}", in.name,
-                                                    c->size_peratom_cols)
-                                      : "c_" + in.name);
+                 c->size_peratom_cols
+                     ? fmt::format("c_{}[I] with 1 <= I <= {}", in.name, c->size_peratom_cols)
+                     : "c_" + in.name);
   } else if (in.kind == FIX) {
     in.index = modify->find_fix(in.name);
     if (in.index < 0)
@@ -133,9 +134,8 @@ void ComputeCellNeighborMean::resolve(Input &in)
       error->all(FLERR, "compute cell/neighbor/mean: value '{}': no variable named '{}'", in.text,
                  in.name);
     if (!input->variable->atomstyle(in.index))
-      error->all(FLERR,
-                 "compute cell/neighbor/mean: value '{}': variable {} is not atom-style", in.text,
-                 in.name);
+      error->all(FLERR, "compute cell/neighbor/mean: value '{}': variable {} is not atom-style",
+                 in.text, in.name);
   }
 }
 
@@ -164,8 +164,8 @@ void ComputeCellNeighborMean::owned_values(Input &in, double *out)
     if (c->invoked_peratom != update->ntimestep) c->compute_peratom();
     for (int i = 0; i < nlocal; i++)
       out[i] = !(mask[i] & groupbit) ? 0.0
-          : in.column ? c->array_atom[i][in.column - 1]
-                      : c->vector_atom[i];
+          : in.column                ? c->array_atom[i][in.column - 1]
+                                     : c->vector_atom[i];
   } else if (in.kind == FIX) {
     Fix *f = modify->fix[in.index];
     if (update->ntimestep % f->peratom_freq)
@@ -175,8 +175,8 @@ void ComputeCellNeighborMean::owned_values(Input &in, double *out)
                  id, in.name, f->peratom_freq, update->ntimestep);
     for (int i = 0; i < nlocal; i++)
       out[i] = !(mask[i] & groupbit) ? 0.0
-          : in.column ? f->array_atom[i][in.column - 1]
-                      : f->vector_atom[i];
+          : in.column                ? f->array_atom[i][in.column - 1]
+                                     : f->vector_atom[i];
   } else {
     input->variable->compute_atom(in.index, igroup, out, 1, 0);
   }
@@ -212,7 +212,8 @@ void ComputeCellNeighborMean::compute_peratom()
     owned_values(inputs[m], work.data());
     tessera_compat::forward_comm(comm, this);
     for (int i = 0; i < nlocal; i++) {
-      const double mean = (mask[i] & groupbit) ? junction_mean(v, i, work.data(), mask, groupbit) : 0.0;
+      const double mean = (mask[i] & groupbit) ? junction_mean(v, i, work.data(), mask, groupbit)
+                                               : 0.0;
       if (size_peratom_cols)
         aout[i][m] = mean;
       else

@@ -106,7 +106,8 @@ void FixCellAdapt::apply()
     input->variable->compute_atom(t.ivar, igroup, out, 1, 0);
     for (int i = 0; i < nlocal; i++) {
       if (!(mask[i] & groupbit)) continue;
-      const bool bad = t.positive ? !(out[i] > 0.0) || !std::isfinite(out[i]) : !std::isfinite(out[i]);
+      const bool bad = t.positive ? !(out[i] > 0.0) || !std::isfinite(out[i])
+                                  : !std::isfinite(out[i]);
       if (bad)
         error->one(FLERR,
                    "fix cell/adapt {}: variable {} gives d_{} = {} for cell {} at step {}; {}", id,

@@ -210,8 +210,8 @@ void FixCellSignal::init()
     if (p.ivar < 0)
       error->all(FLERR, "fix cell/signal {}: law '{}': no variable named '{}'", id, p.text, p.var);
     if (!input->variable->atomstyle(p.ivar))
-      error->all(FLERR, "fix cell/signal {}: law '{}': variable {} is not atom-style", id,
-                 p.text, p.var);
+      error->all(FLERR, "fix cell/signal {}: law '{}': variable {} is not atom-style", id, p.text,
+                 p.var);
   }
 }
 
@@ -220,8 +220,8 @@ void FixCellSignal::check_cells(const char *when)
   int stale = pair->cells_current() ? 0 : 1, any;
   MPI_Allreduce(&stale, &any, 1, MPI_INT, MPI_MAX, world);
   if (any)
-    error->all(FLERR, "fix cell/signal {}: no current cells at step {} ({})", id,
-               update->ntimestep, when);
+    error->all(FLERR, "fix cell/signal {}: no current cells at step {} ({})", id, update->ntimestep,
+               when);
 }
 
 /* Every field of every group cell must be finite and >= 0. */
@@ -464,8 +464,7 @@ double FixCellSignal::compute_vector(int n)
   return all;
 }
 
-int FixCellSignal::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/,
-                                     int * /*pbc*/)
+int FixCellSignal::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
 {
   int m = 0;
   for (const Field &f : fields) {

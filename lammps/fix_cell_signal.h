@@ -33,10 +33,10 @@ class FixCellSignal : public Fix {
  protected:
   // A per-atom property the laws read or change (d_name of fix property/atom).
   struct Field {
-    std::string name;    // without d_
-    int index;           // in atom->dvector
-    bool species;        // changed by this fix (has a law)
-    double P, Pb, cb, k; // exchange permeability, bath permeability and value, degradation
+    std::string name;       // without d_
+    int index;              // in atom->dvector
+    bool species;           // changed by this fix (has a law)
+    double P, Pb, cb, k;    // exchange permeability, bath permeability and value, degradation
   };
   enum Kind { VAR, HILL, HILLR };
   struct Production {
@@ -46,8 +46,8 @@ class FixCellSignal : public Fix {
     std::string var;     // VAR: variable name
     int ivar;
     double vmax, K, n;
-    int input;    // HILL/HILLR: field read
-    bool mean;    // the input's junction-weighted mean over the neighbours
+    int input;                    // HILL/HILLR: field read
+    bool mean;                    // the input's junction-weighted mean over the neighbours
     std::vector<double> value;    // VAR: this step's rate per owned atom
   };
   std::vector<Field> fields;
@@ -56,7 +56,8 @@ class FixCellSignal : public Fix {
   int nsub_last;     // substeps of the last step
   class PairVertexVoronoi *pair;
   std::vector<double> rate;    // nspecies x nlocal
-  std::vector<double> weight, freelen;    // per owned atom: junction sizes to group cells, free arcs
+  // Per owned atom: total junction size to group cells, free arc length.
+  std::vector<double> weight, freelen;
   // This step's junctions of each owned group cell with group cells
   // (compressed rows: local index and size), read once from the cells.
   // For group all, the cells' own rows; else a filtered copy.

@@ -19,8 +19,8 @@
 
 namespace LAMMPS_NS {
 
-inline double junction_mean(const tessera::CellView &v, int i, const double *value,
-                            const int *mask, int groupbit)
+inline double junction_mean(const tessera::CellView &v, int i, const double *value, const int *mask,
+                            int groupbit)
 {
   double sum = 0.0, weight = 0.0;
   for (int k = v.piece_begin(i); k < v.piece_end(i); k++) {

@@ -296,6 +296,20 @@ class LateralInhibition(LammpsTestCase):
         self.assertEqual(high.sum(), 12)    # a third of 36
         self.assertTrue((high == (c == 0)).all())
 
+    def test_variable_law_reads_the_neighbour_mean(self):
+        """The Notch law written as an atom-style variable of compute
+        cell/neighbor/mean gives what the Hill law with 'mean' gives (one
+        substep per step: both read the values at the start of the step)."""
+        script = collier_script(0.01, 100.0, 1.0, "0.07*(1+0.3*v_c)", 0.05, 400, 400)
+        hill = self.run_lmp(script).dump("d.txt")[-1]["c_pd"]
+        law = script.replace("produce d_n hill 1.0 0.1 2 mean d_d", "produce d_n v_f").replace(
+            "fix s all", "compute md all cell/neighbor/mean d_d\n"
+            "variable f atom c_md^2/(0.01+c_md^2)\nfix s all")
+        self.assertIn("v_f", law)
+        var = self.run_lmp(law).dump("d.txt")[-1]["c_pd"]
+        self.assertGreater(np.ptp(hill), 0.5)
+        np.testing.assert_allclose(var, hill, rtol=1e-10)
+
     def test_random_start_isolated(self):
         self.pattern("0.07*(1+0.1*((id*7919)%13-6)/6)")
 

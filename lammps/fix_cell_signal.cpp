@@ -42,7 +42,7 @@ using namespace FixConst;
 static const char SYNTAX[] =
     "fix ID group cell/signal keyword args ...; keywords: exchange d_u P | bath d_u Pb cb | "
     "degrade d_u k | produce d_u v_name | produce d_u hill|hillr vmax K n [mean] d_x | "
-    "substeps auto|N";
+    "substeps auto|N | implicit yes|no";
 
 namespace {
 // 'substeps auto': no cell loses more than this fraction of an amount per
@@ -129,6 +129,15 @@ FixCellSignal::FixCellSignal(LAMMPS *lmp, int narg, char **arg) :
                    law, arg[iarg + 1]);
       }
       laws.push_back(p);
+    } else if (strcmp(kw, "implicit") == 0) {
+      need(iarg, 1, kw);
+      if (strcmp(arg[iarg + 1], "yes") == 0)
+        implicit = 1;
+      else if (strcmp(arg[iarg + 1], "no") == 0)
+        implicit = 0;
+      else
+        error->all(FLERR, "fix cell/signal: implicit must be yes or no, got '{}'", arg[iarg + 1]);
+      iarg += 2;
     } else if (strcmp(kw, "substeps") == 0) {
       need(iarg, 1, kw);
       if (strcmp(arg[iarg + 1], "auto") == 0)
@@ -309,6 +318,7 @@ int FixCellSignal::substeps(double dt)
     row_index = nb_index.data();
     row_size = nb_size.data();
   }
+  if (implicit) return 1;
   if (nsub_fixed) return nsub_fixed;
   double fastest = 0.0, all;
   for (const Field &f : fields) {
@@ -346,16 +356,17 @@ double FixCellSignal::mean_of(int i, const double *x) const
 }
 
 /* This substep's rates of every species on the owned group cells, from the
-   values on owned and ghost cells. */
+   values on owned and ghost cells; without transport (the implicit step),
+   the productions alone. */
 
-void FixCellSignal::rates()
+void FixCellSignal::rates(bool transport)
 {
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
   rate.assign(fields.size() * static_cast<size_t>(nlocal), 0.0);
   for (size_t f = 0; f < fields.size(); f++) {
     const Field &fd = fields[f];
-    if (!fd.species) continue;
+    if (!fd.species || !transport) continue;
     const double *u = atom->dvector[fd.index];
     double *r = &rate[f * nlocal];
     for (int i = 0; i < nlocal; i++) {
@@ -386,13 +397,41 @@ void FixCellSignal::rates()
   }
 }
 
+/* Stops the run: field f of owned cell i would become next.  The law to
+   blame: a production that is negative or not finite, else `otherwise`. */
+
+void FixCellSignal::fail(size_t f, int i, double next, const std::string &otherwise)
+{
+  const int *mask = atom->mask;
+  std::string blame = otherwise;
+  for (const Production &p : laws) {
+    if (p.target != static_cast<int>(f)) continue;
+    double term;
+    if (p.kind == VAR)
+      term = p.value[i];
+    else {
+      const double *x = atom->dvector[fields[p.input].index];
+      const double in = p.mean ? mean_of(i, x) : x[i];
+      term = hill_value(p.kind == HILL ? 1 : 0, p.vmax, p.K, p.n, in);
+    }
+    if (!(term >= 0.0) || !std::isfinite(term)) {
+      blame = fmt::format("law '{}' gives {}", p.text, term);
+      break;
+    }
+  }
+  (void) mask;
+  error->one(FLERR, "fix cell/signal {}: d_{} of cell {} would become {} at step {}: {}", id,
+             fields[f].name, atom->tag[i], next, update->ntimestep, blame);
+}
+
 /* One explicit substep of length dt; a value that would become negative or
    not finite stops the run with the law to blame. */
 
 void FixCellSignal::advance(double dt)
 {
+  comm_vector = nullptr;
   tessera_compat::forward_comm(comm, this);
-  rates();
+  rates(true);
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
   for (size_t f = 0; f < fields.size(); f++) {
@@ -403,31 +442,10 @@ void FixCellSignal::advance(double dt)
       if (!(mask[i] & groupbit)) continue;
       const double next = u[i] + dt * r[i];
       if (next >= 0.0 && std::isfinite(next)) continue;
-      // The law to blame: a production that is negative or not finite,
-      // else the exchange and degradation over too long a substep.
-      std::string blame;
-      for (const Production &p : laws) {
-        if (p.target != static_cast<int>(f)) continue;
-        double term;
-        if (p.kind == VAR)
-          term = p.value[i];
-        else {
-          const double *x = atom->dvector[fields[p.input].index];
-          const double in = p.mean ? mean_of(i, x) : x[i];
-          term = hill_value(p.kind == HILL ? 1 : 0, p.vmax, p.K, p.n, in);
-        }
-        if (!(term >= 0.0) || !std::isfinite(term)) {
-          blame = fmt::format("law '{}' gives {}", p.text, term);
-          break;
-        }
-      }
-      if (blame.empty())
-        blame = fmt::format(
-            "exchange and degradation remove more than it holds in a substep of {}; use "
-            "'substeps auto' or more substeps",
-            dt);
-      error->one(FLERR, "fix cell/signal {}: d_{} of cell {} would become {} at step {}: {}", id,
-                 fields[f].name, atom->tag[i], next, update->ntimestep, blame);
+      fail(f, i, next,
+           fmt::format("exchange and degradation remove more than it holds in a substep of {}; "
+                       "use 'substeps auto' or more substeps",
+                       dt));
     }
   }
   // All rates were computed from the same values: now apply them.
@@ -446,7 +464,10 @@ void FixCellSignal::end_of_step()
   const double dt = update->dt;
   evaluate_variables();
   nsub_last = substeps(dt);
-  for (int s = 0; s < nsub_last; s++) advance(dt / nsub_last);
+  if (implicit)
+    implicit_step(dt);
+  else
+    for (int s = 0; s < nsub_last; s++) advance(dt / nsub_last);
 }
 
 /* Totals of each field over the group (index f), and the last step's
@@ -466,6 +487,10 @@ double FixCellSignal::compute_vector(int n)
 
 int FixCellSignal::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
 {
+  if (comm_vector) {
+    for (int k = 0; k < n; k++) buf[k] = comm_vector[list[k]];
+    return n;
+  }
   int m = 0;
   for (const Field &f : fields) {
     const double *u = atom->dvector[f.index];
@@ -476,6 +501,10 @@ int FixCellSignal::pack_forward_comm(int n, int *list, double *buf, int /*pbc_fl
 
 void FixCellSignal::unpack_forward_comm(int n, int first, double *buf)
 {
+  if (comm_vector) {
+    for (int k = 0; k < n; k++) comm_vector[first + k] = buf[k];
+    return;
+  }
   int m = 0;
   for (const Field &f : fields) {
     double *u = atom->dvector[f.index];

@@ -72,8 +72,17 @@ class FixCellSignal : public Fix {
   void check_values(const char *when);
   void evaluate_variables();
   int substeps(double dt);
-  void rates();
+  void rates(bool transport);
   void advance(double dt);
+  void fail(size_t f, int i, double next, const std::string &otherwise);
+  // 'implicit yes': one backward-Euler step of exchange, bath and
+  // degradation per step (fix_cell_signal_implicit.cpp).
+  int implicit = 0;
+  double *comm_vector = nullptr;    // forward-communicate this vector, not the fields
+  std::vector<double> cg_x, cg_r, cg_p, cg_q, cg_b;
+  void implicit_step(double dt);
+  void apply_matrix(const Field &f, double dt, double *x, double *out);
+  double dot(const double *a, const double *b);
 };
 
 }    // namespace LAMMPS_NS

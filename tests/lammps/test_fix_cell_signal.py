@@ -68,12 +68,12 @@ class LineSource(LammpsTestCase):
     u_{m+1} + u_{m-1} = (2 + k / (2 P l)) u_m, so u_m = C cosh(lam (m - 6))
     with cosh(lam) = 1 + k / (4 P l): decay length h / lam (doc/model.md)."""
 
-    def profile(self, P, k, dt, steps):
+    def profile(self, P, k, dt, steps, extra=""):
         run = self.run_lmp(hex_tissue(4, 6) + f"""
 fix sp all property/atom d_u
 set group all d_u 0.0
 variable src atom 1.0*(y<0.2)
-fix s all cell/signal exchange d_u {P!r} degrade d_u {k!r} produce d_u v_src
+fix s all cell/signal exchange d_u {P!r} degrade d_u {k!r} produce d_u v_src {extra}
 timestep {dt}
 thermo_style custom step f_s[1] f_s[2]
 thermo {steps}
@@ -89,8 +89,8 @@ run 0
         spread = max(np.ptp(f["c_pu"][m == r]) for r in range(12))
         return u, spread, thermo_rows(run)
 
-    def check(self, P, k, dt, steps):
-        u, spread, thermo = self.profile(P, k, dt, steps)
+    def check(self, P, k, dt, steps, extra=""):
+        u, spread, thermo = self.profile(P, k, dt, steps, extra)
         self.assertLess(spread, 1e-12 * u.max())    # rows are uniform
         lam = math.acosh(1 + k / (4 * P * L))
         # Every row m != 0 against the law, and the decay length from the
@@ -111,6 +111,11 @@ run 0
         """Exchange 12 times faster than the step: automatic substeps."""
         thermo = self.check(P=20.0 / L, k=1.0, dt=0.1, steps=500)
         self.assertGreater(max(r["f_s[2]"] for r in thermo), 20)
+
+    def test_decay_length_implicit(self):
+        """Exchange 240 times faster than the step, one implicit step each."""
+        thermo = self.check(P=20.0 / L, k=1.0, dt=2.0, steps=40, extra="implicit yes")
+        self.assertEqual(max(r["f_s[2]"] for r in thermo), 1)
 
 
 def random_tissue(test, nx=8, ny=6):
@@ -198,6 +203,24 @@ run 400
         self.assertEqual(len({r["c_rest"] for r in rows}), 1)
         self.assertEqual(len({r["c_restmax"] for r in rows}), 1)
         self.assertNotEqual(u[0], rows[0]["c_rest"])
+
+    @nprocs(4)
+    def test_conserved_implicit(self):
+        """The implicit step moves amounts by antisymmetric fluxes: conserved
+        on 1, 2 and 4 ranks, with a step 20 times the exchange time."""
+        data = random_tissue(self)
+        for n in (1, 2, 4):
+            run = self.run_lmp(CONSERVE.replace("exchange d_w 0.5", "exchange d_w 0.5 implicit yes")
+                               .replace("timestep 0.02", "timestep 2.0")
+                               .replace("gamma_t 1.0", "gamma_t 100.0") + """
+thermo_style custom step f_s[1] f_s[2]
+thermo_modify format float %.17g
+thermo 10
+run 40
+""", nprocs=n, files={"cfg.data": data})
+            rows = thermo_rows(run)
+            u = np.array([r["f_s[1]"] for r in rows])
+            np.testing.assert_allclose(u, u[0], rtol=1e-13, atol=0, err_msg=f"{n} ranks")
 
     def test_copy_without_split(self):
         """Without 'split' the daughters copy the mother's value: the total grows."""

@@ -402,7 +402,6 @@ void FixCellSignal::rates(bool transport)
 
 void FixCellSignal::fail(size_t f, int i, double next, const std::string &otherwise)
 {
-  const int *mask = atom->mask;
   std::string blame = otherwise;
   for (const Production &p : laws) {
     if (p.target != static_cast<int>(f)) continue;
@@ -419,7 +418,6 @@ void FixCellSignal::fail(size_t f, int i, double next, const std::string &otherw
       break;
     }
   }
-  (void) mask;
   error->one(FLERR, "fix cell/signal {}: d_{} of cell {} would become {} at step {}: {}", id,
              fields[f].name, atom->tag[i], next, update->ntimestep, blame);
 }

@@ -72,8 +72,8 @@ void FixCellSignal::implicit_step(double dt)
   cg_p.assign(nall, 0.0);
   cg_q.assign(nall, 0.0);
   cg_b.assign(nall, 0.0);
-  // Every species' new values are computed before any changes, so that all
-  // read the same start; they are kept in rate (as the increments).
+  // Every species' new values are computed (into next) before any changes,
+  // so that all read the same start.
   std::vector<double> next(fields.size() * static_cast<size_t>(nlocal), 0.0);
   for (size_t f = 0; f < fields.size(); f++) {
     const Field &fd = fields[f];

@@ -17,6 +17,8 @@
    and the amounts non-negative.  Productions: atom-style variables
    (evaluated once per step) and Hill functions of a field or of its
    junction-weighted mean over the neighbours (evaluated every substep).
+   'implicit yes' replaces the substeps by one backward-Euler step of
+   exchange, bath and degradation (fix_cell_signal_implicit.cpp).
 ------------------------------------------------------------------------- */
 
 #include "fix_cell_signal.h"

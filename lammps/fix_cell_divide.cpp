@@ -39,7 +39,7 @@ using namespace cell_events;
 static const char SYNTAX[] =
     "fix ID group cell/divide rate R | cycle T spread s | area Ac, seed S [axis "
     "random|long|short|polarity] [separation d] [growth none|linear] [region ID] [max N] "
-    "[noise eta] [file path]";
+    "[noise eta] [file path] [split d_name ...]";
 
 FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), decide_time(0.0), cap_warned(false), region(nullptr), pair(nullptr),
@@ -174,6 +174,14 @@ FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
       need(iarg, 1, kw);
       log.configure(lmp, id, "cell/divide", arg[iarg + 1]);
       iarg += 2;
+    } else if (strcmp(kw, "split") == 0) {
+      // Per-cell amounts (d_name) the daughters share: each gets half.
+      need(iarg, 1, kw);
+      if (strncmp(arg[iarg + 1], "d_", 2) != 0 || !arg[iarg + 1][2])
+        error->all(FLERR, "fix cell/divide: split expects d_name (fix property/atom), got '{}'",
+                   arg[iarg + 1]);
+      split_names.emplace_back(arg[iarg + 1] + 2);
+      iarg += 2;
     } else {
       error->all(FLERR, "fix cell/divide: unknown keyword '{}'; syntax: {}", kw, SYNTAX);
     }
@@ -246,6 +254,15 @@ void FixCellDivide::init()
                "fix cell/divide: the area trigger and axis long/short need pair_style "
                "vertex/voronoi (its tessellation gives the cells' shapes)");
   int flag = -1, cols = -1;
+  split_index.clear();
+  for (const std::string &name : split_names) {
+    split_index.push_back(atom->find_custom(name.c_str(), flag, cols));
+    if (split_index.back() < 0 || flag != 1 || cols != 0)
+      error->all(FLERR,
+                 "fix cell/divide: split d_{}: no such per-atom property; define it with 'fix "
+                 "ID all property/atom d_{}'",
+                 name, name);
+  }
   area0_index = atom->find_custom("area0", flag, cols);
   if (area0_index >= 0 && (flag != 1 || cols != 0)) area0_index = -1;
   if (growth && area0_index < 0)
@@ -561,6 +578,7 @@ void FixCellDivide::pre_exchange()
     if (atom->nlocal == atom->nmax) atom->avec->grow(0);
     const int j = atom->nlocal;
     atom->avec->copy(i, j, 0);    // every per-atom value, and every fix's
+    for (const int index : split_index) atom->dvector[index][j] = atom->dvector[index][i] *= 0.5;
     atom->nlocal++;
     ncreated++;
     const tagint mother = atom->tag[i];

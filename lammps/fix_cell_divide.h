@@ -67,6 +67,8 @@ class FixCellDivide : public Fix {
   class Region *region;
   class PairVertexVoronoi *pair;
   int area0_index;    // d_area0 in atom->dvector, or -1
+  std::vector<std::string> split_names;    // 'split d_name': halved between the daughters
+  std::vector<int> split_index;
 
   double **cellstate;    // per atom: age, generation, cycle time, base A0, mother ID, birth time
   // Mothers of the next event step: atom ID -> division axis (ux, uy), and

@@ -14,12 +14,15 @@
 #include "version.h"
 
 // One include per style in the table below.
+#include "compute_cell_neighbor_mean.h"
 #include "compute_vertex_atom.h"
 #include "compute_vertex_local.h"
 #include "compute_vertex_loops.h"
 #include "compute_vertex_tissue.h"
+#include "fix_cell_adapt.h"
 #include "fix_cell_death.h"
 #include "fix_cell_divide.h"
+#include "fix_cell_signal.h"
 #include "fix_brownian.h"
 #include "fix_brownian_heun.h"
 #include "fix_polarity.h"
@@ -98,6 +101,9 @@ const std::vector<Entry> &style_table()
       compute_style<ComputeVertexTissue>("vertex/tissue"),
       fix_style<FixCellDivide>("cell/divide"),
       fix_style<FixCellDeath>("cell/death"),
+      fix_style<FixCellSignal>("cell/signal"),
+      fix_style<FixCellAdapt>("cell/adapt"),
+      compute_style<ComputeCellNeighborMean>("cell/neighbor/mean"),
   };
   return table;
 }

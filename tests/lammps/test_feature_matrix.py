@@ -22,6 +22,7 @@ from feature_outputs import OutputChecks
 from feature_state import StateChecks
 from feature_models import (COEFFS_2D, COEFFS_3D, COEFFS_FINITE, SPHERE_C, SPHERE_R, dim_of,
                             local_rows, model_script, printed, read_matrix)
+from feature_signal import check_signal
 from lmptest import LammpsTestCase
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -751,6 +752,8 @@ def _make(model, feature, expect):
     test.__doc__ = f"{model} x {feature}: {expect}"
     return test
 
+
+FeatureMatrix.check_signal = check_signal
 
 for _model, _feature, _expect in read_matrix():
     setattr(FeatureMatrix, f"test_{_model}__{_feature}", _make(_model, _feature, _expect))

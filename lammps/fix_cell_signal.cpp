@@ -1,0 +1,513 @@
+/* ----------------------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   fix cell/signal: chemical species carried by the cells (per-atom
+   properties d_name of fix property/atom), integrated at the end of every
+   step:
+     du_i/dt = sum_j P s_ij (u_j - u_i) + Pb F_i (cb - u_i) - k u_i + sum of productions
+   over the neighbours j of cell i in the group, s_ij the size of the shared
+   junction (edge length, face area), F_i the length of cell i's free arcs
+   (finite cells).  The exchange term of a pair of cells is computed from the
+   same values on both sides (ghost values by forward communication), so it
+   moves amounts between cells and the total is conserved to round-off when
+   there is no bath, degradation or production.  Explicit Euler substeps,
+   enough of them that no cell loses more than half its amount per substep
+   to exchange and degradation ('substeps auto'), keep stiff exchange stable
+   and the amounts non-negative.  Productions: atom-style variables
+   (evaluated once per step) and Hill functions of a field or of its
+   junction-weighted mean over the neighbours (evaluated every substep).
+   'implicit yes' replaces the substeps by one backward-Euler step of
+   exchange, bath and degradation (fix_cell_signal_implicit.cpp).
+------------------------------------------------------------------------- */
+
+#include "fix_cell_signal.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "force.h"
+#include "input.h"
+#include "modify.h"
+#include "pair_vertex_voronoi.h"
+#include "tessera_compat.h"
+#include "update.h"
+#include "variable.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+
+static const char SYNTAX[] =
+    "fix ID group cell/signal keyword args ...; keywords: exchange d_u P | bath d_u Pb cb | "
+    "degrade d_u k | produce d_u v_name | produce d_u hill|hillr vmax K n [mean] d_x | "
+    "substeps auto|N | implicit yes|no";
+
+namespace {
+// 'substeps auto': no cell loses more than this fraction of an amount per
+// substep to exchange, the bath and degradation.
+constexpr double MAX_LOSS = 0.5;
+}    // namespace
+
+FixCellSignal::FixCellSignal(LAMMPS *lmp, int narg, char **arg) :
+    Fix(lmp, narg, arg), nsub_fixed(0), nsub_last(0), pair(nullptr)
+{
+  auto need = [&](int iarg, int n, const char *kw) {
+    if (iarg + n >= narg)
+      error->all(FLERR, "fix cell/signal: keyword '{}' needs {} value(s); syntax: {}", kw, n,
+                 SYNTAX);
+  };
+  auto rate_value = [&](const char *kw, const char *v, const char *what) {
+    const double x = utils::numeric(FLERR, v, false, lmp);
+    if (!(x >= 0.0) || !std::isfinite(x))
+      error->all(FLERR, "fix cell/signal: {} {} must be >= 0 and finite, got {}", kw, what, v);
+    return x;
+  };
+  int iarg = 3;
+  while (iarg < narg) {
+    const char *kw = arg[iarg];
+    if (strcmp(kw, "exchange") == 0) {
+      need(iarg, 2, kw);
+      const int f = field_of(arg[iarg + 1], kw);
+      fields[f].P = rate_value(kw, arg[iarg + 2], "permeability P");
+      fields[f].species = true;
+      iarg += 3;
+    } else if (strcmp(kw, "bath") == 0) {
+      need(iarg, 3, kw);
+      const int f = field_of(arg[iarg + 1], kw);
+      fields[f].Pb = rate_value(kw, arg[iarg + 2], "permeability Pb");
+      fields[f].cb = rate_value(kw, arg[iarg + 3], "bath value cb");
+      fields[f].species = true;
+      iarg += 4;
+    } else if (strcmp(kw, "degrade") == 0) {
+      need(iarg, 2, kw);
+      const int f = field_of(arg[iarg + 1], kw);
+      fields[f].k = rate_value(kw, arg[iarg + 2], "rate k");
+      fields[f].species = true;
+      iarg += 3;
+    } else if (strcmp(kw, "produce") == 0) {
+      need(iarg, 2, kw);
+      Production p;
+      p.target = field_of(arg[iarg + 1], kw);
+      fields[p.target].species = true;
+      p.ivar = -1;
+      p.vmax = p.K = p.n = 0.0;
+      p.input = -1;
+      p.mean = false;
+      const char *law = arg[iarg + 2];
+      if (strncmp(law, "v_", 2) == 0) {
+        p.kind = VAR;
+        p.var = law + 2;
+        p.text = fmt::format("produce {} {}", arg[iarg + 1], law);
+        iarg += 3;
+      } else if (strcmp(law, "hill") == 0 || strcmp(law, "hillr") == 0) {
+        p.kind = strcmp(law, "hill") == 0 ? HILL : HILLR;
+        need(iarg, 6, kw);
+        p.vmax = rate_value(law, arg[iarg + 3], "vmax");
+        p.K = utils::numeric(FLERR, arg[iarg + 4], false, lmp);
+        p.n = utils::numeric(FLERR, arg[iarg + 5], false, lmp);
+        if (!(p.K > 0.0) || !std::isfinite(p.K))
+          error->all(FLERR, "fix cell/signal: {} K must be > 0, got {}", law, arg[iarg + 4]);
+        if (!(p.n > 0.0) || !std::isfinite(p.n))
+          error->all(FLERR, "fix cell/signal: {} exponent n must be > 0, got {}", law,
+                     arg[iarg + 5]);
+        int at = iarg + 6;
+        if (strcmp(arg[at], "mean") == 0) {
+          p.mean = true;
+          need(at, 1, "mean");
+          at++;
+        }
+        p.input = field_of(arg[at], law);
+        p.text = fmt::format("produce {} {} {} {} {}{} {}", arg[iarg + 1], law, arg[iarg + 3],
+                             arg[iarg + 4], arg[iarg + 5], p.mean ? " mean" : "", arg[at]);
+        iarg = at + 1;
+      } else {
+        error->all(FLERR,
+                   "fix cell/signal: unknown production law '{}' for {}; give v_name (an "
+                   "atom-style variable) or hill|hillr vmax K n [mean] d_x",
+                   law, arg[iarg + 1]);
+      }
+      laws.push_back(p);
+    } else if (strcmp(kw, "implicit") == 0) {
+      need(iarg, 1, kw);
+      if (strcmp(arg[iarg + 1], "yes") == 0)
+        implicit = 1;
+      else if (strcmp(arg[iarg + 1], "no") == 0)
+        implicit = 0;
+      else
+        error->all(FLERR, "fix cell/signal: implicit must be yes or no, got '{}'", arg[iarg + 1]);
+      iarg += 2;
+    } else if (strcmp(kw, "substeps") == 0) {
+      need(iarg, 1, kw);
+      if (strcmp(arg[iarg + 1], "auto") == 0)
+        nsub_fixed = 0;
+      else {
+        nsub_fixed = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
+        if (nsub_fixed < 1)
+          error->all(FLERR, "fix cell/signal: substeps must be auto or an integer >= 1, got {}",
+                     arg[iarg + 1]);
+      }
+      iarg += 2;
+    } else {
+      error->all(FLERR, "fix cell/signal: unknown keyword '{}'; syntax: {}", kw, SYNTAX);
+    }
+  }
+  int nspecies = 0;
+  for (const Field &f : fields) nspecies += f.species ? 1 : 0;
+  if (nspecies == 0)
+    error->all(FLERR, "fix cell/signal: no species; give at least one law; syntax: {}", SYNTAX);
+  if (!atom->tag_enable) error->all(FLERR, "fix cell/signal requires atom IDs");
+
+  comm_forward = static_cast<int>(fields.size());
+  vector_flag = 1;
+  size_vector = static_cast<int>(fields.size()) + 1;
+  global_freq = 1;
+  extvector = 0;
+  nevery = 1;
+}
+
+/* The field named d_name (added on first mention), which fix property/atom
+   must define. */
+
+int FixCellSignal::field_of(const char *arg, const char *keyword)
+{
+  if (strncmp(arg, "d_", 2) != 0 || !arg[2])
+    error->all(FLERR,
+               "fix cell/signal: {} expects a species d_name (a per-atom property of fix "
+               "property/atom), got '{}'",
+               keyword, arg);
+  const std::string name = arg + 2;
+  for (size_t f = 0; f < fields.size(); f++)
+    if (fields[f].name == name) return static_cast<int>(f);
+  int flag = -1, cols = -1;
+  const int index = atom->find_custom(name.c_str(), flag, cols);
+  if (index < 0 || flag != 1 || cols != 0)
+    error->all(FLERR,
+               "fix cell/signal: {} {}: unknown species; define it first with 'fix ID all "
+               "property/atom d_{}' (and set its values with 'set')",
+               keyword, arg, name);
+  fields.push_back({name, index, false, 0.0, 0.0, 0.0, 0.0});
+  return static_cast<int>(fields.size()) - 1;
+}
+
+int FixCellSignal::setmask()
+{
+  return END_OF_STEP;
+}
+
+void FixCellSignal::init()
+{
+  pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  if (!pair)
+    error->all(FLERR,
+               "fix cell/signal {} exchanges across the junctions of pair_style vertex/voronoi, "
+               "but the pair style is '{}'; define 'pair_style vertex/voronoi'",
+               id, force->pair_style ? force->pair_style : "none");
+  for (Field &f : fields) {
+    int flag = -1, cols = -1;
+    f.index = atom->find_custom(f.name.c_str(), flag, cols);
+    if (f.index < 0 || flag != 1 || cols != 0)
+      error->all(FLERR,
+                 "fix cell/signal {}: species d_{} no longer exists; define it again with 'fix "
+                 "ID all property/atom d_{}'",
+                 id, f.name, f.name);
+  }
+  for (Production &p : laws) {
+    if (p.kind != VAR) continue;
+    p.ivar = input->variable->find(p.var.c_str());
+    if (p.ivar < 0)
+      error->all(FLERR, "fix cell/signal {}: law '{}': no variable named '{}'", id, p.text, p.var);
+    if (!input->variable->atomstyle(p.ivar))
+      error->all(FLERR, "fix cell/signal {}: law '{}': variable {} is not atom-style", id, p.text,
+                 p.var);
+  }
+}
+
+void FixCellSignal::check_cells(const char *when)
+{
+  int stale = pair->cells_current() ? 0 : 1, any;
+  MPI_Allreduce(&stale, &any, 1, MPI_INT, MPI_MAX, world);
+  if (any)
+    error->all(FLERR, "fix cell/signal {}: no current cells at step {} ({})", id, update->ntimestep,
+               when);
+}
+
+/* Every field of every group cell must be finite and >= 0. */
+
+void FixCellSignal::check_values(const char *when)
+{
+  const int *mask = atom->mask;
+  for (const Field &f : fields) {
+    const double *u = atom->dvector[f.index];
+    for (int i = 0; i < atom->nlocal; i++)
+      if ((mask[i] & groupbit) && !(u[i] >= 0.0 && std::isfinite(u[i])))
+        error->one(FLERR,
+                   "fix cell/signal {}: d_{} of cell {} is {} at step {} ({}); species must be "
+                   "finite and >= 0",
+                   id, f.name, atom->tag[i], u[i], update->ntimestep, when);
+  }
+}
+
+void FixCellSignal::setup(int /*vflag*/)
+{
+  check_values("at the start of the run");
+  nsub_last = 0;
+}
+
+/* The variable laws' rates on the owned cells, once per step. */
+
+void FixCellSignal::evaluate_variables()
+{
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  bool any = false;
+  for (const Production &p : laws) any = any || p.kind == VAR;
+  if (!any) return;
+  modify->clearstep_compute();
+  for (Production &p : laws) {
+    if (p.kind != VAR) continue;
+    p.value.assign(std::max(nlocal, 1), 0.0);
+    input->variable->compute_atom(p.ivar, igroup, p.value.data(), 1, 0);
+    for (int i = 0; i < nlocal; i++)
+      if ((mask[i] & groupbit) && !std::isfinite(p.value[i]))
+        error->one(FLERR, "fix cell/signal {}: law '{}' gives {} for cell {} at step {}", id,
+                   p.text, p.value[i], atom->tag[i], update->ntimestep);
+  }
+  modify->addstep_compute(update->ntimestep + 1);
+}
+
+/* The substeps of a step of length dt: the fixed count, or (auto) enough
+   that dt_sub (P W_i + Pb F_i + k) <= MAX_LOSS for every cell and species. */
+
+int FixCellSignal::substeps(double dt)
+{
+  const tessera::CellView &v = pair->cells();
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  weight.assign(nlocal, 0.0);
+  freelen.assign(nlocal, 0.0);
+  // The shared pieces in compressed rows (tessera::Contacts: no free arcs).
+  const tessera::Contacts c = v.contacts();
+  if (igroup == 0) {
+    row_offset = c.offset;
+    row_index = c.neighbor;
+    row_size = c.size;
+    for (int i = 0; i < nlocal; i++) {
+      for (int k = c.offset[i]; k < c.offset[i + 1]; k++) weight[i] += c.size[k];
+      freelen[i] = v.free_length(i);
+    }
+  } else {
+    nb_offset.assign(nlocal + 1, 0);
+    nb_index.clear();
+    nb_size.clear();
+    for (int i = 0; i < nlocal; i++) {
+      if (mask[i] & groupbit) {
+        for (int k = c.offset[i]; k < c.offset[i + 1]; k++) {
+          const int j = c.neighbor[k];
+          if (j < 0 || !(mask[j] & groupbit)) continue;
+          nb_index.push_back(j);
+          nb_size.push_back(c.size[k]);
+          weight[i] += c.size[k];
+        }
+        freelen[i] = v.free_length(i);
+      }
+      nb_offset[i + 1] = static_cast<int>(nb_index.size());
+    }
+    row_offset = nb_offset.data();
+    row_index = nb_index.data();
+    row_size = nb_size.data();
+  }
+  if (implicit) return 1;
+  if (nsub_fixed) return nsub_fixed;
+  double fastest = 0.0, all;
+  for (const Field &f : fields) {
+    if (!f.species) continue;
+    for (int i = 0; i < nlocal; i++)
+      if (mask[i] & groupbit)
+        fastest = std::max(fastest, f.P * weight[i] + f.Pb * freelen[i] + f.k);
+  }
+  MPI_Allreduce(&fastest, &all, 1, MPI_DOUBLE, MPI_MAX, world);
+  const double n = std::ceil(dt * all / MAX_LOSS);
+  if (!(n < 1e7))
+    error->all(FLERR,
+               "fix cell/signal {}: exchange and degradation at rate {} need {} substeps of a "
+               "step of {}; lower the rates or the timestep",
+               id, all, n, dt);
+  return std::max(1, static_cast<int>(n));
+}
+
+namespace {
+double hill_value(int kind, double vmax, double K, double n, double x)
+{
+  const double xn = std::pow(x / K, n);
+  return kind == 1 ? vmax * xn / (1.0 + xn) : vmax / (1.0 + xn);
+}
+}    // namespace
+
+/* The junction-weighted mean of x over owned cell i's group neighbours
+   (as junction_mean(), from this step's rows). */
+
+double FixCellSignal::mean_of(int i, const double *x) const
+{
+  double sum = 0.0;
+  for (int k = row_offset[i]; k < row_offset[i + 1]; k++) sum += row_size[k] * x[row_index[k]];
+  return weight[i] > 0.0 ? sum / weight[i] : 0.0;
+}
+
+/* This substep's rates of every species on the owned group cells, from the
+   values on owned and ghost cells; without transport (the implicit step),
+   the productions alone. */
+
+void FixCellSignal::rates(bool transport)
+{
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  rate.assign(fields.size() * static_cast<size_t>(nlocal), 0.0);
+  for (size_t f = 0; f < fields.size(); f++) {
+    const Field &fd = fields[f];
+    if (!fd.species || !transport) continue;
+    const double *u = atom->dvector[fd.index];
+    double *r = &rate[f * nlocal];
+    for (int i = 0; i < nlocal; i++) {
+      if (!(mask[i] & groupbit)) continue;
+      double sum = -fd.k * u[i] + fd.Pb * freelen[i] * (fd.cb - u[i]);
+      if (fd.P > 0.0) {
+        double ex = 0.0;
+        for (int k = row_offset[i]; k < row_offset[i + 1]; k++)
+          ex += row_size[k] * (u[row_index[k]] - u[i]);
+        sum += fd.P * ex;
+      }
+      r[i] = sum;
+    }
+  }
+  for (const Production &p : laws) {
+    double *r = &rate[p.target * static_cast<size_t>(nlocal)];
+    if (p.kind == VAR) {
+      for (int i = 0; i < nlocal; i++)
+        if (mask[i] & groupbit) r[i] += p.value[i];
+      continue;
+    }
+    const double *x = atom->dvector[fields[p.input].index];
+    for (int i = 0; i < nlocal; i++) {
+      if (!(mask[i] & groupbit)) continue;
+      const double in = p.mean ? mean_of(i, x) : x[i];
+      r[i] += hill_value(p.kind == HILL ? 1 : 0, p.vmax, p.K, p.n, in);
+    }
+  }
+}
+
+/* Stops the run: field f of owned cell i would become next.  The law to
+   blame: a production that is negative or not finite, else `otherwise`. */
+
+void FixCellSignal::fail(size_t f, int i, double next, const std::string &otherwise)
+{
+  std::string blame = otherwise;
+  for (const Production &p : laws) {
+    if (p.target != static_cast<int>(f)) continue;
+    double term;
+    if (p.kind == VAR)
+      term = p.value[i];
+    else {
+      const double *x = atom->dvector[fields[p.input].index];
+      const double in = p.mean ? mean_of(i, x) : x[i];
+      term = hill_value(p.kind == HILL ? 1 : 0, p.vmax, p.K, p.n, in);
+    }
+    if (!(term >= 0.0) || !std::isfinite(term)) {
+      blame = fmt::format("law '{}' gives {}", p.text, term);
+      break;
+    }
+  }
+  error->one(FLERR, "fix cell/signal {}: d_{} of cell {} would become {} at step {}: {}", id,
+             fields[f].name, atom->tag[i], next, update->ntimestep, blame);
+}
+
+/* One explicit substep of length dt; a value that would become negative or
+   not finite stops the run with the law to blame. */
+
+void FixCellSignal::advance(double dt)
+{
+  comm_vector = nullptr;
+  tessera_compat::forward_comm(comm, this);
+  rates(true);
+  const int nlocal = atom->nlocal;
+  const int *mask = atom->mask;
+  for (size_t f = 0; f < fields.size(); f++) {
+    if (!fields[f].species) continue;
+    double *u = atom->dvector[fields[f].index];
+    const double *r = &rate[f * nlocal];
+    for (int i = 0; i < nlocal; i++) {
+      if (!(mask[i] & groupbit)) continue;
+      const double next = u[i] + dt * r[i];
+      if (next >= 0.0 && std::isfinite(next)) continue;
+      fail(f, i, next,
+           fmt::format("exchange and degradation remove more than it holds in a substep of {}; "
+                       "use 'substeps auto' or more substeps",
+                       dt));
+    }
+  }
+  // All rates were computed from the same values: now apply them.
+  for (size_t f = 0; f < fields.size(); f++) {
+    if (!fields[f].species) continue;
+    double *u = atom->dvector[fields[f].index];
+    const double *r = &rate[f * nlocal];
+    for (int i = 0; i < nlocal; i++)
+      if (mask[i] & groupbit) u[i] += dt * r[i];
+  }
+}
+
+void FixCellSignal::end_of_step()
+{
+  check_cells("fix cell/signal integrates after the force computation of each step");
+  const double dt = update->dt;
+  evaluate_variables();
+  nsub_last = substeps(dt);
+  if (implicit)
+    implicit_step(dt);
+  else
+    for (int s = 0; s < nsub_last; s++) advance(dt / nsub_last);
+}
+
+/* Totals of each field over the group (index f), and the last step's
+   substeps (index nfields). */
+
+double FixCellSignal::compute_vector(int n)
+{
+  if (n == static_cast<int>(fields.size())) return nsub_last;
+  const double *u = atom->dvector[fields[n].index];
+  const int *mask = atom->mask;
+  double local = 0.0, all = 0.0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (mask[i] & groupbit) local += u[i];
+  MPI_Allreduce(&local, &all, 1, MPI_DOUBLE, MPI_SUM, world);
+  return all;
+}
+
+int FixCellSignal::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
+{
+  if (comm_vector) {
+    for (int k = 0; k < n; k++) buf[k] = comm_vector[list[k]];
+    return n;
+  }
+  int m = 0;
+  for (const Field &f : fields) {
+    const double *u = atom->dvector[f.index];
+    for (int k = 0; k < n; k++) buf[m++] = u[list[k]];
+  }
+  return m;
+}
+
+void FixCellSignal::unpack_forward_comm(int n, int first, double *buf)
+{
+  if (comm_vector) {
+    for (int k = 0; k < n; k++) comm_vector[first + k] = buf[k];
+    return;
+  }
+  int m = 0;
+  for (const Field &f : fields) {
+    double *u = atom->dvector[f.index];
+    for (int k = 0; k < n; k++) u[first + k] = buf[m++];
+  }
+}

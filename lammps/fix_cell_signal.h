@@ -1,0 +1,91 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(cell/signal,FixCellSignal);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_CELL_SIGNAL_H
+#define LMP_FIX_CELL_SIGNAL_H
+
+#include "fix.h"
+
+#include <string>
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixCellSignal : public Fix {
+ public:
+  FixCellSignal(class LAMMPS *, int, char **);
+  int setmask() override;
+  void init() override;
+  void setup(int) override;
+  void end_of_step() override;
+  double compute_vector(int) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+
+ protected:
+  // A per-atom property the laws read or change (d_name of fix property/atom).
+  struct Field {
+    std::string name;       // without d_
+    int index;              // in atom->dvector
+    bool species;           // changed by this fix (has a law)
+    double P, Pb, cb, k;    // exchange permeability, bath permeability and value, degradation
+  };
+  enum Kind { VAR, HILL, HILLR };
+  struct Production {
+    int target;    // field
+    int kind;
+    std::string text;    // the law as given, for error messages
+    std::string var;     // VAR: variable name
+    int ivar;
+    double vmax, K, n;
+    int input;                    // HILL/HILLR: field read
+    bool mean;                    // the input's junction-weighted mean over the neighbours
+    std::vector<double> value;    // VAR: this step's rate per owned atom
+  };
+  std::vector<Field> fields;
+  std::vector<Production> laws;
+  int nsub_fixed;    // substeps N (0: auto)
+  int nsub_last;     // substeps of the last step
+  class PairVertexVoronoi *pair;
+  std::vector<double> rate;    // nspecies x nlocal
+  // Per owned atom: total junction size to group cells, free arc length.
+  std::vector<double> weight, freelen;
+  // This step's junctions of each owned group cell with group cells
+  // (compressed rows: local index and size), read once from the cells.
+  // For group all, the cells' own rows; else a filtered copy.
+  std::vector<int> nb_offset, nb_index;
+  std::vector<double> nb_size;
+  const int *row_offset = nullptr, *row_index = nullptr;
+  const double *row_size = nullptr;
+  double mean_of(int i, const double *x) const;
+
+  int field_of(const char *arg, const char *keyword);
+  void check_cells(const char *when);
+  void check_values(const char *when);
+  void evaluate_variables();
+  int substeps(double dt);
+  void rates(bool transport);
+  void advance(double dt);
+  void fail(size_t f, int i, double next, const std::string &otherwise);
+  // 'implicit yes': one backward-Euler step of exchange, bath and
+  // degradation per step (fix_cell_signal_implicit.cpp).
+  int implicit = 0;
+  double *comm_vector = nullptr;    // forward-communicate this vector, not the fields
+  std::vector<double> cg_x, cg_r, cg_p, cg_q, cg_b;
+  void implicit_step(double dt);
+  void apply_matrix(const Field &f, double dt, double *x, double *out);
+  double dot(const double *a, const double *b);
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,519 @@
+#!/usr/bin/python3
+# Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
+"""Species carried by the cells (fix cell/signal), the junction-weighted
+neighbour mean (compute cell/neighbor/mean) and parameters that follow
+variables (fix cell/adapt): the steady profile of a line source with
+degradation on the hexagonal lattice against the discrete decay law derived
+in doc/model.md; conservation to round-off without reactions on 1, 2 and 4
+ranks, through divisions that split the amounts; the lateral-inhibition
+threshold of Collier et al. on both sides of the lattice's linear stability
+result, with the growth rate of the unstable mode; the ideal pattern; the
+neighbour mean against one computed from compute vertex/local's pieces;
+restarts; and the errors that name the cell, the step and the law."""
+
+import math
+
+import numpy as np
+
+import lmptest
+from lmptest import LammpsTestCase, nprocs
+
+PAIR = """
+pair_style vertex/voronoi 3.0
+pair_coeff * * quadratic 1.0 1.0 0.1 3.7
+thermo_modify norm no
+"""
+
+# The hexagonal lattice of cells of area 1: spacing a, rows h apart, edges l.
+A = math.sqrt(2 / math.sqrt(3))
+H = A * math.sqrt(3) / 2
+L = A / math.sqrt(3)
+
+
+def hex_tissue(nx, ny):
+    return lmptest.tissue(nx, ny, "hex") + PAIR
+
+
+def rows_of(y):
+    return np.rint(np.asarray(y) / H).astype(int)
+
+
+def colour_of(x, y):
+    """One of the three colour classes of the triangular lattice of centres
+    (no two neighbours share one): (p - q) mod 3 for the centre p a1 + q a2."""
+    q = np.rint(np.asarray(y) / H).astype(int)
+    p = np.rint(np.asarray(x) / A - q / 2).astype(int)
+    return (p - q) % 3
+
+
+def thermo_rows(run):
+    rows, header = [], None
+    for line in run.stdout.splitlines():
+        w = line.split()
+        if w and w[0] == "Step":
+            header = w
+            continue
+        if header and len(w) == len(header):
+            try:
+                rows.append(dict(zip(header, map(float, w))))
+            except ValueError:
+                header = None
+    return rows
+
+
+class LineSource(LammpsTestCase):
+    """A row of cells produces u at rate p, every cell degrades it at rate k
+    and exchanges it with permeability P per unit junction length.  In the
+    steady state every row m != 0 of the periodic 12-row lattice obeys
+    u_{m+1} + u_{m-1} = (2 + k / (2 P l)) u_m, so u_m = C cosh(lam (m - 6))
+    with cosh(lam) = 1 + k / (4 P l): decay length h / lam (doc/model.md)."""
+
+    def profile(self, P, k, dt, steps, extra=""):
+        run = self.run_lmp(hex_tissue(4, 6) + f"""
+fix sp all property/atom d_u
+set group all d_u 0.0
+variable src atom 1.0*(y<0.2)
+fix s all cell/signal exchange d_u {P!r} degrade d_u {k!r} produce d_u v_src {extra}
+timestep {dt}
+thermo_style custom step f_s[1] f_s[2]
+thermo {steps}
+run {steps}
+compute pu all property/atom d_u
+dump d all custom 1 prof.txt id x y c_pu
+dump_modify d format float %.17g
+run 0
+""")
+        f = run.dump("prof.txt")[0]
+        m = rows_of(f["y"])
+        u = np.array([f["c_pu"][m == r].mean() for r in range(12)])
+        spread = max(np.ptp(f["c_pu"][m == r]) for r in range(12))
+        return u, spread, thermo_rows(run)
+
+    def check(self, P, k, dt, steps, extra=""):
+        u, spread, thermo = self.profile(P, k, dt, steps, extra)
+        self.assertLess(spread, 1e-12 * u.max())    # rows are uniform
+        lam = math.acosh(1 + k / (4 * P * L))
+        # Every row m != 0 against the law, and the decay length from the
+        # rows 1..5 (ratios of the cosh), each to 1e-3.
+        for r in range(1, 12):
+            self.assertAlmostEqual(u[r] / u[6], math.cosh(lam * (r - 6)), delta=1e-3 * math.cosh(lam * (r - 6)))
+        measured = np.mean([math.acosh((u[r + 1] + u[r - 1]) / (2 * u[r])) for r in range(1, 11)])
+        self.assertAlmostEqual(H / measured, H / lam, delta=1e-3 * H / lam)
+        # The amount: production 4 cells x 1 balanced by degradation.
+        self.assertAlmostEqual(thermo[-1]["f_s[1]"], 4.0 / k, delta=1e-9)
+        return thermo
+
+    def test_decay_length(self):
+        thermo = self.check(P=1.0 / L, k=1.0, dt=0.05, steps=1000)
+        self.assertEqual(max(r["f_s[2]"] for r in thermo), 1)
+
+    def test_decay_length_stiff_exchange(self):
+        """Exchange 12 times faster than the step: automatic substeps."""
+        thermo = self.check(P=20.0 / L, k=1.0, dt=0.1, steps=500)
+        self.assertGreater(max(r["f_s[2]"] for r in thermo), 20)
+
+    def test_decay_length_implicit(self):
+        """Exchange 240 times faster than the step, one implicit step each."""
+        thermo = self.check(P=20.0 / L, k=1.0, dt=2.0, steps=40, extra="implicit yes")
+        self.assertEqual(max(r["f_s[2]"] for r in thermo), 1)
+
+
+def random_tissue(test, nx=8, ny=6):
+    return test.run_lmp(lmptest.tissue(nx, ny) + """
+displace_atoms all random 0.2 0.2 0 4821 units box
+write_data cfg.data
+""").text("cfg.data")
+
+
+CONSERVE = """
+dimension 2
+units lj
+atom_style dipole
+boundary p p p
+read_data cfg.data
+""" + PAIR + """
+fix sp all property/atom d_u d_w
+variable u0 atom 1+((id*37)%11)
+variable w0 atom 0.5*((id*13)%7)
+set group all d_u v_u0
+set group all d_w v_w0
+fix move all brownian 1.0 1 gamma_t 1.0 rng none
+fix s all cell/signal exchange d_u 3.0 exchange d_w 0.5
+timestep 0.02
+"""
+
+
+class Conservation(LammpsTestCase):
+    def totals(self, n, data, extra=""):
+        run = self.run_lmp(CONSERVE + extra + """
+compute nb all vertex/tissue
+thermo_style custom step atoms f_s[1] f_s[2] c_nb[2]
+thermo_modify format float %.17g
+thermo 50
+run 400
+""", nprocs=n, files={"cfg.data": data})
+        return thermo_rows(run)
+
+    def check_ranks(self, extra, grows):
+        data = random_tissue(self)
+        ref = None
+        for n in (1, 2, 4):
+            rows = self.totals(n, data, extra)
+            u = np.array([r["f_s[1]"] for r in rows])
+            w = np.array([r["f_s[2]"] for r in rows])
+            np.testing.assert_allclose(u, u[0], rtol=1e-13, atol=0, err_msg=f"{n} ranks")
+            np.testing.assert_allclose(w, w[0], rtol=1e-13, atol=0, err_msg=f"{n} ranks")
+            atoms = [r["Atoms"] for r in rows]
+            if grows:
+                self.assertGreater(atoms[-1], atoms[0])
+            if ref is None:
+                ref = (u, w, atoms)
+            else:
+                self.assertEqual(atoms, ref[2])
+                np.testing.assert_allclose(u, ref[0], rtol=1e-13)
+        return rows
+
+    @nprocs(4)
+    def test_conserved_on_1_2_4_ranks(self):
+        self.check_ranks("", False)
+
+    @nprocs(4)
+    def test_conserved_through_divisions(self):
+        self.check_ranks("fix div all cell/divide rate 0.5 seed 7 split d_u split d_w max 130\n", True)
+
+    def test_group(self):
+        """A fix on a group exchanges among its cells only: their total stays,
+        the other cells keep their values."""
+        data = random_tissue(self)
+        run = self.run_lmp(CONSERVE.replace("fix s all cell/signal", "group half id <= 48\n"
+                                            "group rest subtract all half\n"
+                                            "fix s half cell/signal") + """
+variable uu atom c_pu
+compute pu all property/atom d_u
+compute rest rest reduce sum v_uu
+compute restmax rest reduce max v_uu
+thermo_style custom step f_s[1] c_rest c_restmax
+thermo_modify format float %.17g norm no
+thermo 100
+run 400
+""", files={"cfg.data": data})
+        rows = thermo_rows(run)
+        u = np.array([r["f_s[1]"] for r in rows])
+        np.testing.assert_allclose(u, u[0], rtol=1e-13, atol=0)
+        self.assertEqual(len({r["c_rest"] for r in rows}), 1)
+        self.assertEqual(len({r["c_restmax"] for r in rows}), 1)
+        self.assertNotEqual(u[0], rows[0]["c_rest"])
+
+    @nprocs(4)
+    def test_conserved_implicit(self):
+        """The implicit step moves amounts by antisymmetric fluxes: conserved
+        on 1, 2 and 4 ranks, with a step 20 times the exchange time."""
+        data = random_tissue(self)
+        for n in (1, 2, 4):
+            run = self.run_lmp(CONSERVE.replace("exchange d_w 0.5", "exchange d_w 0.5 implicit yes")
+                               .replace("timestep 0.02", "timestep 2.0")
+                               .replace("gamma_t 1.0", "gamma_t 100.0") + """
+thermo_style custom step f_s[1] f_s[2]
+thermo_modify format float %.17g
+thermo 10
+run 40
+""", nprocs=n, files={"cfg.data": data})
+            rows = thermo_rows(run)
+            u = np.array([r["f_s[1]"] for r in rows])
+            np.testing.assert_allclose(u, u[0], rtol=1e-13, atol=0, err_msg=f"{n} ranks")
+
+    def test_copy_without_split(self):
+        """Without 'split' the daughters copy the mother's value: the total grows."""
+        data = random_tissue(self)
+        rows = self.totals(1, data, "fix div all cell/divide rate 0.5 seed 7 max 130\n")
+        self.assertGreater(rows[-1]["Atoms"], rows[0]["Atoms"])
+        self.assertGreater(rows[-1]["f_s[1]"], rows[0]["f_s[1]"] * 1.01)
+
+
+def collier_rates(a, b, v, k=2, h=2):
+    """Collier et al.'s model, Notch n' = f(<d>) - n, Delta d' = v (g(n) - d),
+    f(x) = x^k / (a + x^k), g(x) = 1 / (1 + b x^h): the homogeneous state
+    (d*, n*), f'(d*) g'(n*), and the growth rate of the lattice mode whose
+    neighbour mean is -1/2 of the cell's value (the 3-colouring), the most
+    unstable mode of the hexagonal lattice (doc/model.md)."""
+    f = lambda x: x ** k / (a + x ** k)
+    g = lambda x: 1 / (1 + b * x ** h)
+    lo, hi = 1e-12, 1.0    # d - g(f(d)) increases from < 0 to > 0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if mid - g(f(mid)) < 0 else (lo, mid)
+    d = 0.5 * (lo + hi)
+    n = f(d)
+    fp = k * a * d ** (k - 1) / (a + d ** k) ** 2
+    gp = -b * h * n ** (h - 1) / (1 + b * n ** h) ** 2
+    lam = -0.5
+    disc = (1 - v) ** 2 + 4 * v * lam * fp * gp
+    sigma = (-(1 + v) + math.sqrt(disc)) / 2 if disc >= 0 else -(1 + v) / 2
+    return d, n, fp * gp, sigma
+
+
+def collier_script(a, b, v, init_d, dt, steps, every):
+    return hex_tissue(6, 3) + f"""
+fix sp all property/atom d_d d_n
+variable q atom round(y/{H!r})
+variable p atom round(x/{A!r}-v_q/2)
+variable c atom (((v_p-v_q+30)%3)==0)*3-1
+variable d0 atom {init_d}
+set group all d_d v_d0
+fix s all cell/signal produce d_n hill 1.0 {math.sqrt(a)!r} 2 mean d_d degrade d_n 1.0 &
+    produce d_d hillr {v!r} {b ** -0.5!r} 2 d_n degrade d_d {v!r}
+compute pd all property/atom d_d
+timestep {dt}
+thermo_style custom step f_s[1] f_s[2]
+thermo {every}
+dump dd all custom {every} d.txt id x y c_pd
+dump_modify dd sort id format float %.17g
+run {steps}
+"""
+
+
+class LateralInhibition(LammpsTestCase):
+    """The homogeneous state loses stability where f'(d*) g'(n*) < -2."""
+
+    def growth(self, b):
+        a, v = 0.01, 1.0
+        d, n, fg, sigma = collier_rates(a, b, v)
+        eps = 1e-6
+        run = self.run_lmp(collier_script(a, b, v, f"{d!r}*(1+{eps}*v_c)", 0.01, 2000, 500)
+                           + "")
+        frames = run.dump("d.txt")
+        # The mode's amplitude: class 0 against the other two.
+        c = colour_of(frames[0]["x"], frames[0]["y"])
+        amp = [f["c_pd"][c == 0].mean() - f["c_pd"][c != 0].mean() for f in frames]
+        t = [f["step"] * 0.01 for f in frames]
+        measured = math.log(abs(amp[-1]) / abs(amp[2])) / (t[-1] - t[2])
+        return fg, sigma, measured
+
+    def test_stable_below_threshold(self):
+        fg, sigma, measured = self.growth(30.0)
+        self.assertGreater(fg, -2.0)
+        self.assertLess(sigma, -0.02)
+        self.assertAlmostEqual(measured, sigma, delta=2e-3)
+
+    def test_unstable_above_threshold(self):
+        fg, sigma, measured = self.growth(100.0)
+        self.assertLess(fg, -2.0)
+        self.assertGreater(sigma, 0.02)
+        self.assertAlmostEqual(measured, sigma, delta=2e-3)
+
+    def pattern(self, init):
+        run = self.run_lmp(collier_script(0.01, 100.0, 1.0, init, 0.05, 2000, 2000))
+        f = run.dump("d.txt")[-1]
+        x, y, dd = f["x"], f["y"], f["c_pd"]
+        lx, ly = 6 * A, 6 * H
+        dx = (x[:, None] - x[None, :] + lx / 2) % lx - lx / 2
+        dy = (y[:, None] - y[None, :] + ly / 2) % ly - ly / 2
+        near = (np.hypot(dx, dy) < 1.1 * A) & (np.hypot(dx, dy) > 0)
+        high = dd > 0.5 * (dd.max() + dd.min())
+        self.assertFalse((near & high[:, None] & high[None, :]).any(), "two high neighbours")
+        self.assertGreater(dd.max(), 10 * dd.min())
+        return high, colour_of(x, y)
+
+    def test_ideal_pattern(self):
+        high, c = self.pattern("0.07*(1+0.3*v_c)")
+        self.assertEqual(high.sum(), 12)    # a third of 36
+        self.assertTrue((high == (c == 0)).all())
+
+    def test_variable_law_reads_the_neighbour_mean(self):
+        """The Notch law written as an atom-style variable of compute
+        cell/neighbor/mean gives what the Hill law with 'mean' gives (one
+        substep per step: both read the values at the start of the step)."""
+        script = collier_script(0.01, 100.0, 1.0, "0.07*(1+0.3*v_c)", 0.05, 400, 400)
+        hill = self.run_lmp(script).dump("d.txt")[-1]["c_pd"]
+        law = script.replace("produce d_n hill 1.0 0.1 2 mean d_d", "produce d_n v_f").replace(
+            "fix s all", "compute md all cell/neighbor/mean d_d\n"
+            "variable f atom c_md^2/(0.01+c_md^2)\nfix s all")
+        self.assertIn("v_f", law)
+        var = self.run_lmp(law).dump("d.txt")[-1]["c_pd"]
+        self.assertGreater(np.ptp(hill), 0.5)
+        np.testing.assert_allclose(var, hill, rtol=1e-10)
+
+    def test_random_start_isolated(self):
+        self.pattern("0.07*(1+0.1*((id*7919)%13-6)/6)")
+
+
+class NeighborMean(LammpsTestCase):
+    def test_against_the_pieces(self):
+        """compute cell/neighbor/mean of a per-atom variable against the
+        mean over compute vertex/local's rows weighted by the distance
+        between each junction's ends."""
+        run = self.run_lmp(lmptest.tissue(5, 4) + PAIR + """
+displace_atoms all random 0.2 0.2 0 4821 units box
+fix sp all property/atom d_u
+variable u0 atom 1+((id*37)%11)
+set group all d_u v_u0
+variable w atom 2*x+y*y
+compute m all cell/neighbor/mean d_u v_w
+compute loc all vertex/local
+compute pu all property/atom d_u
+variable wv atom v_w
+dump d all custom 1 a.txt id c_pu v_wv c_m[1] c_m[2]
+dump_modify d sort id format float %.17g
+dump l all local 1 l.txt c_loc[*]
+dump_modify l format float %.17g
+run 0
+""")
+        f = run.dump("a.txt")[0]
+        rows = None
+        lines = run.text("l.txt").split("\n")
+        i = lines.index("ITEM: NUMBER OF ENTRIES")
+        n = int(lines[i + 1])
+        start = [k for k, line in enumerate(lines) if line.startswith("ITEM: ENTRIES")][0]
+        rows = np.array([[float(w) for w in lines[start + 1 + k].split()] for k in range(n)])
+        index = {int(t): k for k, t in enumerate(f["id"])}
+        for col, mean in (("c_pu", "c_m[1]"), ("v_wv", "c_m[2]")):
+            num = np.zeros(len(index))
+            den = np.zeros(len(index))
+            for r in rows:
+                i, j = index[int(r[0])], index[int(r[1])]
+                s = math.hypot(r[4] - r[2], r[5] - r[3])
+                num[i] += s * f[col][j]
+                den[i] += s
+            np.testing.assert_allclose(f[mean], num / den, rtol=1e-12)
+
+
+class Restart(LammpsTestCase):
+    def test_continues_exactly(self):
+        body = hex_tissue(4, 4) + """
+displace_atoms all random 0.2 0.2 0 4821 units box
+fix sp all property/atom d_u
+variable u0 atom 1+((id*37)%11)
+set group all d_u v_u0
+"""
+        law = """fix move all brownian 1.0 1 gamma_t 1.0 rng none
+variable src atom 0.1*(id%3)
+fix s all cell/signal exchange d_u 2.0 degrade d_u 0.3 produce d_u v_src produce d_u hillr 1 2 2 mean d_u
+timestep 0.02
+compute pu all property/atom d_u
+"""
+        out = """dump d all custom 40 u.txt id c_pu
+dump_modify d sort id format float %.17g first yes
+run {n}
+"""
+        whole = self.run_lmp(body + law + out.format(n=40))
+        second = self.run_lmp(body + law + """run 20
+write_restart r.bin
+clear
+read_restart r.bin
+fix sp all property/atom d_u
+pair_style vertex/voronoi 3.0
+pair_coeff * * quadratic 1.0 1.0 0.1 3.7
+""" + law + out.format(n=20).replace("first yes", "first no"))
+        a = whole.dump("u.txt")[-1]["c_pu"]
+        b = second.dump("u.txt")[-1]["c_pu"]
+        np.testing.assert_array_equal(a, b)
+
+
+class Adapt(LammpsTestCase):
+    def test_area0_follows_species(self):
+        """d_area0 = 0.5 + d_u every step: the area of one cell holding more
+        than the others grows to its preferred area (the pe's A term)."""
+        run = self.run_lmp(hex_tissue(4, 4) + """
+fix sp all property/atom d_u d_area0
+set group all d_u 0.5
+set atom 1 d_u 1.0
+set group all d_area0 1.0
+compute pu all property/atom d_u
+variable a0 atom 0.5+c_pu
+fix ad all cell/adapt 1 d_area0 v_a0
+fix move all brownian 1.0 1 gamma_t 1.0 rng none
+compute v all vertex/atom
+timestep 0.05
+dump d all custom 1000 a.txt id c_v[1] d_area0
+dump_modify d sort id format float %.17g
+run 1000
+""")
+        f = run.dump("a.txt")[-1]
+        self.assertEqual(f["d_area0"][0], 1.5)
+        self.assertEqual(f["d_area0"][1], 1.0)
+        self.assertGreater(f["c_v[1]"][0], 1.2)
+
+
+class Errors(LammpsTestCase):
+    def fails(self, law, *fragments, setup=""):
+        run = self.run_lmp(hex_tissue(4, 4) + """
+fix sp all property/atom d_u
+set group all d_u 1.0
+""" + setup + law + "\nrun 20\n", ok=False)
+        self.assertLammpsError(run, *fragments)
+
+    def test_unknown_species(self):
+        self.fails("fix s all cell/signal exchange d_x 1.0", "d_x", "unknown species",
+                   "property/atom d_x")
+
+    def test_negative_rate(self):
+        self.fails("fix s all cell/signal degrade d_u -1", "rate k must be >= 0", "-1")
+
+    def test_nan_law(self):
+        self.fails("fix s all cell/signal produce d_u v_bad", "v_bad", "cell 5", "step 1",
+                   setup="variable bad atom (id==5)*1e308*10\n")
+
+    def test_negative_law(self):
+        self.fails("fix s all cell/signal produce d_u v_neg", "d_u of cell 7", "produce d_u v_neg",
+                   setup="variable neg atom -100*(id==7)\n")
+
+    def test_too_few_substeps(self):
+        self.fails("fix s all cell/signal exchange d_u 100 substeps 1", "substeps auto",
+                   setup="set atom 3 d_u 5.0\n")
+
+    def test_adapt_unknown_property(self):
+        self.fails("fix ad all cell/adapt 1 d_perim0 v_p", "d_perim0 is no per-atom property",
+                   "property/atom d_perim0", setup="variable p atom 3.8\n")
+
+    def test_mean_unknown_property(self):
+        self.fails("compute m all cell/neighbor/mean d_x", "d_x", "property/atom d_x")
+
+    def test_adapt_nonpositive_area(self):
+        self.fails("fix ad all cell/adapt 1 d_area0 v_a0", "d_area0", "cell 4", "step 0",
+                   setup="fix p2 all property/atom d_area0\nset group all d_area0 1.0\n"
+                         "variable a0 atom 1-(id==4)\n")
+
+
+class Bath(LammpsTestCase):
+    def test_finite_cells_steady_state(self):
+        """Finite cells exchange across their contact edges and with a bath
+        across their free arcs; the steady state against the linear system
+        (L + diag(Pb F + k)) u = Pb F cb solved by numpy, with L built from
+        compute vertex/local's contact edges and F from its free arcs."""
+        from feature_models import local_rows, model_script
+        P, Pb, cb, k = 1.0, 2.0, 1.5, 0.5
+        run = self.run_lmp(model_script("finite_open") + f"""
+fix sp all property/atom d_u
+set group all d_u 0.0
+fix s all cell/signal exchange d_u {P} bath d_u {Pb} {cb} degrade d_u {k}
+timestep 0.05
+run 1200
+compute pu all property/atom d_u
+compute l all vertex/local
+dump d all custom 1 u.txt id c_pu
+dump_modify d sort id format float %.17g
+dump e all local 1 l.txt c_l[1] c_l[2] c_l[7]
+dump_modify e format float %.17g
+run 0
+""")
+        f = run.dump("u.txt")[-1]
+        rows = local_rows(run, "l.txt")[-1]
+        index = {int(t): n for n, t in enumerate(f["id"])}
+        n = len(index)
+        M = np.diag(np.full(n, k))
+        b = np.zeros(n)
+        for cell, nb, size in rows:
+            i = index[int(cell)]
+            if int(nb) == 0:    # a free arc
+                M[i, i] += Pb * size
+                b[i] += Pb * size * cb
+            else:
+                j = index[int(nb)]
+                M[i, i] += P * size
+                M[i, j] -= P * size
+        self.assertGreater(b.sum(), 0)
+        self.assertGreater((b == 0).sum(), 0)    # inner cells reached only by exchange
+        np.testing.assert_allclose(f["c_pu"], np.linalg.solve(M, b), rtol=1e-9)
+
+
+lmptest.main()

@@ -117,6 +117,7 @@ void FixCellDeath::init()
     if (!region) error->all(FLERR, "fix cell/death: region '{}' no longer exists", region_id);
   }
   pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  if (pair) pair->require_cells(igroup, "fix cell/death");    // particles are not extruded
   if (!pair && trigger == AREA)
     error->all(FLERR,
                "fix cell/death: the area trigger needs pair_style vertex/voronoi (its "

@@ -367,6 +367,23 @@ void PairVertexVoronoi::reinit()
   build_model();
 }
 
+/* Whether fix adapt changed a value of extract()'s arrays since the model
+   was built. */
+
+bool PairVertexVoronoi::adapted() const
+{
+  const int n = atom->ntypes;
+  for (int i = 1; i <= n; i++) {
+    if (!type_set[i]) continue;
+    if (adapt_kappa[i][i] != kappa[i] || adapt_area0[i][i] != area0[i] ||
+        adapt_gamma[i][i] != gamma[i])
+      return true;
+    for (int j = i + 1; j <= n; j++)
+      if (lambda[i][j] != lambda_built[i][j]) return true;
+  }
+  return false;
+}
+
 double PairVertexVoronoi::init_one(int i, int j)
 {
   if (setflag[i][j] == 0) setflag[i][j] = 1;
@@ -609,6 +626,10 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
   ev_init(eflag, vflag);
   check_lost_atoms();
   if (!unit) error->all(FLERR, "pair_style vertex/voronoi: compute before init");
+  // fix adapt calls reinit() of the pair style it was given; inside
+  // pair_style hybrid that is hybrid's, which does not pass it on: take
+  // the changes here.
+  if (force->pair != this && adapted()) reinit();
   unit->compute(eflag, vflag);
 }
 

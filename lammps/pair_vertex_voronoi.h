@@ -111,6 +111,7 @@ class PairVertexVoronoi : public Pair {
   int warned_area0 = 0;   // fix adapt changed area0 while d_area0 exists (warned once)
   int warned_percell = 0; // fix adapt changed kappa/gamma while d_ka/d_kp exists (once)
   void build_model();
+  bool adapted() const;
   int read_restart_settings_version(FILE *);
   void print_model() const;
 

@@ -114,6 +114,20 @@ print "E $(pe:%.17g)"
 """
         self.assertAlmostEqual(pv, printed(self.run_lmp(alone), "E")[0][0], delta=1e-10 * abs(pv))
 
+    def test_per_cell_values_and_fix_adapt_inside_hybrid(self):
+        # Particles need no d_area0 (theirs stays 0); fix adapt of a
+        # sub-style's kappa acts as the same pair_coeff value would.
+        def pv(script):
+            return printed(self.run_lmp(script + 'run 0\nprint "E $(c_pv:%.17g)"\n'), "E")[0][0]
+        plain = pv(mixed())
+        area0 = pv(mixed() + "fix a0 all property/atom d_area0\nset group cells d_area0 1.0\n")
+        self.assertAlmostEqual(area0, plain, delta=1e-12 * abs(plain))
+        stiff = mixed().replace("vertex/voronoi 1.0 1.0 0.1 -0.5", "vertex/voronoi 2.0 1.0 0.1 -0.5")
+        adapt = mixed() + ("variable k equal 2.0\n"
+                           "fix ad all adapt 1 pair vertex/voronoi kappa 1 1 v_k reset no\n")
+        self.assertNotAlmostEqual(pv(stiff), plain, delta=1e-6)
+        self.assertAlmostEqual(pv(adapt), pv(stiff), delta=1e-12 * abs(plain))
+
     def test_integrators_move_particles(self):
         # An isolated particle (out of soft's reach) pushed by fix addforce
         # moves F dt / gamma_t per step under both overdamped integrators.

@@ -6,8 +6,14 @@ at the interface.  (Forces, tessellations, ranks and restarts of every model
 with particles: the particles features of test_feature_matrix.py; the hole
 around a particle: test_compute_vertex_loops.py.)"""
 
+import os
+
+import numpy as np
+
 import lmptest
 from lmptest import LammpsTestCase
+
+EXAMPLES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples")
 
 
 def tissue():
@@ -150,6 +156,25 @@ print "X1 $(x[6]:%.17g) $(c_ps:%.17g)"
                 x1, ps1 = printed(run, "X1")[0]
                 self.assertEqual((ps0, ps1), (0.0, 0.0))
                 self.assertAlmostEqual(x1 - x0, 20 * 0.01 * 0.5 / 2.0, delta=1e-12)
+
+
+class PillarExample(LammpsTestCase):
+    """examples/pillar: the wound closes onto the pillar, where the same
+    wound without it closes completely (test_finite.py), and a hole stays
+    around the pillar, which does not move."""
+
+    def test_hole_stays_around_the_pillar(self):
+        with open(os.path.join(EXAMPLES, "pillar", "in.pillar")) as f:
+            script = f.read().replace("dump_modify", "#").replace("dump ", "# dump ")
+        script += ('print "P $(xcm(pillar,x):%.17g) $(xcm(pillar,y):%.17g) $(xlo+0.5*lx:%.17g) '
+                   '$(ylo+0.5*ly:%.17g)"\n')
+        run = self.run_lmp(script, args=["-var", "tend", "20"])
+        data = np.loadtxt(run.path("hole.dat"))
+        self.assertGreater(data[0, 2], 14.0)
+        late = data[data[:, 0] >= 16.0]
+        self.assertTrue(np.all(late[:, 2] > 0.5) and np.all(late[:, 2] < 0.15 * data[0, 2]))
+        x, y, xc, yc = printed(run, "P")[0]
+        np.testing.assert_allclose([x, y], [xc, yc], rtol=0, atol=1e-12)    # (xcm's rounding)
 
 
 if __name__ == "__main__":

@@ -672,5 +672,10 @@ double PairVertexVoronoi::memory_usage()
   double bytes = Pair::memory_usage();
   if (unit) bytes += unit->memory_usage();
   bytes += (double) type0.capacity() * sizeof(int) + cell_e.capacity() * sizeof(double);
+  // The list of cell atoms among others (pair_vertex_voronoi_cells.cpp).
+  bytes += (double) (cell_local.capacity() + cell_scratch.capacity()) * sizeof(int) +
+      (double) (cell_xbuf.capacity() + cell_fbuf.capacity() + cell_e_atom.capacity()) *
+          sizeof(double);
+  for (const auto &v : cell_pc) bytes += (double) v.capacity() * sizeof(double);
   return bytes;
 }

@@ -86,7 +86,6 @@ class PairVertexVoronoi : public Pair {
   // ('pair_coeff I I ...').  Under pair_style hybrid/overlay the atoms of
   // other types are not cells: never tessellated, an empty cell in cells().
   bool is_cell_type(int type) const { return type_set && type_set[type]; }
-  bool every_atom_cell() const { return all_cell_types != 0; }
   // For cell-only commands: an error naming the first atom of the group
   // that is not a cell.
   void require_cells(int igroup, const char *command) const;

@@ -169,6 +169,7 @@ void ComputeVertexAtom::compute_peratom()
     double *row = values[i];
     for (int k = 0; k < NCOLS; k++) row[k] = 0.0;
     if (!(mask[i] & groupbit)) continue;
+    if (!pair->is_cell_type(atom->type[i])) continue;    // no cell: a zero row
     row[0] = v.measure(i);
     row[1] = v.boundary(i);
     row[2] = v.shape_index(i);

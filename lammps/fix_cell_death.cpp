@@ -133,6 +133,7 @@ void FixCellDeath::init()
                min_user, SPHERE_MIN_CELLS, SPHERE_MIN_CELLS);
   min_cells = min_user >= 0 ? min_user : sphere ? SPHERE_MIN_CELLS : 1;
   warned_floor = 0;
+  if (pair) pair->require_cells(igroup, "fix cell/death");    // particles are not extruded
   if (!pair && trigger == AREA)
     error->all(FLERR,
                "fix cell/death: the area trigger needs pair_style vertex/voronoi (its "

@@ -249,6 +249,7 @@ void FixCellDivide::init()
     if (!region) error->all(FLERR, "fix cell/divide: region '{}' no longer exists", region_id);
   }
   pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  if (pair) pair->require_cells(igroup, "fix cell/divide");    // particles do not divide or die
   if (!pair && (trigger == AREA || axis == LONG || axis == SHORT))
     error->all(FLERR,
                "fix cell/divide: the area trigger and axis long/short need pair_style "

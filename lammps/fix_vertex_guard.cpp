@@ -113,8 +113,10 @@ void FixVertexGuard::post_integrate()
   // Squared distances against squared limits (one sqrt per type, not per atom).
   const int ntypes = atom->ntypes;
   size2.resize(ntypes + 1);
-  for (int t = 1; t <= ntypes; t++) size2[t] = pair->cell_size(t) * pair->cell_size(t);
   const double big = std::numeric_limits<double>::max();
+  // Atoms that are no cells have no cell size to compare with.
+  for (int t = 1; t <= ntypes; t++)
+    size2[t] = pair->is_cell_type(t) ? pair->cell_size(t) * pair->cell_size(t) : big;
   const double lost2 = lost < std::sqrt(big) ? lost * lost : big;
   int worst = -1;
   double worst_moved2 = 0.0, step_max2 = 0.0;

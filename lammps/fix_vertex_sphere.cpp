@@ -87,7 +87,9 @@ void FixVertexSphere::project(bool transport)
   pair->check_sphere_box(R);
   double **x = atom->x;
   double **mu = atom->mu_flag ? atom->mu : nullptr;
+  const int *type = atom->type;
   for (int i = 0; i < atom->nlocal; i++) {
+    if (!pair->is_cell_type(type[i])) continue;    // particles move freely in space
     const double d[3] = {x[i][0] - c[0], x[i][1] - c[1], x[i][2] - c[2]};
     const double l2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
     if (!(l2 > 0.0) || !std::isfinite(l2))

@@ -156,12 +156,9 @@ void PairVertexVoronoi::init_style()
     error->all(FLERR, "pair_style vertex/voronoi requires 'newton on' (forces go to ghost atoms)");
   if (atom->tag_enable == 0) error->all(FLERR, "pair_style vertex/voronoi requires atom IDs");
 
-  for (int i = 1; i <= atom->ntypes; i++)
-    if (!type_set[i])
-      error->all(FLERR,
-                 "pair_style vertex/voronoi: no cell parameters for atom type {}; add "
-                 "'pair_coeff {} {} K A0 Gamma Lambda'",
-                 i, i, i);
+  // The cells: the atoms of the types with cell parameters (others only
+  // under hybrid/overlay; pair_vertex_voronoi_cells.cpp).
+  check_cell_types();
   check_cutoff_range();
   check_sort_bins();
 
@@ -207,7 +204,11 @@ void PairVertexVoronoi::build_model()
   const int n = atom->ntypes;
   model = tessera::Model(n);
   model.tension = tension;
-  for (int i = 1; i <= n; i++) model.types[i - 1] = tessera::CellType{kappa[i], area0[i], gamma[i]};
+  // A type without cell parameters has no cells (hybrid/overlay): the core
+  // never reads its entry, which gets valid placeholder values.
+  for (int i = 1; i <= n; i++)
+    model.types[i - 1] = type_set[i] ? tessera::CellType{kappa[i], area0[i], gamma[i]}
+                                     : tessera::CellType{1.0, 1.0, 0.0};
   // sigma is the energy per junction length; Tension::Cell counts Lambda_IJ twice.
   const double per_junction = tension == tessera::Tension::Edge ? 1.0 : 0.5;
   for (int i = 1; i <= n; i++)
@@ -283,6 +284,10 @@ void PairVertexVoronoi::print_model() const
                      three ? "        s0" : "        p0", finite ? "     free F" : "");
   const double c = tension == tessera::Tension::Edge ? 2.0 : 1.0;
   for (int i = 1; i <= n; i++) {
+    if (!type_set[i]) {
+      msg += fmt::format("  {:4d}   no cell parameters: its atoms are not cells\n", i);
+      continue;
+    }
     const double lam = model.lambda_of(i - 1, i - 1);
     const double size = three ? std::cbrt(area0[i] * area0[i]) : std::sqrt(area0[i]);
     const double p0 = gamma[i] != 0.0 ? -lam / (c * gamma[i] * size) : 0.0;
@@ -304,7 +309,9 @@ void PairVertexVoronoi::print_model() const
   msg += "\n";
   for (int i = 1; i <= n; i++) {
     msg += fmt::format("  {:4d}", i);
-    for (int j = 1; j <= n; j++) msg += fmt::format(" {:10.4g}", model.lambda_of(i - 1, j - 1));
+    for (int j = 1; j <= n; j++)
+      msg += type_set[i] && type_set[j] ? fmt::format(" {:10.4g}", model.lambda_of(i - 1, j - 1))
+                                        : fmt::format(" {:>10}", "-");
     msg += "\n";
   }
   utils::logmesg(lmp, msg);
@@ -319,6 +326,7 @@ void PairVertexVoronoi::reinit()
   Pair::reinit();
   const int n = atom->ntypes;
   for (int i = 1; i <= n; i++) {
+    if (!type_set[i]) continue;    // no cells of this type
     if (!(adapt_kappa[i][i] > 0.0) || !std::isfinite(adapt_kappa[i][i]))
       error->all(FLERR, "pair_style vertex/voronoi (fix adapt): kappa of type {} must be > 0, got {}",
                  i, adapt_kappa[i][i]);
@@ -361,6 +369,23 @@ void PairVertexVoronoi::reinit()
         lambda[j][i] = lambda[i][j];
       }
   build_model();
+}
+
+/* Whether fix adapt changed a value of extract()'s arrays since the model
+   was built. */
+
+bool PairVertexVoronoi::adapted() const
+{
+  const int n = atom->ntypes;
+  for (int i = 1; i <= n; i++) {
+    if (!type_set[i]) continue;
+    if (adapt_kappa[i][i] != kappa[i] || adapt_area0[i][i] != area0[i] ||
+        adapt_gamma[i][i] != gamma[i])
+      return true;
+    for (int j = i + 1; j <= n; j++)
+      if (lambda[i][j] != lambda_built[i][j]) return true;
+  }
+  return false;
 }
 
 double PairVertexVoronoi::init_one(int i, int j)
@@ -414,23 +439,22 @@ void PairVertexVoronoi::grow_ghost_shell(double cut)
     for (int i = 0; i < nall; i++) atom->torque[i][0] = atom->torque[i][1] = atom->torque[i][2] = 0.0;
 }
 
-/* This step's 0-based types of owned and ghost atoms, the per-cell energy
-   array, and the per-cell preferred measures. */
+/* This step's 0-based types of the owned and ghost cells (gather_cells'
+   list), the per-cell energy array, and the per-cell preferred measures. */
 
 void PairVertexVoronoi::prepare_atoms()
 {
-  const int nall = atom->nlocal + atom->nghost;
-  type0.resize(nall);
+  type0.resize(ncell_all);
   const int *type = atom->type;
-  for (int i = 0; i < nall; i++) type0[i] = type[i] - 1;
-  cell_e.resize(atom->nlocal);
+  for (int p = 0; p < ncell_all; p++) type0[p] = type[cell_atom(p)] - 1;
+  cell_e.resize(ncell_local);
   bind_cell_area0();
   bind_cell_params();
 }
 
 /* Per-cell preferred areas (volumes in 3d) from 'fix property/atom
    d_area0', when defined (otherwise the types' A0), for every model.  Only
-   owned cells' values are read. */
+   owned cells' values are read (atoms that are no cells need none). */
 
 void PairVertexVoronoi::bind_cell_area0()
 {
@@ -438,14 +462,14 @@ void PairVertexVoronoi::bind_cell_area0()
   int a0_flag = -1, a0_cols = -1;
   const int a0_index = atom->find_custom("area0", a0_flag, a0_cols);
   if (a0_index < 0 || a0_flag != 1 || a0_cols != 0) return;
-  const double *a0 = atom->dvector[a0_index];
-  for (int i = 0; i < atom->nlocal; i++)
+  const double *a0 = compact_values(atom->dvector[a0_index], 0);
+  for (int i = 0; i < ncell_local; i++)
     if (!(a0[i] > 0.0) || !std::isfinite(a0[i]))
       error->one(FLERR,
                  "pair_style vertex/voronoi: per-atom preferred {} d_area0 of atom {} is {}; "
                  "it must be > 0 (e.g. 'set group all d_area0 1.0' after 'fix property/atom "
                  "d_area0')",
-                 domain->dimension == 3 ? "volume" : "area", atom->tag[i], a0[i]);
+                 domain->dimension == 3 ? "volume" : "area", cell_tag(i), a0[i]);
   model.cell_area0 = a0;
 }
 
@@ -465,7 +489,7 @@ void PairVertexVoronoi::bind_cell_params()
                          three ? "surface modulus KS" : "perimeter modulus KP",
                          three ? "preferred surface S0" : "preferred perimeter P0"};
   const double *v[3] = {nullptr, nullptr, nullptr};
-  const int nlocal = atom->nlocal;
+  const int nlocal = ncell_local;
   for (int k = 0; k < 3; k++) {
     int flag = -1, cols = -1;
     const int index = atom->find_custom(names[k], flag, cols);
@@ -475,14 +499,14 @@ void PairVertexVoronoi::bind_cell_params()
                  "pair_style vertex/voronoi: the per-atom property '{}' must be a double "
                  "vector (fix property/atom d_{}), not an integer or an array",
                  names[k], names[k]);
-    v[k] = atom->dvector[index];
+    v[k] = compact_values(atom->dvector[index], 1 + k);
     for (int i = 0; i < nlocal; i++)
       if (!(v[k][i] > 0.0) || !std::isfinite(v[k][i]))
         error->one(FLERR,
                    "pair_style vertex/voronoi: per-atom {} d_{} of atom {} is {}; it must be > "
                    "0 (set it for every atom, e.g. 'set group all d_{} value', after 'fix "
                    "property/atom d_{}')",
-                   what[k], names[k], atom->tag[i], v[k][i], names[k], names[k]);
+                   what[k], names[k], cell_tag(i), v[k][i], names[k], names[k]);
   }
   model.cell_KA = v[0];
   model.cell_KP = v[1];
@@ -490,14 +514,13 @@ void PairVertexVoronoi::bind_cell_params()
   // A per-cell KP keeps the type's preferred perimeter -w Lambda_II / Gamma_I,
   // which a type with Gamma = 0 does not define.
   if (v[1] && !v[2]) {
-    const int *type = atom->type;
     for (int i = 0; i < nlocal; i++)
-      if (!(gamma[type[i]] > 0.0))
+      if (!(gamma[type0[i] + 1] > 0.0))
         error->one(FLERR,
                    "pair_style vertex/voronoi: atom {} has a per-atom d_kp, but its type {} has "
                    "{} modulus 0 (Gamma = 2 {}), which defines no preferred {}: also define "
                    "d_perim0 (fix property/atom d_perim0) and set it",
-                   atom->tag[i], type[i], three ? "surface" : "perimeter", three ? "KS" : "KP",
+                   cell_tag(i), type0[i] + 1, three ? "surface" : "perimeter", three ? "KS" : "KP",
                    three ? "surface" : "perimeter");
   }
 }
@@ -509,18 +532,18 @@ void PairVertexVoronoi::bind_cell_params()
 
 void PairVertexVoronoi::accumulate(double energy, int nw)
 {
-  const int nlocal = atom->nlocal;
-  const int *type = atom->type;
+  // Cells in gather_cells' list: owned cell i is local atom cell_atom(i).
+  const int nlocal = ncell_local;
   if (model.has_cell_params()) {
     // KP_c P0_c^2 from each cell's values in use (types in the quadratic form).
     for (int i = 0; i < nlocal; i++) {
-      const double e0 = quad_set[type[i]] ? model.quadratic_constant(i, type[i] - 1) : 0.0;
+      const double e0 = quad_set[type0[i] + 1] ? model.quadratic_constant(i, type0[i]) : 0.0;
       cell_e[i] += e0;
       energy += e0;
     }
   } else {
     for (int i = 0; i < nlocal; i++) {
-      const double e0 = energy0[type[i]];
+      const double e0 = energy0[type0[i] + 1];
       cell_e[i] += e0;
       energy += e0;
     }
@@ -531,11 +554,12 @@ void PairVertexVoronoi::accumulate(double energy, int nw)
                "parameters or the cells' sizes are far outside the model's reduced units)",
                update->ntimestep, energy);
   tess_step = update->ntimestep;
+  finish_cells();
   record_view_state();
-  unit->view().energy = cell_e.data();
   if (vflag_atom) {
-    for (int i = 0; i < nlocal; i++) {
-      const double *w = &cell_w[static_cast<size_t>(nw) * i];
+    for (int c = 0; c < nlocal; c++) {
+      const double *w = &cell_w[static_cast<size_t>(nw) * c];
+      const int i = cell_atom(c);
       if (nw == 4) {
         vatom[i][0] += w[0];
         vatom[i][1] += w[1];
@@ -552,7 +576,7 @@ void PairVertexVoronoi::accumulate(double energy, int nw)
   }
   if (eflag_global) eng_vdwl += energy;
   if (eflag_atom)
-    for (int i = 0; i < nlocal; i++) eatom[i] += cell_e[i];
+    for (int c = 0; c < nlocal; c++) eatom[cell_atom(c)] += cell_e[c];
   if (vflag_fdotr) virial_fdotr_compute();
 }
 
@@ -571,6 +595,18 @@ bool PairVertexVoronoi::ghost_shell_complete(double need_local)
     grow_ghost_shell(MAX(needed, 1.2 * cut_global));
     return false;
   }
+  // Inside pair_style hybrid/overlay the other sub-styles may have computed
+  // this step's forces already: the atoms cannot be acquired again now.
+  if (force->pair != this)
+    error->all(FLERR,
+               "pair_style vertex/voronoi: cutoff {:.6g} is too small for this configuration "
+               "({}); inside pair_style hybrid/overlay the ghost shell cannot grow during a "
+               "step: give vertex/voronoi a cutoff of {:.3g} or larger ('pair_style "
+               "hybrid/overlay vertex/voronoi {:.3g} ...')",
+               cut_global,
+               infinite ? "some cells have no complete ring of neighbours"
+                        : "a cell reaches past the ghost atoms",
+               needed, needed);
   if (infinite)
     error->all(FLERR,
                "pair_style vertex/voronoi: cutoff {} is far too small: some cells have no "
@@ -595,13 +631,19 @@ void PairVertexVoronoi::compute(int eflag, int vflag)
   ev_init(eflag, vflag);
   check_lost_atoms();
   if (!unit) error->all(FLERR, "pair_style vertex/voronoi: compute before init");
+  // fix adapt calls reinit() of the pair style it was given; inside
+  // pair_style hybrid that is hybrid's, which does not pass it on: take
+  // the changes here.
+  if (force->pair != this && adapted()) reinit();
   unit->compute(eflag, vflag);
 }
 
 const tessera::CellView &PairVertexVoronoi::cells() const
 {
   static const tessera::ConfluentCells none;
-  return unit ? unit->cells() : none;
+  if (!unit) return none;
+  if (all_cell_types) return unit->cells();
+  return subset;
 }
 
 /* Cell diameter of a type (1-based), the step guard's limit: sqrt(A0) in
@@ -609,6 +651,7 @@ const tessera::CellView &PairVertexVoronoi::cells() const
 
 double PairVertexVoronoi::cell_size(int type) const
 {
+  if (!is_cell_type(type)) return 0.0;    // no cell
   return domain->dimension == 3 && !sphere_on ? std::cbrt(area0[type]) : std::sqrt(area0[type]);
 }
 
@@ -629,5 +672,10 @@ double PairVertexVoronoi::memory_usage()
   double bytes = Pair::memory_usage();
   if (unit) bytes += unit->memory_usage();
   bytes += (double) type0.capacity() * sizeof(int) + cell_e.capacity() * sizeof(double);
+  // The list of cell atoms among others (pair_vertex_voronoi_cells.cpp).
+  bytes += (double) (cell_local.capacity() + cell_scratch.capacity()) * sizeof(int) +
+      (double) (cell_xbuf.capacity() + cell_fbuf.capacity() + cell_e_atom.capacity()) *
+          sizeof(double);
+  for (const auto &v : cell_pc) bytes += (double) v.capacity() * sizeof(double);
   return bytes;
 }

@@ -16,6 +16,7 @@ PairStyle(vertex/voronoi,PairVertexVoronoi);
 
 #include "tessera/cells.h"
 #include "tessera/energy.h"
+#include "tessera/subset_cells.h"
 
 #include <cstdint>
 #include <memory>
@@ -98,6 +99,13 @@ class PairVertexVoronoi : public Pair {
   double sphere_radius();
   // Stops with an error when the sphere of radius R reaches past the box.
   void check_sphere_box(double R) const;
+  // Which atoms are cells: those of the types given cell parameters
+  // ('pair_coeff I I ...').  Under pair_style hybrid/overlay the atoms of
+  // other types are not cells: never tessellated, an empty cell in cells().
+  bool is_cell_type(int type) const { return type_set && type_set[type]; }
+  // For cell-only commands: an error naming the first atom of the group
+  // that is not a cell.
+  void require_cells(int igroup, const char *command) const;
 
  protected:
   void keyword_defaults();    // the pair_style keywords' defaults
@@ -119,6 +127,7 @@ class PairVertexVoronoi : public Pair {
   int warned_area0 = 0;   // fix adapt changed area0 while d_area0 exists (warned once)
   int warned_percell = 0; // fix adapt changed kappa/gamma while d_ka/d_kp exists (once)
   void build_model();
+  bool adapted() const;
   int read_restart_settings_version(FILE *);
   void print_model() const;
 
@@ -137,6 +146,30 @@ class PairVertexVoronoi : public Pair {
   std::vector<double> free_t0;   // free_tension, 0-based
 
   void allocate();
+  // The cells among the atoms (pair_vertex_voronoi_cells.cpp).  Every unit
+  // tessellates a compact list of points, this step's cell atoms: owned
+  // cells first (ncell_local), then ghost cells (ncell_all in all); compact
+  // point p is local atom cell_local[p].  When every type is a cell type the
+  // list is the atoms themselves (no copies).  gather_cells() makes the list
+  // before each tessellation; cell_x() and cell_f() are its positions and
+  // the force array the units add to (stride 3), cell_tag() its atom IDs;
+  // finish_cells() (from accumulate) adds the forces to the atoms and binds
+  // the view that shows the cells in local atom indices.
+  int all_cell_types = 1;
+  int ncell_local = 0, ncell_all = 0;
+  std::vector<int> cell_local, cell_scratch;
+  std::vector<double> cell_xbuf, cell_fbuf;
+  bigint cell_map_version = 0;  // changes when the list is not the last one
+  tessera::SubsetCells subset;
+  std::vector<double> cell_e_atom, cell_pc[4];  // per owned atom; compact per-cell values
+  void check_cell_types();
+  void gather_cells();
+  const double *cell_x() const;
+  double *cell_f();
+  tagint cell_tag(int p) const;
+  int cell_atom(int p) const { return all_cell_types ? p : cell_local[p]; }
+  void finish_cells();
+  const double *compact_values(const double *per_atom, int k);
   // Shared by the units: this step's 0-based types, cell energy array and
   // per-cell A0 ('fix property/atom d_area0').
   void prepare_atoms();

@@ -88,7 +88,7 @@ void Vertex3d::check_against_scratch(const tessera::Points3 &pts, const tessera:
       error->one(FLERR,
                  "pair_style vertex/voronoi incremental check: the cell of atom {} differs from a "
                  "from-scratch tetrahedralisation at step {} (volume {} vs {}, surface {} vs {})",
-                 atom->tag[c], update->ntimestep, tess3.volume[c], ref.volume[c], tess3.surface[c],
+                 pair->cell_tag(c), update->ntimestep, tess3.volume[c], ref.volume[c], tess3.surface[c],
                  ref.surface[c]);
   }
 }
@@ -128,9 +128,11 @@ tessera::Region3 Vertex3d::subdomain() const
 
 bool Vertex3d::tessellate()
 {
-  const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
-  const tessera::Points3 pts{&atom->x[0][0], nall, 3};
+  // The owned and ghost cells (the pair style's list of cell atoms).
+  pair->gather_cells();
+  const int nlocal = pair->ncell_local;
+  const int nall = pair->ncell_all;
+  const tessera::Points3 pts{pair->cell_x(), nall, 3};
   // Fewer than 4 points, or all in one plane (a few cells in a large box
   // with a thin ghost shell): the cells are unbounded, so the shell must grow.
   bool flat = nall < 4;
@@ -197,7 +199,7 @@ bool Vertex3d::tessellate()
     } catch (tessera::Error &) {
       // Redo with atom IDs so that the message names them.
       std::vector<long> ids(nall);
-      for (int i = 0; i < nall; i++) ids[i] = atom->tag[i];
+      for (int i = 0; i < nall; i++) ids[i] = pair->cell_tag(i);
       try {
         mesh.build(pts, ids.data());
         mesh.cells(pts, nlocal, tess3, ids.data(), false);
@@ -207,6 +209,7 @@ bool Vertex3d::tessellate()
       error->one(FLERR, "pair_style vertex/voronoi: tessellation failed");
     }
     mesh_ncalls = neighbor->ncalls;
+    mesh_cells = pair->cell_map_version;
     fresh = true;
     pair->stats[2] += 1.0;
   };
@@ -214,7 +217,7 @@ bool Vertex3d::tessellate()
     tess3 = tessera::tessellate_local_3d(pts, 0);
     mesh_ncalls = -1;
   } else if (!pair->incremental || mesh_ncalls != neighbor->ncalls || !mesh.valid() ||
-             mesh.n_points() != nall) {
+             mesh.n_points() != nall || mesh_cells != pair->cell_map_version) {
     build();
   } else if (mesh.advance(pts, nlocal, lo, hi, tess3)) {
     pair->stats[3] += mesh.flips_last_update();
@@ -241,16 +244,16 @@ void Vertex3d::compute(int eflag, int vflag)
     pair->ev_init(eflag, vflag);
   }
   const double t1 = MPI_Wtime();
-  const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
+  const int nlocal = pair->ncell_local;
+  const int nall = pair->ncell_all;
   pair->prepare_atoms();
-  const tessera::Points3 pts{&atom->x[0][0], nall, 3};
+  const tessera::Points3 pts{pair->cell_x(), nall, 3};
   // Per-atom virial (compute stress/atom): each cell's own energy term's
   // virial, assigned to its atom; the cells' virials add up to the total.
   if (pair->vflag_atom) pair->cell_w.resize(9 * static_cast<size_t>(nlocal));
   tessera::ForceOutput3 out;
   try {
-    out = tessera::compute_forces_3d(tess3, pts, pair->type0.data(), pair->model, &atom->f[0][0],
+    out = tessera::compute_forces_3d(tess3, pts, pair->type0.data(), pair->model, pair->cell_f(),
                                      3, pair->cell_e.data(),
                                      pair->vflag_atom ? pair->cell_w.data() : nullptr);
   } catch (tessera::Error &e) {

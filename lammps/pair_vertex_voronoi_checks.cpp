@@ -37,11 +37,15 @@ using namespace LAMMPS_NS;
 
 void PairVertexVoronoi::check_cutoff_range() const
 {
+  // The cell types only: other types (particles under hybrid/overlay) have no size here.
   double smin = 0.0, smax = 0.0;
+  bool first = true;
   for (int i = 1; i <= atom->ntypes; i++) {
+    if (!type_set[i]) continue;
     const double s = cell_size(i);
-    if (i == 1 || s < smin) smin = s;
-    if (i == 1 || s > smax) smax = s;
+    if (first || s < smin) smin = s;
+    if (first || s > smax) smax = s;
+    first = false;
   }
   if (!(smin > 0.0)) return;
   const double lo = 0.01 * smin, hi = 100.0 * smax;

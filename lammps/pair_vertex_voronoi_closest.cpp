@@ -9,6 +9,7 @@
 ------------------------------------------------------------------------- */
 
 #include "pair_vertex_voronoi.h"
+#include "pair_vertex_voronoi_model.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -59,20 +60,21 @@ bool PairVertexVoronoi::closest_neighbour(int i, const double *owned_x, tagint &
 /* The closest pair of neighbours among this rank's cells at this force
    computation, for the error message of lost atoms (IDs and distance are
    kept: they are read at the next step, after the atoms moved); the
-   confluent unit gets it from compute_forces, the others from here. */
+   confluent unit gets it from compute_forces, the others from here.  Read
+   from the unit's own cells, in the list of cell atoms (gather_cells). */
 
 void PairVertexVoronoi::note_closest_pair()
 {
   double best = -1.0;
   int bi = -1, bq = -1;
-  const tessera::Contacts c = cells().contacts();
+  const tessera::Contacts c = unit->cells().contacts();
   const int dim = domain->dimension;
-  double **x = atom->x;
+  const double *x = cell_x();
   for (int i = 0; i < c.n_owned; i++)
     for (int k = c.offset[i]; k < c.offset[i + 1]; k++) {
       const int q = c.neighbor[k];
       double r2 = 0.0;
-      for (int a = 0; a < dim; a++) r2 += (x[q][a] - x[i][a]) * (x[q][a] - x[i][a]);
+      for (int a = 0; a < dim; a++) r2 += (x[3 * q + a] - x[3 * i + a]) * (x[3 * q + a] - x[3 * i + a]);
       if (best < 0.0 || r2 < best) {
         best = r2;
         bi = i;
@@ -82,16 +84,16 @@ void PairVertexVoronoi::note_closest_pair()
   note_closest_pair(bi, bq, best);
 }
 
-/* Records owned atom i and atom q at squared distance d2 as this step's
-   closest pair (i < 0: none). */
+/* Records owned cell i and cell q (in the list of cell atoms) at squared
+   distance d2 as this step's closest pair (i < 0: none). */
 
 void PairVertexVoronoi::note_closest_pair(int i, int q, double d2)
 {
   close_d = -1.0;
   if (i >= 0) {
     close_d = std::sqrt(d2);
-    close_i = atom->tag[i];
-    close_j = atom->tag[q];
+    close_i = cell_tag(i);
+    close_j = cell_tag(q);
   }
   close_step = update->ntimestep;
 }

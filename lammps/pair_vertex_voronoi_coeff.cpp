@@ -192,6 +192,7 @@ void PairVertexVoronoi::coeff(int narg, char **arg)
     const int how = het_quadratic ? 2 : 1;
     int count = 0;
     auto set = [&](int i, int j) {
+      setflag[i][j] = 1;    // pair_style hybrid maps the pair I J to this style
       lambda_set[i][j] = lambda_set[j][i] = how;
       if (how == 1) {
         lambda[i][j] = lambda[j][i] = lam;

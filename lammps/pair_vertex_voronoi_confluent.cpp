@@ -60,22 +60,22 @@ tessera::Region VertexConfluent::subdomain() const
 
 void VertexConfluent::prepare()
 {
+  pair->gather_cells();
   pair->prepare_atoms();
-  const int nall = atom->nlocal + atom->nghost;
-  cell_pass.set(tessera::Points{&atom->x[0][0], nall, 3}, pair->type0.data(), pair->model,
-                pair->cell_e.data());
+  cell_pass.set(tessera::Points{pair->cell_x(), pair->ncell_all, 3}, pair->type0.data(),
+                pair->model, pair->cell_e.data());
 }
 
-/* Triangulation of owned + ghost atoms.  Between neighbor list builds the
-   atoms keep their local indices, so the mesh of the previous step is
-   updated by flips; after a rebuild (atoms exchanged, sorted, or a new
-   run) it is triangulated from scratch. */
+/* Triangulation of owned + ghost cells (the pair style's list of cell
+   atoms).  Between neighbor list builds the atoms keep their local indices,
+   so the mesh of the previous step is updated by flips; after a rebuild
+   (atoms exchanged, sorted, or a new run) it is triangulated from scratch. */
 
 bool VertexConfluent::tessellate()
 {
-  const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
-  tessera::Points pts{&atom->x[0][0], nall, 3};
+  const int nlocal = pair->ncell_local;
+  const int nall = pair->ncell_all;
+  tessera::Points pts{pair->cell_x(), nall, 3};
   const double w = pair->ghost_width();
   const tessera::Region sub = subdomain();
   // The updated mesh is certified inside a smaller region: thin triangles on
@@ -118,7 +118,7 @@ bool VertexConfluent::tessellate()
       }
       // Redo with atom IDs so that the message names them.
       std::vector<long> ids(nall);
-      for (int i = 0; i < nall; i++) ids[i] = atom->tag[i];
+      for (int i = 0; i < nall; i++) ids[i] = pair->cell_tag(i);
       try {
         mesh.build(pts, ids.data());
       } catch (tessera::Error &e) {
@@ -131,6 +131,7 @@ bool VertexConfluent::tessellate()
       error->one(FLERR, "pair_style vertex/voronoi: tessellation failed");
     }
     mesh_ncalls = neighbor->ncalls;
+    mesh_cells = pair->cell_map_version;
     fresh = true;
     stats[2] += 1.0;
   };
@@ -140,7 +141,7 @@ bool VertexConfluent::tessellate()
   if (nlocal == 0)
     ;
   else if (!pair->incremental || mesh_ncalls != neighbor->ncalls || !mesh.valid() ||
-           mesh.n_points() != nall)
+           mesh.n_points() != nall || mesh_cells != pair->cell_map_version)
     build();
   else if (mesh.advance(pts, nlocal, lo_inc, hi_inc, tess, fuse_cells ? &cell_pass : nullptr)) {
     stats[3] += mesh.flips_last_update();
@@ -196,7 +197,7 @@ void VertexConfluent::check_against_scratch(const tessera::Points &pts, const te
       error->one(FLERR,
                  "pair_style vertex/voronoi incremental check: the cell of atom {} differs from a "
                  "from-scratch triangulation at step {} (area {} vs {}, perimeter {} vs {})",
-                 atom->tag[c], update->ntimestep, tess.area[c], ref.area[c], tess.perimeter[c],
+                 pair->cell_tag(c), update->ntimestep, tess.area[c], ref.area[c], tess.perimeter[c],
                  ref.perimeter[c]);
   }
 }
@@ -217,18 +218,18 @@ void VertexConfluent::compute(int eflag, int vflag)
     prepare();
   }
   fuse_cells = false;
-  const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
+  const int nlocal = pair->ncell_local;
+  const int nall = pair->ncell_all;
   const double t1 = MPI_Wtime();
 
-  tessera::Points pts{&atom->x[0][0], nall, 3};
+  tessera::Points pts{pair->cell_x(), nall, 3};
   // Per-atom virial (compute stress/atom): each cell's own energy term's
   // virial, assigned to its atom; the cells' virials add up to the total.
   if (pair->vflag_atom) pair->cell_w.resize(4 * static_cast<size_t>(nlocal));
   tessera::ForceOutput out;
   try {
     // The global virial comes from LAMMPS's f dot r (virial_fdotr_compute).
-    out = tessera::compute_forces(tess, pts, pair->type0.data(), pair->model, &atom->f[0][0], 3,
+    out = tessera::compute_forces(tess, pts, pair->type0.data(), pair->model, pair->cell_f(), 3,
                                   pair->cell_e.data(),
                                   pair->vflag_atom ? pair->cell_w.data() : nullptr, false,
                                   &cell_pass);

@@ -33,14 +33,16 @@ void VertexFinite::init()
 void VertexFinite::compute(int /*eflag*/, int /*vflag*/)
 {
   const double t0 = MPI_Wtime();
-  const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
-  tessera::Points pts{&atom->x[0][0], nall, 3};
+  // The owned and ghost cells (atoms that are no cells leave holes).
+  pair->gather_cells();
+  const int nlocal = pair->ncell_local;
+  const int nall = pair->ncell_all;
+  tessera::Points pts{pair->cell_x(), nall, 3};
   try {
     ftess = tessera::finite_tessellate(pts, nlocal, pair->radius);
   } catch (tessera::Error &) {
     std::vector<long> ids(nall);
-    for (int i = 0; i < nall; i++) ids[i] = atom->tag[i];
+    for (int i = 0; i < nall; i++) ids[i] = pair->cell_tag(i);
     try {
       ftess = tessera::finite_tessellate(pts, nlocal, pair->radius, ids.data());
     } catch (tessera::Error &e) {
@@ -57,7 +59,7 @@ void VertexFinite::compute(int /*eflag*/, int /*vflag*/)
   tessera::ForceOutput out;
   try {
     out = tessera::finite_forces(ftess, pts, pair->type0.data(), pair->model,
-                                 pair->free_t0.data(), &atom->f[0][0], 3, pair->cell_e.data(),
+                                 pair->free_t0.data(), pair->cell_f(), 3, pair->cell_e.data(),
                                  pair->vflag_atom ? pair->cell_w.data() : nullptr);
   } catch (tessera::Error &e) {
     error->one(FLERR, "pair_style vertex/voronoi at step {}: {}", update->ntimestep, e.what());

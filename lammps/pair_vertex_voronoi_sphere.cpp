@@ -205,11 +205,13 @@ void VertexSphere::init()
 /* Every cell's ID, type, position and per-cell values (d_area0, d_ka,
    d_kp, d_perim0, each when defined) on every rank, sorted by ID.  (The
    owned values are checked by the pair style's prepare_atoms before the
-   force computation reads them.) */
+   force computation reads them.)  Cells only: the pair style's list of
+   cell atoms (gather_cells), whose indices the view and forces use. */
 
 void VertexSphere::gather()
 {
-  const int nlocal = atom->nlocal;
+  pair->gather_cells();
+  const int nlocal = pair->ncell_local;
   const char *names[NPC] = {"area0", "ka", "kp", "perim0"};
   const double *pc[NPC] = {nullptr, nullptr, nullptr, nullptr};
   for (int k = 0; k < NPC; k++) {
@@ -220,8 +222,9 @@ void VertexSphere::gather()
   }
   constexpr int W = 5 + NPC;
   std::vector<double> mine(static_cast<size_t>(W) * nlocal);
-  for (int i = 0; i < nlocal; i++) {
-    double *m = &mine[static_cast<size_t>(W) * i];
+  for (int c = 0; c < nlocal; c++) {
+    double *m = &mine[static_cast<size_t>(W) * c];
+    const int i = pair->cell_atom(c);
     m[0] = static_cast<double>(atom->tag[i]);
     m[1] = atom->type[i] - 1;
     for (int d = 0; d < 3; d++) m[2 + d] = atom->x[i][d];
@@ -256,18 +259,20 @@ void VertexSphere::gather()
     for (int d = 0; d < 3; d++) xall[3 * k + d] = m[2 + d];
     for (int q = 0; q < NPC; q++) pcall[q][k] = m[5 + q];
   }
-  // Each owned atom's index in the list, and each listed cell's local index.
+  // Each owned cell's index in the list, and each listed cell's index in
+  // the pair style's list of (owned and ghost) cell atoms.
   owned.resize(nlocal);
   for (int i = 0; i < nlocal; i++)
-    owned[i] = static_cast<int>(std::lower_bound(tags.begin(), tags.end(), atom->tag[i]) -
+    owned[i] = static_cast<int>(std::lower_bound(tags.begin(), tags.end(), pair->cell_tag(i)) -
                                 tags.begin());
   // (Its own lookup: LAMMPS keeps an atom map only when asked to.)  Owned
   // atoms come first, so an owned atom is never replaced by a ghost image.
   local.assign(n, -1);
-  const int nall = nlocal + atom->nghost;
+  const int nall = pair->ncell_all;
   for (int i = 0; i < nall; i++) {
-    const auto it = std::lower_bound(tags.begin(), tags.end(), atom->tag[i]);
-    if (it != tags.end() && *it == atom->tag[i] && local[it - tags.begin()] < 0)
+    const tagint tag = pair->cell_tag(i);
+    const auto it = std::lower_bound(tags.begin(), tags.end(), tag);
+    if (it != tags.end() && *it == tag && local[it - tags.begin()] < 0)
       local[it - tags.begin()] = i;
   }
 }
@@ -284,9 +289,10 @@ bool VertexSphere::tessellate()
     error->all(FLERR, "pair_style vertex/voronoi (surface sphere) at step {}: {}",
                update->ntimestep, e.what());
   }
-  const int nlocal = atom->nlocal;
-  const int nall = nlocal + atom->nghost;
-  cells_.bind(tess, owned, local, nall, {&atom->x[0][0], nall, 3});
+  const int nlocal = pair->ncell_local;
+  const int nall = pair->ncell_all;
+  const double *x = pair->cell_x();
+  cells_.bind(tess, owned, local, nall, {x, nall, 3});
   // A neighbour of an owned cell (or a point of a multifold ring around it)
   // that is no local atom: the ghost shell must reach it.
   double need = 0.0;
@@ -296,7 +302,7 @@ bool VertexSphere::tessellate()
     for (int i = 0; i < nlocal; i++) {
       double r2 = 0.0;
       for (int d = 0; d < 3; d++) {
-        const double dx = xall[3 * p + d] - atom->x[i][d];
+        const double dx = xall[3 * p + d] - x[3 * i + d];
         r2 += dx * dx;
       }
       dmin = std::min(dmin, r2);
@@ -319,7 +325,7 @@ void VertexSphere::compute(int eflag, int vflag)
     pair->ev_init(eflag, vflag);
   }
   const double t1 = MPI_Wtime();
-  const int nlocal = atom->nlocal;
+  const int nlocal = pair->ncell_local;
   const int n = static_cast<int>(tags.size());
   pair->prepare_atoms();
   // The energy of every cell needs every cell's A0, KA, KP, P0: the
@@ -344,14 +350,14 @@ void VertexSphere::compute(int eflag, int vflag)
   if (!failed.empty())
     error->all(FLERR, "pair_style vertex/voronoi (surface sphere) at step {}: {}",
                update->ntimestep, failed);
-  double **f = atom->f;
+  double *f = pair->cell_f();
   double energy = 0.0;
   if (pair->vflag_atom) pair->cell_w.assign(9 * static_cast<size_t>(nlocal), 0.0);
   double v[6] = {0, 0, 0, 0, 0, 0};
   for (int i = 0; i < nlocal; i++) {
     const int k = owned[i];
     const double *fk = &fall[3 * static_cast<size_t>(k)];
-    for (int d = 0; d < 3; d++) f[i][d] += fk[d];
+    for (int d = 0; d < 3; d++) f[3 * i + d] += fk[d];
     pair->cell_e[i] = eall[k];
     energy += eall[k];
     // The virial about the centre, of the point on the sphere.

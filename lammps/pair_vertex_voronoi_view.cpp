@@ -83,7 +83,7 @@ bool PairVertexVoronoi::view_matches_state()
 
 bool PairVertexVoronoi::cells_current()
 {
-  int ok = unit && tess_step == update->ntimestep && unit->cells().n_owned() == atom->nlocal;
+  int ok = unit && tess_step == update->ntimestep && cells().n_owned() == atom->nlocal;
   int all = 0;
   MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, world);
   if (!all) return false;

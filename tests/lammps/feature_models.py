@@ -27,9 +27,43 @@ pair_coeff 1 2 quadratic 0.05
 """
 
 
-def model_script(model, data=None):
+# Particles: atoms 5, 30 and 51 of the tissue made type 3, no cells, which
+# repel every atom through pair soft (A, cutoff per model) under
+# hybrid/overlay; groups 'particles' and 'cells'.
+PARTICLE_IDS = (5, 30, 51)
+SOFT_CUT = {"3d": 1.3, "3d_tri": 1.3, "sphere": 1.7}
+
+
+def with_particles(model, script):
+    """A model's script with three of its atoms turned into particles."""
+    script = script.replace("create_box 2 box", "create_box 3 box")
+    ids = " ".join(str(i) for i in PARTICLE_IDS)
+    if "read_data" not in script:
+        script = script.replace("mass * 1.0\n", f"group p id {ids}\nset group p type 3\n"
+                                "group p delete\nmass * 1.0\n")
+    script = script.replace("mass * 1.0\n", "mass * 1.0\ngroup particles type 3\n"
+                            "group cells type 1 2\n")
+    rc = SOFT_CUT.get(model, 1.0)
+    out = []
+    for line in script.split("\n"):
+        if line.startswith("pair_style vertex/voronoi"):
+            line = line.replace("pair_style vertex/voronoi",
+                                "pair_style hybrid/overlay vertex/voronoi") + f" soft {rc}"
+        elif line.startswith("pair_coeff"):
+            w = line.split()
+            line = " ".join(w[:3] + ["vertex/voronoi"] + w[3:])
+        out.append(line)
+    script = "\n".join(out)
+    return script.replace("thermo_modify norm no", f"pair_coeff * 3 soft 2.0 {rc}\n"
+                          "thermo_modify norm no", 1)
+
+
+def model_script(model, data=None, particles=False):
     """The input script of a model's tissue up to the pair style; from a
-    data file if given (the same atom IDs on any number of ranks)."""
+    data file if given (the same atom IDs on any number of ranks); with
+    particles (atoms that are no cells) if asked."""
+    if particles:
+        return with_particles(model, model_script(model, data))
     three = model.startswith("3d")
     finite = model.startswith("finite")
     head = "units lj\natom_style dipole\natom_modify map array\n"

@@ -235,6 +235,36 @@ class VertexLoops(LammpsTestCase):
         self.assertAlmostEqual(rows[0, 2], length, delta=1e-10)
         self.assertEqual(rows[0, 6], 0)
 
+    @nprocs(2)
+    def test_hole_around_a_particle(self):
+        # The removed site holds a particle (type 2, no cell parameters:
+        # pair soft under hybrid/overlay): the cells leave the same hole
+        # around it as around nothing, with the geometry of the discs alone.
+        nx, ny = 8, 8
+        sites = hex_sites(nx, ny) + np.array([0.1, 0.2])
+        removed = 3 * nx + 4
+        types = [2 if k == removed else 1 for k in range(len(sites))]
+        data = data_file(sites, (0.0, nx * A, 0.0, ny * H), types=types)
+        kept = np.delete(sites, removed, axis=0)
+        area, length, corners = hole_geometry(kept, R, sites[removed], within=2 * A)
+        for n in (1, 2):
+            with self.subTest(nprocs=n):
+                text = script("p p p", "processors 2 1 1" if n == 2 else "").replace(
+                    "pair_style vertex/voronoi", "pair_style hybrid/overlay vertex/voronoi").replace(
+                    f"radius {R}\n", f"radius {R} soft 0.9\n").replace(
+                    "pair_coeff * * quadratic", "pair_coeff 1 1 vertex/voronoi quadratic").replace(
+                    "compute loops", "pair_coeff * 2 soft 1.0 0.9\ncompute loops")
+                run = self.run_lmp(text, nprocs=n, files={"cells.data": data})
+                g = [[float(w) for w in line.split()[1:]] for line in run.stdout.splitlines()
+                     if line.startswith("G ")][0]
+                rows = local_rows(run.text("loops.dump"))
+                self.assertEqual(g[0], 1)
+                self.assertAlmostEqual(g[1], area, delta=1e-10)
+                self.assertAlmostEqual(rows[0, 2], length, delta=1e-10)
+                self.assertEqual(rows[0, 3], corners)
+                # The cells and the hole tile the box; the particle has no area.
+                self.assertAlmostEqual(g[4] + g[1], nx * A * ny * H, delta=1e-9)
+
     def moving(self, data, boundary, nprocs, steps=20):
         """A Brownian run of the tissue in `data`, loops and cell areas every 5 steps."""
         extra = "processors 2 1 1" if nprocs == 2 else ""

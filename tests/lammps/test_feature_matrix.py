@@ -20,8 +20,8 @@ import numpy as np
 import lmptest
 from feature_outputs import OutputChecks
 from feature_state import StateChecks
-from feature_models import (COEFFS_2D, COEFFS_3D, COEFFS_FINITE, SPHERE_C, SPHERE_R, dim_of,
-                            local_rows, model_script, printed, read_matrix)
+from feature_models import (COEFFS_2D, COEFFS_3D, COEFFS_FINITE, PARTICLE_IDS, SPHERE_C,
+                            SPHERE_R, dim_of, local_rows, model_script, printed, read_matrix)
 from feature_signal import check_signal
 from lmptest import LammpsTestCase
 
@@ -40,13 +40,22 @@ class FeatureMatrix(OutputChecks, StateChecks, LammpsTestCase):
 
     # ---- the checks: each gets the model and returns nothing (asserts) ----
 
-    def check_forces(self, model):
+    def check_forces(self, model, particles=False):
         d = dim_of(model)
         h = 1e-5
+        if model == "sphere" and particles:
+            # A moved cell is put back on the sphere: the two displaced
+            # points are symmetric only to O(h^2/R), an O(h) error in the
+            # difference quotient (4e-6 at h = 1e-5 for atom 17, with or
+            # without the particles) that the smaller forces of a particle
+            # no longer hide in the tolerance.
+            h = 1e-6
         moves = ""
+        # (With particles atom 5 is one: the force on it is soft's alone.)
         for atom in (5, 17):
             moves += f"group a{atom} id {atom}\nrun 0\n"
             moves += f'print "F {atom} $(fx[{atom}]:%.17g) $(fy[{atom}]:%.17g) $(fz[{atom}]:%.17g)"\n'
+            moves += f'print "X {atom} $(x[{atom}]:%.17g) $(y[{atom}]:%.17g) $(z[{atom}]:%.17g)"\n'
             for k, axis in enumerate("xyz"[:d]):
                 v = ["0", "0", "0"]
                 v[k] = repr(h)
@@ -57,8 +66,19 @@ class FeatureMatrix(OutputChecks, StateChecks, LammpsTestCase):
                 moves += f'print "EM {atom} {k} $(pe:%.17g)"\n'
                 v[k] = repr(h)
                 moves += f"displace_atoms a{atom} move {' '.join(v)} units box\n"
-        run = self.run_lmp(model_script(model) + "thermo_style custom step pe\nrun 0\n" + moves)
+        run = self.run_lmp(model_script(model, particles=particles) +
+                           "thermo_style custom step pe\nrun 0\n" + moves)
         forces = {int(r[0]): r[1:] for r in printed(run, "F")}
+        if model == "sphere":
+            # A cell is put back on the sphere after a move: central
+            # differences see the force's tangent part, (1 - u u) F (the
+            # pair style's own forces are tangent; another style's need not be).
+            for atom, x in ((int(r[0]), np.array(r[1:])) for r in printed(run, "X")):
+                if particles and atom in PARTICLE_IDS:
+                    continue
+                u = (x - SPHERE_C) / np.linalg.norm(x - SPHERE_C)
+                f = np.array(forces[atom])
+                forces[atom] = list(f - np.dot(f, u) * u)
         ep = {(int(r[0]), int(r[1])): r[2] for r in printed(run, "EP")}
         em = {(int(r[0]), int(r[1])): r[2] for r in printed(run, "EM")}
         scale = max(abs(x) for f in forces.values() for x in f) + 1e-3
@@ -487,26 +507,33 @@ print "E $(pe:%.17g)"
                   "finite_per": COEFFS_FINITE}.get(model, COEFFS_2D)
         return script.replace(coeffs, self.thesis_lines(model, change))
 
-    def check_restart(self, model):
+    def check_restart(self, model, particles=False):
         dyn = """fix p all polarity 0.3 1.0 neighbor 0.5
 fix b all brownian 1.0 1 gamma_t 1.0 rng none
 timestep 0.005
 thermo_style custom step pe
 """
         end = "write_dump all custom end.dump id xu yu zu mux muy muz modify format float %.17g\n"
-        whole = self.run_lmp(model_script(model) + dyn + "run 20\n" + end).dump("end.dump")[0]
-        first = self.run_lmp(model_script(model) + dyn + "run 10\nwrite_restart half.restart\n")
+        start = model_script(model, particles=particles)
+        whole = self.run_lmp(start + dyn + "run 20\n" + end).dump("end.dump")[0]
+        first = self.run_lmp(start + dyn + "run 10\nwrite_restart half.restart\n")
         head = "dimension 2\n" if dim_of(model) == 2 else ""
-        second = self.run_lmp(head + f"read_restart {first.path('half.restart')}\n" + dyn + "run 10\n" + end)
+        # pair_style hybrid keeps its sub-styles' settings in restart files,
+        # not their coefficients (LAMMPS's rule): they are given again.
+        coeffs = "".join(line + "\n" for line in start.split("\n")
+                         if particles and line.startswith("pair_coeff"))
+        second = self.run_lmp(head + f"read_restart {first.path('half.restart')}\n" + coeffs + dyn +
+                              "run 10\n" + end)
         f = second.dump("end.dump")[0]
         for col in ("xu", "yu", "zu", "mux", "muy", "muz"):
             np.testing.assert_allclose(f[col], whole[col], rtol=0, atol=1e-10, err_msg=col)
 
-    def check_ranks(self, model):
-        data = self.run_lmp(model_script(model) + "write_data cfg.data\n").text("cfg.data")
+    def check_ranks(self, model, particles=False):
+        data = self.run_lmp(model_script(model, particles=particles) +
+                            "write_data cfg.data\n").text("cfg.data")
         results = []
         for n in (1, 2, 4):
-            script = model_script(model, data="cfg.data") + """compute c all vertex/atom
+            script = model_script(model, data="cfg.data", particles=particles) + """compute c all vertex/atom
 compute t all vertex/tissue
 thermo_style custom step pe c_t[1]
 dump d all custom 1 f.dump id fx fy fz c_c[1] c_c[2]
@@ -520,6 +547,67 @@ print "E $(pe:%.17g)"
             self.assertAlmostEqual(e, results[0][0], delta=1e-10 * abs(results[0][0]))
             for col in ("fx", "fy", "fz", "c_c[1]", "c_c[2]"):
                 np.testing.assert_allclose(f[col], results[0][1][col], rtol=0, atol=1e-10, err_msg=col)
+
+    def check_particles(self, model):
+        """Atoms that are no cells (pair_style hybrid/overlay vertex/voronoi
+        ... soft): forces = central differences of the total pe, on a
+        particle and on a cell; the particles never enter a tessellation:
+        the cells' energy and areas are those of the same cells with the
+        particles deleted and pair_style vertex/voronoi alone, and the
+        particles' rows of compute vertex/atom are zero."""
+        self.check_forces(model, particles=True)
+        d = dim_of(model)
+        cols = " ".join(f"c_c[{k}]" for k in range(1, 10))
+        probe = f"""compute c all vertex/atom
+compute pv all pair vertex/voronoi
+compute ps all pair soft
+compute l all vertex/local
+dump d all custom 1 cells.dump id type {cols}
+dump_modify d format float %.17g sort id
+dump n all local 1 nb.dump c_l[1] c_l[2]
+thermo_style custom step pe c_pv c_ps vol
+run 0
+print "E $(pe:%.17g) $(c_pv:%.17g) $(c_ps:%.17g) $(vol:%.17g)"
+"""
+        run = self.run_lmp(model_script(model, particles=True) + probe)
+        pe, pv, ps, vol = printed(run, "E")[0]
+        self.assertAlmostEqual(pe, pv + ps, delta=1e-10 * abs(pe))
+        self.assertGreater(ps, 0.0)    # the particles touch the cells
+        f = run.dump("cells.dump")[0]
+        part = f["type"] == 3
+        self.assertEqual(sorted(f["id"][part].astype(int)), list(PARTICLE_IDS))
+        for k in range(1, 10):
+            self.assertTrue(np.all(f[f"c_c[{k}]"][part] == 0.0), f"c_c[{k}] of a particle")
+        self.assertTrue(np.all(f["c_c[1]"][~part] > 0.0))
+        nb = local_rows(run, "nb.dump")[0]
+        self.assertFalse(set(nb.ravel().astype(int)) & set(PARTICLE_IDS))
+        # The same cells without the particles, the pair style alone.
+        coeffs = {"3d": COEFFS_3D, "3d_tri": COEFFS_3D, "finite_open": COEFFS_FINITE,
+                  "finite_per": COEFFS_FINITE}.get(model, COEFFS_2D)
+        alone = model_script(model).replace("create_box 2 box", "create_box 3 box")
+        ids = " ".join(str(i) for i in PARTICLE_IDS)
+        alone = alone.replace("mass * 1.0\n", f"group p id {ids}\ndelete_atoms group p compress no\nmass * 1.0\n")
+        alone = alone.replace(coeffs, coeffs + "pair_coeff 3 3 1.0 1.0 0.0 0.0\n")
+        ref = self.run_lmp(alone + """compute c all vertex/atom
+dump d all custom 1 cells.dump id c_c[1] c_c[2]
+dump_modify d format float %.17g sort id
+run 0
+print "E $(pe:%.17g)"
+""")
+        self.assertAlmostEqual(pv, printed(ref, "E")[0][0], delta=1e-10 * abs(pv))
+        g = ref.dump("cells.dump")[0]
+        np.testing.assert_array_equal(g["id"], f["id"][~part])
+        for col in ("c_c[1]", "c_c[2]"):
+            np.testing.assert_allclose(f[col][~part], g[col], rtol=1e-12, err_msg=col)
+        if model in ("confluent", "confluent_tri", "3d", "3d_tri"):
+            # The cells tile the box whatever lies among them.
+            self.assertAlmostEqual(f["c_c[1]"].sum(), vol, delta=1e-9 * vol)
+
+    def check_particles_ranks(self, model):
+        self.check_ranks(model, particles=True)
+
+    def check_particles_restart(self, model):
+        self.check_restart(model, particles=True)
 
     def check_rosette(self, model):
         # compute vertex/tissue rosette L: clusters of Voronoi vertices joined by
@@ -747,7 +835,7 @@ def _make(model, feature, expect):
             with self.assertRaises(AssertionError) as caught:
                 check(self, model)
             self.assertIn(fragment, str(caught.exception))
-    if feature in ("ranks", "fix_order"):
+    if feature.endswith("ranks") or feature == "fix_order":
         test.nprocs = 4
     test.__doc__ = f"{model} x {feature}: {expect}"
     return test

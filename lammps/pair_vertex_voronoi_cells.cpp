@@ -1,0 +1,173 @@
+/* ----------------------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   pair_style vertex/voronoi: which atoms are cells.  The cells are the
+   atoms of the types given cell parameters (pair_coeff I I ...); under
+   pair_style hybrid/overlay the other types' atoms (obstacles, beads,
+   fibre beads, walls) are no cells: no unit ever sees them.  Before each
+   tessellation gather_cells() lists this step's cell atoms, owned first,
+   then ghosts, with their positions; the units tessellate that list, add
+   forces to its own array and name its atoms by cell_tag(); finish_cells()
+   adds those forces to the atoms and binds the view (tessera/subset_cells.h)
+   that shows the cells by local atom index, a non-cell atom an empty cell.
+   When every type is a cell type the list is the atoms themselves.
+------------------------------------------------------------------------- */
+
+#include "pair_vertex_voronoi.h"
+
+#include "pair_vertex_voronoi_model.h"
+
+#include "atom.h"
+#include "error.h"
+#include "force.h"
+#include "group.h"
+
+#include <limits>
+
+using namespace LAMMPS_NS;
+
+/* Called by init_style: the cell types, and the rules of what may be no cell. */
+
+void PairVertexVoronoi::check_cell_types()
+{
+  const int n = atom->ntypes;
+  all_cell_types = 1;
+  int ncell = 0;
+  for (int i = 1; i <= n; i++) {
+    if (type_set[i])
+      ncell++;
+    else
+      all_cell_types = 0;
+  }
+  if (!all_cell_types && force->pair == this) {
+    int t = 1;
+    while (type_set[t]) t++;
+    error->all(FLERR,
+               "pair_style vertex/voronoi: no cell parameters for atom type {}; add 'pair_coeff "
+               "{} {} K A0 Gamma Lambda' to make its atoms cells, or, for atoms that are not "
+               "cells (obstacles, beads), use 'pair_style hybrid/overlay vertex/voronoi ... "
+               "<style> ...' with 'pair_coeff I I vertex/voronoi ...' for the cell types only "
+               "and the other style for type {}",
+               t, t, t, t);
+  }
+  if (ncell == 0)
+    error->all(FLERR,
+               "pair_style vertex/voronoi: no atom type has cell parameters; give them with "
+               "'pair_coeff I I vertex/voronoi K A0 Gamma Lambda' for the cell types");
+  // A junction tension names two cell types.
+  for (int i = 1; i <= n; i++)
+    for (int j = i + 1; j <= n; j++)
+      if (lambda_set[i][j] && (!type_set[i] || !type_set[j]))
+        error->all(FLERR,
+                   "pair_coeff {} {} vertex/voronoi: a junction tension between types {} and {}, "
+                   "but type {} has no cell parameters (its atoms are not cells and have no "
+                   "junctions); give it cell parameters with 'pair_coeff {} {} vertex/voronoi "
+                   "...' or remove this pair_coeff",
+                   i, j, i, j, type_set[i] ? j : i, type_set[i] ? j : i, type_set[i] ? j : i);
+}
+
+void PairVertexVoronoi::gather_cells()
+{
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  if (all_cell_types) {
+    ncell_local = nlocal;
+    ncell_all = nall;
+    return;
+  }
+  const int *type = atom->type;
+  cell_scratch.clear();
+  for (int i = 0; i < nall; i++) {
+    if (i == nlocal) ncell_local = static_cast<int>(cell_scratch.size());
+    if (type_set[type[i]]) cell_scratch.push_back(i);
+  }
+  if (nall == nlocal) ncell_local = static_cast<int>(cell_scratch.size());
+  ncell_all = static_cast<int>(cell_scratch.size());
+  // A different list (atoms exchanged or sorted, types changed): the units
+  // that keep their triangulation between steps start afresh.
+  if (cell_scratch != cell_local) {
+    cell_local.swap(cell_scratch);
+    cell_map_version++;
+  }
+  double **x = atom->x;
+  cell_xbuf.resize(3 * static_cast<size_t>(ncell_all));
+  for (int p = 0; p < ncell_all; p++)
+    for (int d = 0; d < 3; d++) cell_xbuf[3 * p + d] = x[cell_local[p]][d];
+  cell_fbuf.assign(3 * static_cast<size_t>(ncell_all), 0.0);
+}
+
+const double *PairVertexVoronoi::cell_x() const
+{
+  return all_cell_types ? &atom->x[0][0] : cell_xbuf.data();
+}
+
+double *PairVertexVoronoi::cell_f()
+{
+  return all_cell_types ? &atom->f[0][0] : cell_fbuf.data();
+}
+
+tagint PairVertexVoronoi::cell_tag(int p) const
+{
+  return atom->tag[cell_atom(p)];
+}
+
+/* A per-atom array's values of the owned cells, in the list's order
+   (slot k of four), or the array itself when every atom is a cell. */
+
+const double *PairVertexVoronoi::compact_values(const double *per_atom, int k)
+{
+  if (all_cell_types || !per_atom) return per_atom;
+  std::vector<double> &v = cell_pc[k];
+  v.resize(ncell_local);
+  for (int c = 0; c < ncell_local; c++) v[c] = per_atom[cell_local[c]];
+  return v.data();
+}
+
+/* The units are done: their forces go to the atoms, the per-cell energies
+   to owned atoms, and the view shows the cells by local atom index. */
+
+void PairVertexVoronoi::finish_cells()
+{
+  unit->view().energy = cell_e.data();
+  if (all_cell_types) return;
+  double **f = atom->f;
+  for (int p = 0; p < ncell_all; p++) {
+    double *fi = f[cell_local[p]];
+    const double *fp = &cell_fbuf[3 * static_cast<size_t>(p)];
+    fi[0] += fp[0];
+    fi[1] += fp[1];
+    fi[2] += fp[2];
+  }
+  const int nlocal = atom->nlocal;
+  const int nall = nlocal + atom->nghost;
+  cell_e_atom.assign(nlocal, 0.0);
+  for (int c = 0; c < ncell_local; c++) cell_e_atom[cell_local[c]] = cell_e[c];
+  subset.bind(unit->view(), cell_local, nlocal, nall, tessera::Points3{&atom->x[0][0], nall, 3});
+  subset.energy = cell_e_atom.data();
+}
+
+/* For cell-only commands (fix cell/divide, cell/death): stop when an atom
+   of group igroup is no cell, naming the lowest such atom ID and its type. */
+
+void PairVertexVoronoi::require_cells(int igroup, const char *command) const
+{
+  const int groupbit = group->bitmask[igroup];
+  const int *mask = atom->mask, *type = atom->type;
+  tagint first = std::numeric_limits<tagint>::max(), all = 0;
+  int ftype = 0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if ((mask[i] & groupbit) && !is_cell_type(type[i]) && atom->tag[i] < first) {
+      first = atom->tag[i];
+      ftype = type[i];
+    }
+  MPI_Allreduce(&first, &all, 1, MPI_LMP_TAGINT, MPI_MIN, world);
+  if (all == std::numeric_limits<tagint>::max()) return;
+  int t = first == all ? ftype : 0, tall = 0;
+  MPI_Allreduce(&t, &tall, 1, MPI_INT, MPI_MAX, world);
+  error->all(FLERR,
+             "{}: atom {} of group '{}' is not a cell (its type {} has no vertex/voronoi cell "
+             "parameters); give the command a group of cell types only, e.g. 'group cells type "
+             "...'",
+             command, all, group->names[igroup], tall);
+}

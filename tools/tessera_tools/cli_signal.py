@@ -38,8 +38,9 @@ def cmd_plot_kymograph(args):
             except ValueError as err:
                 print(f"{name}: no wave measured ({err})")
                 continue
-            period = "inf (the pattern does not move)" if not np.isfinite(w["period"]) else f"{w['period']:.6g}"
-            print(f"{name}: wavelength {w['wavelength']:.6g}, period {period} {unit}, phase velocity "
+            moving = np.isfinite(w["period"])
+            period = f"{w['period']:.6g} {unit}" if moving else "inf (the pattern does not move)"
+            print(f"{name}: wavelength {w['wavelength']:.6g}, period {period}, phase velocity "
                   f"{w['velocity']:.6g} along +{args.axis}, peak {100 * w['power']:.1f}% of the fluctuation power")
 
 

@@ -228,7 +228,7 @@ def plot_kymograph(kymo, out, dpi=300, vector=None, title=None, cmap="viridis"):
         colours.set_bad("0.75")
         mesh = ax.pcolormesh(kymo.edges, tedges, np.ma.masked_invalid(data), cmap=colours, shading="flat")
         fig.colorbar(mesh, ax=ax, label=label)
-        ax.set_xlabel(f"{kymo.axis}")
+        ax.set_xlabel(f"${kymo.axis}$ " + r"($\sqrt{A_0}$)")
         drawn.append(mesh)
     axes[0].set_ylabel(time_label(kymo.time_known))
     panel_letters(axes)

@@ -7,7 +7,8 @@ The bins are equal slices of the box along the axis (by fractional coordinate, s
 grows or is tilted keeps its N slices); a bin's value is the mean of the column over the cells
 whose centres lie in it, and its density the number of those cells per unit area (the count over
 the slice's area, box area / N; in a 3d box the area of the x-y plane).  An empty bin has no mean:
-it is NaN in the arrays (masked in the picture, an empty field in the CSV) and density 0.
+it is NaN in the arrays (masked in the picture, an empty field in the CSV) and density 0; for the
+measurement it takes the value interpolated linearly between the nearest full bins (periodically).
 
 :func:`measure_wave` takes the 2d Fourier transform of the kymograph (time x position, the mean
 removed, under a Hann window in both directions) and reads the wavelength and the period off its
@@ -135,12 +136,13 @@ def measure_wave(times, positions, field):
         raise ValueError("the frames are not equally spaced in time; select equally spaced frames "
                          "(e.g. --frames ::K) to measure a period")
     dx = (positions[-1] - positions[0]) / (N - 1)
-    if np.isnan(f).any():     # empty bins take their frame's mean: no part in the fluctuation
+    if np.isnan(f).any():     # empty bins: interpolated linearly from the nearest full ones, around the box
         seen = ~np.isnan(f)
         if not seen.any(axis=1).all():
             raise ValueError("a frame has no cell in any bin")
-        rows = np.where(seen, f, 0.0).sum(axis=1) / seen.sum(axis=1)
-        f = np.where(seen, f, rows[:, None])
+        cells = np.arange(N)
+        for k in np.nonzero(~seen.all(axis=1))[0]:
+            f[k, ~seen[k]] = np.interp(cells[~seen[k]], cells[seen[k]], f[k, seen[k]], period=N)
     f = f - f.mean()
     power = np.abs(np.fft.fft2(f)) ** 2
     total = power.sum()

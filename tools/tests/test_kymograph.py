@@ -101,6 +101,27 @@ class Kymograph(unittest.TestCase):
         self.assertLess(abs(L / got["wavelength"] - 1.5), 0.05)
         self.assertLess(abs(FRAMES * EVERY * DT / got["period"] - 4.5), 0.05)
 
+    def test_empty_bins(self):
+        """Cells of bin 4 removed from every other frame: NaN mean, count and density 0 there, the
+        other bins unchanged, and the wave still measured (the hole interpolated) to 0.05 sample."""
+        frames = wave_frames()
+        for f in frames[::2]:
+            keep = np.floor(np.asarray(f["x"]) / WIDTH) != 4
+            f.columns = {k: v[keep] for k, v in f.columns.items()}
+        kymo = kymograph(frames, "d_erk", "x", BINS, dt=DT)
+        self.assertTrue(np.isnan(kymo.values[::2, 4]).all())
+        np.testing.assert_array_equal(kymo.density[::2, 4], 0.0)
+        np.testing.assert_allclose(kymo.values[1::2, 4], [bin_means(t)[4] for t in kymo.times[1::2]], atol=1e-12)
+        np.testing.assert_allclose(np.delete(kymo.values[0], 4), np.delete(bin_means(0.0), 4), atol=1e-12)
+        got = measure_wave(kymo.times, kymo.centres, kymo.values)
+        self.assertLess(abs(L / got["wavelength"] - L * K / (2 * math.pi)), 0.05)
+        self.assertLess(abs(FRAMES * EVERY * DT / got["period"] - FRAMES * EVERY * DT * W / (2 * math.pi)), 0.05)
+        with tempfile.TemporaryDirectory() as d:
+            kymo.write_csv(os.path.join(d, "k.csv"))
+            with open(os.path.join(d, "k.csv")) as f:
+                rows = f.read().splitlines()
+            self.assertEqual(rows[1 + 4].split(",")[3:], ["", "0", "0"])
+
     def test_errors(self):
         kymo = kymograph(wave_frames(), "d_erk", "x", BINS, dt=DT)
         with self.assertRaisesRegex(ValueError, "equally spaced"):

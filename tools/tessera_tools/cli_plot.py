@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
-"""tessera-tools plot: measurement figures (wound, growth, shape, demix, moduli)."""
+"""tessera-tools plot: measurement figures (wound, growth, shape, demix, moduli; kymograph and field
+in cli_signal)."""
 
 import numpy as np
 
@@ -159,14 +160,14 @@ def cmd_plot_moduli(args):
 
 def add_commands(sub):
     """Add this module's commands to the subparsers ``sub`` of tessera-tools."""
-    pl = sub.add_parser("plot", help="measurement figures: wound area, growth N(t), shapes, demixing, moduli vs p0",
+    pl = sub.add_parser("plot", help="measurement figures: wound area, growth N(t), shapes, demixing, moduli vs p0, kymographs, fields",
                         description="One figure per command, print quality (300 dpi, --vector pdf for a vector "
                                     "copy), axes in the model's reduced units. See doc/howto_measure.md.")
     psub = pl.add_subparsers(dest="what", metavar="WHAT")
     psub.required = True
 
-    def common(p):
-        p.add_argument("-o", "--output", required=True, help="picture (.png, .pdf, .svg)")
+    def common(p, required=True):
+        p.add_argument("-o", "--output", "--out", required=required, help="picture (.png, .pdf, .svg)")
         p.add_argument("--dpi", type=int, default=300, help="resolution (default 300)")
         p.add_argument("--vector", metavar="EXT", help="also write a vector copy (pdf or svg)")
         p.add_argument("--title")
@@ -236,3 +237,7 @@ def add_commands(sub):
     pm.add_argument("--route", choices=("hessian", "quasistatic", "both"), default="both")
     common(pm)
     pm.set_defaults(func=cmd_plot_moduli)
+
+    from .cli_signal import add_plot_commands
+
+    add_plot_commands(psub, common)

@@ -207,3 +207,57 @@ def plot_moduli(rows, out, unit=r"$K_A A_0$", dpi=300, vector=None, title=None):
     fig.tight_layout()
     save(fig, out, dpi, vector)
     return drawn
+
+
+def plot_kymograph(kymo, out, dpi=300, vector=None, title=None, cmap="viridis"):
+    """Two panels against time (vertical) and position along the axis (horizontal): the binned
+    column and the cell density (cells per unit area), each with its colour bar; empty bins
+    are grey.  Returns the two images (matplotlib QuadMesh)."""
+    plt = _plt()
+    fig, axes = plt.subplots(1, 2, figsize=(9.0, 4.2), sharey=True)
+    t = kymo.times
+    if len(t) > 1:
+        tedges = np.concatenate([[t[0] - 0.5 * (t[1] - t[0])], 0.5 * (t[1:] + t[:-1]),
+                                 [t[-1] + 0.5 * (t[-1] - t[-2])]])
+    else:
+        tedges = np.array([t[0] - 0.5, t[0] + 0.5])
+    drawn = []
+    for ax, data, label, cm in ((axes[0], kymo.values, kymo.column, cmap),
+                                (axes[1], kymo.density, r"density (cells per unit area)", "magma")):
+        colours = plt.get_cmap(cm).copy()
+        colours.set_bad("0.75")
+        mesh = ax.pcolormesh(kymo.edges, tedges, np.ma.masked_invalid(data), cmap=colours, shading="flat")
+        fig.colorbar(mesh, ax=ax, label=label)
+        ax.set_xlabel(f"${kymo.axis}$ " + r"($\sqrt{A_0}$)")
+        drawn.append(mesh)
+    axes[0].set_ylabel(time_label(kymo.time_known))
+    panel_letters(axes)
+    if title:
+        fig.suptitle(title)
+    save(fig, out, dpi, vector)
+    return drawn
+
+
+def plot_field(frame, tess, column, out, view="box", cmap=None, vmin=None, vmax=None, dpi=300, vector=None,
+               title=None):
+    """The cells of one frame (``tess``: their polygons) coloured by a per-atom ``column`` (e.g. a
+    species ``d_delta``) on a colour scale with its bar, drawn by the tessellation renderer.
+    Returns (values of each cell, the PolyCollection, the index of the cell of each polygon)."""
+    from .render import _figure, _tiles, _title, cell_field, draw_tessellation
+
+    plt = _plt()
+    values, _ = cell_field(frame, tess, column)
+    fig, ax = _figure(frame.box, view)
+    coll = draw_tessellation(ax, frame, tess, field=column, view=view, cmap=cmap or "viridis", vmin=vmin,
+                             vmax=vmax, label=column, categorical=False)
+    ax.set_title(_title(frame, column, title))
+    fig.tight_layout()
+    fig.canvas.draw()
+    _, owner = _tiles(tess, view)
+    fig.savefig(out, dpi=dpi)
+    if vector:
+        from .render import vector_path
+
+        fig.savefig(vector_path(out, vector))
+    plt.close(fig)
+    return values, coll, owner

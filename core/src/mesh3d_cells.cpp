@@ -469,6 +469,7 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
         if (touched[i]) measure_cell(t, pts, i);
     }
   }
+  check_separation_3d(t, pts, ids);
   {
     // Four-fold edges, found through the mesh's adjacency (far points and
     // their tetrahedra count as absent, as CGAL's infinite ones).

@@ -65,7 +65,10 @@ constexpr double kMinLength3 = 1e-100;
 
 // Throws Error naming the closest such pair among the owned cells' faces
 // of t (ids: as for tessellate_local_3d), before any force is computed.
-void check_separation_3d(const Tessellation3 &t, const Points3 &pts, const long *ids);
+// d2min (optional): the smallest squared distance across those faces, if
+// the caller has it (then nothing more is read when it is clearly fine).
+void check_separation_3d(const Tessellation3 &t, const Points3 &pts, const long *ids,
+                         double d2min = -1.0);
 
 // Parity of the permutation (a, b, c, d) of (0, 1, 2, 3): +1 even, -1 odd.
 inline int parity(int a, int b, int c, int d) {

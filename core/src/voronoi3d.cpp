@@ -418,19 +418,22 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
 
 namespace detail3 {
 
-void check_separation_3d(const Tessellation3 &t, const Points3 &pts, const long *ids) {
-  // A first filter with one bound for all faces (the largest radius and
-  // coordinate), then the pair's own limit.
+void check_separation_3d(const Tessellation3 &t, const Points3 &pts, const long *ids,
+                         double d2min) {
+  // A first filter with one bound for all faces (the largest radius, and
+  // the largest owned coordinate plus a diameter: a neighbour across a face
+  // lies within 2 r of the cell's centre), then the pair's own limit.
   double rmax = 0.0, xmax = 0.0;
   for (const double r : t.radius)
     if (!(r <= rmax)) rmax = r;  // (NaN propagates: every face is then looked at)
-  for (int i = 0; i < t.n_points; ++i) {
+  for (int i = 0; i < t.n_owned; ++i) {
     const double *p = pts.p(i);
     xmax = std::max({xmax, std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2])});
   }
-  const double bound =
-      std::max({kMinSeparation3 * rmax, kMinSeparation3Coord * xmax, kMinLength3});
+  const double bound = std::max(
+      {kMinSeparation3 * rmax, kMinSeparation3Coord * (xmax + 2.0 * rmax), kMinLength3});
   const double bound2 = std::isfinite(bound) ? bound * bound : std::numeric_limits<double>::infinity();
+  if (d2min >= 0.0 && d2min >= bound2) return;
   int bi = -1, bj = -1;
   double bd = 0.0, blim = 0.0;
   for (int i = 0; i < t.n_owned; ++i) {

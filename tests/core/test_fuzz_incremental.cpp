@@ -1,13 +1,14 @@
 // Tessera tests.  SPDX-License-Identifier: GPL-2.0-or-later
 //
-// The 2D incremental path (Mesh::advance: flips, cells kept from step to step) against a from-scratch
-// triangulation on randomized degenerate input: a periodic patch of random
-// points with a tight cluster or near-duplicates (widths 1e-2 .. 1e-8 of
-// the spacing, above the separation limit), moved by small random steps
-// (1e-3 .. 1e-12), possibly several times.  After each move the updated
-// mesh's cells must equal a rebuild's (same neighbours across edges above
-// round-off, areas and perimeters within the conditioning of the input),
-// or update() must ask for a rebuild.  Seeded and bounded
+// The 2D incremental path (Mesh::advance: flips, cells kept from step to
+// step) against a from-scratch triangulation on randomized degenerate
+// input: a periodic patch of random points or a square grid, with a tight
+// cluster or near-duplicates (widths 1e-2 .. 1e-8 of the spacing, above the
+// separation limit), moved by small random steps (1e-3 .. 1e-12), possibly
+// several times.  After each move the updated mesh's cells must equal a
+// rebuild's (same neighbours across edges above round-off, areas and
+// perimeters within the conditioning of the input), or advance() must ask
+// for a rebuild.  Seeded and bounded
 // (TESSERA_FUZZ_SCALE multiplies the count, TESSERA_FUZZ_SEED shifts it).
 
 #include "test_util.h"
@@ -69,15 +70,27 @@ std::string one(uint64_t seed) {
   Patch p;
   const int n0 = 6 + rng.below(30);
   p.L = std::sqrt(static_cast<double>(n0));
-  for (int i = 0; i < n0; ++i) {
-    p.own.push_back(rng.uniform(0.0, p.L));
-    p.own.push_back(rng.uniform(0.0, p.L));
+  // Random points, or a square grid (co-circular: four-fold vertices).
+  const bool grid = rng.below(2);
+  const int side = 3 + rng.below(4);
+  if (grid) p.L = side;
+  for (int i = 0; i < (grid ? side * side : n0); ++i) {
+    if (grid) {
+      p.own.push_back(i % side + 0.5);
+      p.own.push_back(i / side + 0.5);
+    } else {
+      p.own.push_back(rng.uniform(0.0, p.L));
+      p.own.push_back(rng.uniform(0.0, p.L));
+    }
   }
   // A cluster of k points round a point, width w, or near-duplicates.
   const double widths[] = {1e-2, 1e-4, 1e-6, 1e-8};
   const double w = widths[rng.below(4)];
   const int k = 1 + rng.below(5);
-  const double cx = rng.uniform(0.2, 0.8) * p.L, cy = rng.uniform(0.2, 0.8) * p.L;
+  // (round a random place, or round one of the points: near-duplicates)
+  const int pick = rng.below(static_cast<int>(p.own.size() / 2));
+  const double cx = rng.below(2) ? p.own[2 * pick] : rng.uniform(0.2, 0.8) * p.L;
+  const double cy = rng.below(2) ? p.own[2 * pick + 1] : rng.uniform(0.2, 0.8) * p.L;
   for (int j = 0; j < k; ++j) {
     p.own.push_back(cx + w * rng.uniform(-1.0, 1.0));
     p.own.push_back(cy + w * rng.uniform(-1.0, 1.0));

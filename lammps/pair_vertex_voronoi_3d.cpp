@@ -204,7 +204,11 @@ bool Vertex3d::tessellate()
         mesh.build(pts, ids.data());
         mesh.cells(pts, nlocal, tess3, ids.data(), false);
       } catch (tessera::Error &e) {
-        error->one(FLERR, "pair_style vertex/voronoi at step {}: {}", update->ntimestep, e.what());
+        error->one(FLERR,
+                   "pair_style vertex/voronoi at step {}: {} (during a run two centres come "
+                   "this close when the timestep does not resolve their forces: use a smaller "
+                   "timestep, 'fix dt/reset' or fix brownian/heun)",
+                   update->ntimestep, e.what());
       }
       error->one(FLERR, "pair_style vertex/voronoi: tessellation failed");
     }

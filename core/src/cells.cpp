@@ -130,23 +130,24 @@ void jacobi3(double a[3][3], double w[3], double z[3][3]) {
 }  // namespace
 
 int CellView::coordination_number(int c, double rel_tol) const {
+  // The threshold is the pair's own (rel_tol times the distance between the
+  // two centres, squared in 3D), so that both cells of a pair agree: a
+  // threshold relative to each cell's own size counted a short edge from one
+  // side and not from the other.
   const int b = piece_begin(c), e = piece_end(c);
-  if (dimension() == 3) {
-    int z = 0;
-    for (int k = b; k < e; ++k) z += piece_neighbor(k) >= 0 && piece_size(k) > rel_tol * boundary(c);
-    return z;
-  }
-  double mean = 0.0;
-  int m = 0;
-  for (int k = b; k < e; ++k)
-    if (piece_neighbor(k) >= 0) {
-      mean += piece_size(k);
-      ++m;
-    }
-  if (m == 0) return 0;
-  mean /= m;
+  const int sd = space_dimension();
+  double xc[3] = {0.0, 0.0, 0.0}, xq[3] = {0.0, 0.0, 0.0};
+  point(c, xc);
   int z = 0;
-  for (int k = b; k < e; ++k) z += piece_neighbor(k) >= 0 && piece_size(k) > rel_tol * mean;
+  for (int k = b; k < e; ++k) {
+    const int q = piece_neighbor(k);
+    if (q < 0) continue;
+    point(q, xq);
+    double d2 = 0.0;
+    for (int a = 0; a < sd; ++a) d2 += (xq[a] - xc[a]) * (xq[a] - xc[a]);
+    const double scale = dimension() == 3 ? d2 : std::sqrt(d2);
+    z += piece_size(k) > rel_tol * scale;
+  }
   return z;
 }
 

@@ -29,6 +29,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace tessera {
@@ -98,10 +99,11 @@ void trim(Vec &v) {
 unsigned long stamp_counter = 0;
 
 // Face areas, volume and surface of owned cell i from t.vertices (the
-// formulas of voronoi3d.cpp's measure()).
-void measure_cell(Tessellation3 &t, const Points3 &pts, int i) {
+// formulas of voronoi3d.cpp's measure()).  Returns the smallest squared
+// distance to a neighbour across a face (for check_separation_3d).
+double measure_cell(Tessellation3 &t, const Points3 &pts, int i) {
   const V3 xi = load(pts, i);
-  double vol = 0.0, sur = 0.0;
+  double vol = 0.0, sur = 0.0, d2min = std::numeric_limits<double>::infinity();
   for (int f = t.cell_offset[i]; f < t.cell_offset[i + 1]; ++f) {
     const int o = t.face_offset[f], len = t.face_offset[f + 1] - o;
     const int *ring = t.face_vertex.data() + o;
@@ -118,13 +120,16 @@ void measure_cell(Tessellation3 &t, const Points3 &pts, int i) {
     av = 0.5 * av;
     qs = (1.0 / len) * qs;
     const V3 dj = load(pts, t.face_neighbor[f]) - xi;
-    const double area = dot(av, dj) / std::sqrt(dot(dj, dj));
+    const double d2 = dot(dj, dj);
+    d2min = std::min(d2min, d2);
+    const double area = dot(av, dj) / std::sqrt(d2);
     t.face_area[f] = area;
     sur += area;
     vol += dot(av, qs) / 3.0;
   }
   t.volume[i] = vol;
   t.surface[i] = sur;
+  return d2min;
 }
 
 }  // namespace
@@ -407,7 +412,8 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
   // Pass 4: areas, volumes, surfaces.
   t.volume.assign(n_owned, 0.0);
   t.surface.assign(n_owned, 0.0);
-  for (int i = 0; i < n_owned; ++i) measure_cell(t, pts, i);
+  double d2min = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n_owned; ++i) d2min = std::min(d2min, measure_cell(t, pts, i));
   if (!slivers.empty()) {
     // As voronoi3d.cpp's drop_slivers: a sliver is dropped from the
     // polygons when a well-shaped facet neighbour among t's tetrahedra has
@@ -469,6 +475,7 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
         if (touched[i]) measure_cell(t, pts, i);
     }
   }
+  check_separation_3d(t, pts, ids, d2min);
   {
     // Four-fold edges, found through the mesh's adjacency (far points and
     // their tetrahedra count as absent, as CGAL's infinite ones).

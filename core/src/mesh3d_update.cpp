@@ -251,7 +251,14 @@ bool Mesh3::advance(const Points3 &pts, int n_owned, const double *roi_lo, const
                     Tessellation3 &t) {
   incremental_ = false;
   if (!update(pts, roi_lo, roi_hi)) return false;
-  cells(pts, n_owned, t);
+  try {
+    cells(pts, n_owned, t);
+  } catch (const Error &) {
+    // (nearly coincident centres, an owned cell outside the region or on
+    // the hull): build() and cells() again report it, naming the points
+    valid_ = false;
+    return false;
+  }
   incremental_ = true;
   return true;
 }

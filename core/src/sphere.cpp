@@ -37,6 +37,7 @@
 #include <CGAL/Triangulation_on_sphere_face_base_2.h>
 #include <CGAL/Triangulation_on_sphere_vertex_base_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/Surface_mesh.h>
 #include <CGAL/convex_hull_3.h>
 #include <CGAL/hilbert_sort_on_sphere.h>
 
@@ -126,7 +127,14 @@ bool delaunay_on_sphere(const std::vector<P3> &P, const IndexMap &index_of,
     const int i = index_of.at(key_of(p));
     const SDT::Vertex_handle v = dt.insert(p, hint);
     if (v == SDT::Vertex_handle()) return false;
-    if (v->info().i >= 0) throw_too_close(std::min(i, v->info().i), std::max(i, v->info().i), dir, ids);
+    if (v->info().i >= 0) {
+      // CGAL took the point for an existing vertex: a pair closer than the
+      // precision limit is named; otherwise (CGAL's own criterion, on points
+      // that are not close) the hull decides.
+      const int j = v->info().i;
+      if (norm(vv(dir[i]) - vv(dir[j])) < kMinChord) throw_too_close(std::min(i, j), std::max(i, j), dir, ids);
+      return false;
+    }
     v->info().i = i;
     hint = v->face();
   }
@@ -146,15 +154,17 @@ bool delaunay_on_sphere(const std::vector<P3> &P, const IndexMap &index_of,
 void convex_hull(const std::vector<P3> &P, const IndexMap &index_of, const std::vector<Vec3> &dir,
                  const long *ids, std::vector<std::array<int, 3>> &faces) {
   const int n = static_cast<int>(P.size());
-  std::vector<P3> hull_points;
-  std::vector<std::array<int, 3>> hf;
-  CGAL::convex_hull_3(P.begin(), P.end(), hull_points, hf);
-  std::vector<int> hull_index(hull_points.size());
+  // Into a Surface_mesh: the polygon-soup overload of convex_hull_3 drops an
+  // extreme point of some exactly convex inputs (12 icosahedron directions
+  // gave 11 hull points), which the mesh output keeps.
+  CGAL::Surface_mesh<P3> sm;
+  CGAL::convex_hull_3(P.begin(), P.end(), sm);
+  std::vector<int> hull_index(sm.number_of_vertices() + sm.number_of_removed_vertices(), -1);
   std::vector<char> on_hull(n, 0);
-  for (size_t h = 0; h < hull_points.size(); ++h) {
-    const auto it = index_of.find(key_of(hull_points[h]));
+  for (const auto v : sm.vertices()) {
+    const auto it = index_of.find(key_of(sm.point(v)));
     if (it == index_of.end()) throw Error("tessera: internal error: a hull vertex is no input point");
-    hull_index[h] = it->second;
+    hull_index[v.idx()] = it->second;
     on_hull[it->second] = 1;
   }
   for (int i = 0; i < n; ++i)
@@ -162,9 +172,17 @@ void convex_hull(const std::vector<P3> &P, const IndexMap &index_of, const std::
       const int j = nearest(i, dir);
       throw_too_close(std::min(i, j), std::max(i, j), dir, ids);
     }
-  faces.resize(hf.size());
-  for (size_t f = 0; f < hf.size(); ++f)
-    for (int m = 0; m < 3; ++m) faces[f][m] = hull_index[hf[f][m]];
+  faces.clear();
+  for (const auto f : sm.faces()) {
+    std::array<int, 3> tri{{-1, -1, -1}};
+    int m = 0;
+    for (const auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) {
+      if (m == 3) throw Error("tessera: internal error: a hull facet is not a triangle");
+      tri[m++] = hull_index[v.idx()];
+    }
+    if (m != 3) throw Error("tessera: internal error: a hull facet is not a triangle");
+    faces.push_back(tri);
+  }
 }
 
 }  // namespace
@@ -182,10 +200,11 @@ Vec3 SphereTessellation::vertex(int t) const {
 int SphereTessellation::coordination_number(int c, double rel_tol) const {
   const int k0 = cell_offset[c], k1 = cell_offset[c + 1];
   if (k1 == k0) return 0;
-  const double mean = perimeter[c] / (k1 - k0);
+  // The pair's own threshold (rel_tol times the geodesic distance of the
+  // two centres), so that both cells of a pair agree.
   int z = 0;
   for (int k = k0; k < k1; ++k)
-    if (edge_length[k] > rel_tol * mean) ++z;
+    if (edge_length[k] > rel_tol * R * angle(vv(direction[c]), vv(direction[cell_neighbor[k]]))) ++z;
   return z;
 }
 
@@ -284,11 +303,21 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
   t.triangles = std::move(faces);
   // Orientation: counter-clockwise seen from outside, i.e. every other point
   // below the facet.  CGAL's faces are consistently oriented; test one.
+  // The point farthest from the facet's plane decides (a point on the plane
+  // to round-off, as the fourth corner of a cube's face, may lie on either
+  // side of it and would turn every triangle the wrong way).
   {
     const auto &f0 = t.triangles[0];
-    CGAL::Orientation o = CGAL::COPLANAR;
-    for (int i = 0; i < n && o == CGAL::COPLANAR; ++i)
-      if (i != f0[0] && i != f0[1] && i != f0[2]) o = CGAL::orientation(P[f0[0]], P[f0[1]], P[f0[2]], P[i]);
+    const V a = vv(t.direction[f0[0]]);
+    const V nrm = cross(vv(t.direction[f0[1]]) - a, vv(t.direction[f0[2]]) - a);
+    int far = -1;
+    double best = -1.0;
+    for (int i = 0; i < n; ++i)
+      if (i != f0[0] && i != f0[1] && i != f0[2]) {
+        const double h = std::fabs(dot(nrm, vv(t.direction[i]) - a));
+        if (h > best) best = h, far = i;
+      }
+    const CGAL::Orientation o = CGAL::orientation(P[f0[0]], P[f0[1]], P[f0[2]], P[far]);
     if (o == CGAL::POSITIVE)
       for (auto &tri : t.triangles) std::swap(tri[1], tri[2]);
   }
@@ -349,18 +378,64 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
                                 point_name(i, ids));
       cur = next;
     }
+  }
+  // Zero-length edges: the poles of nearly co-circular points (a multifold
+  // vertex split by round-off or a tiny jitter), closer than 1e-10 of their
+  // circumradius (or a few ulps).  The decision is the edge's own (both
+  // cells see the same two poles), and the poles it joins become one: every
+  // pole of such a cluster is moved onto their normalised mean, so that all
+  // cells around it share one vertex.  Then the cells tile the sphere (areas
+  // sum to 4 pi R^2 to round-off, no sliver between two cells left out of
+  // both), and the geometry is the one the forces differentiate (the
+  // cluster is one vertex there, sphere_forces.cpp).
+  std::vector<char> zero(total, 0);
+  {
+    std::vector<int> parent(nt);
+    std::iota(parent.begin(), parent.end(), 0);
+    auto root = [&](int x) {
+      while (parent[x] != x) x = parent[x] = parent[parent[x]];
+      return x;
+    };
+    bool any = false;
+    for (int i = 0; i < n; ++i) {
+      const int k0 = count[i], k1 = count[i + 1];
+      for (int k = k0; k < k1; ++k) {
+        const int ta = t.cell_vertex[k], tb = t.cell_vertex[k + 1 == k1 ? k0 : k + 1];
+        const double th = angle(vv(t.vertex_direction[ta]), vv(t.vertex_direction[tb]));
+        const double r = std::min(rho[ta], rho[tb]);
+        if (th < 1e-10 * r + 8.0 * DBL_EPSILON / r) {
+          zero[k] = 1;
+          const int a = root(ta), b = root(tb);
+          if (a != b) parent[a] = b;
+          any = true;
+        }
+      }
+    }
+    if (any) {
+      std::vector<V> sum(nt, V{0.0, 0.0, 0.0});
+      std::vector<int> members(nt, 0);
+      for (int f = 0; f < nt; ++f) {
+        add_to(sum[root(f)], vv(t.vertex_direction[f]));
+        ++members[root(f)];
+      }
+      for (int f = 0; f < nt; ++f) {
+        const int r = root(f);
+        if (members[r] > 1) t.vertex_direction[f] = to3((1.0 / norm(sum[r])) * sum[r]);
+      }
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    const int k0 = count[i], k1 = count[i + 1];
     const V u = vv(t.direction[i]);
     double area = 0.0, perim = 0.0;
     for (int k = k0; k < k1; ++k) {
       const int kn = k + 1 == k1 ? k0 : k + 1;
       const int ta = t.cell_vertex[k], tb = t.cell_vertex[kn];
       const V va = vv(t.vertex_direction[ta]), vb = vv(t.vertex_direction[tb]);
-      const double th = angle(va, vb);
-      const double r = std::min(rho[ta], rho[tb]);
-      const double l = th < 1e-10 * r + 8.0 * DBL_EPSILON / r ? 0.0 : R * th;
+      const double l = zero[k] ? 0.0 : R * angle(va, vb);
       t.edge_length[k] = l;
       perim += l;
-      if (l > 0.0) area += solid_angle(u, va, vb);
+      area += solid_angle(u, va, vb);  // (exactly 0 for a zero edge: va == vb)
     }
     t.area[i] = R * R * area;
     t.perimeter[i] = perim;

@@ -50,6 +50,26 @@ inline double flatness(V3 p0, V3 p1, V3 p2, V3 p3) {
   return l > 0.0 ? std::fabs(det) / (l * l * l) : 0.0;
 }
 
+// Two cell centres closer than this fraction of the smallest circumradius
+// of the tetrahedra around their Delaunay edge (half the distance to their
+// nearest other neighbour or more) are not resolved by the 3D geometry: the
+// tetrahedra around the edge are flatter than the slivers' threshold (1e-6)
+// and both points lie within the co-spherical tolerance (1e-8 of a radius)
+// of every sphere through one of them, so the pair would pass for a cluster
+// of co-spherical points or a four-fold edge (whose forces then divide by
+// zero).  Nor closer than kMinSeparation3Coord times their coordinates'
+// magnitude (double precision, as in 2D), nor than kMinLength3.
+constexpr double kMinSeparation3 = 1e-6;
+constexpr double kMinSeparation3Coord = 1e-10;
+constexpr double kMinLength3 = 1e-100;
+
+// Throws Error naming the closest such pair among the owned cells' faces
+// of t (ids: as for tessellate_local_3d), before any force is computed.
+// d2min (optional): the smallest squared distance across those faces, if
+// the caller has it (then nothing more is read when it is clearly fine).
+void check_separation_3d(const Tessellation3 &t, const Points3 &pts, const long *ids,
+                         double d2min = -1.0);
+
 // Parity of the permutation (a, b, c, d) of (0, 1, 2, 3): +1 even, -1 odd.
 inline int parity(int a, int b, int c, int d) {
   int p[4] = {a, b, c, d}, sign = 1;

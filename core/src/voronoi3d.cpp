@@ -410,10 +410,72 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
   }
   drop_slivers(t, dt, handle, pts);
   measure(t, pts);
+  check_separation_3d(t, pts, ids);
   CgalGraph graph(dt, handle);
   detail3::find_fourfold_edges(t, pts, graph);
   return t;
 }
+
+namespace detail3 {
+
+void check_separation_3d(const Tessellation3 &t, const Points3 &pts, const long *ids,
+                         double d2min) {
+  // A first filter with one bound for all faces (the largest radius, and
+  // the largest owned coordinate plus a diameter: a neighbour across a face
+  // lies within 2 r of the cell's centre), then the pair's own limit.
+  double rmax = 0.0, xmax = 0.0;
+  for (const double r : t.radius)
+    if (!(r <= rmax)) rmax = r;  // (NaN propagates: every face is then looked at)
+  for (int i = 0; i < t.n_owned; ++i) {
+    const double *p = pts.p(i);
+    xmax = std::max({xmax, std::fabs(p[0]), std::fabs(p[1]), std::fabs(p[2])});
+  }
+  const double bound = std::max(
+      {kMinSeparation3 * rmax, kMinSeparation3Coord * (xmax + 2.0 * rmax), kMinLength3});
+  const double bound2 = std::isfinite(bound) ? bound * bound : std::numeric_limits<double>::infinity();
+  if (d2min >= 0.0 && d2min >= bound2) return;
+  int bi = -1, bj = -1;
+  double bd = 0.0, blim = 0.0;
+  for (int i = 0; i < t.n_owned; ++i) {
+    const V3 xi = load(pts, i);
+    for (int f = t.cell_offset[i]; f < t.cell_offset[i + 1]; ++f) {
+      const int j = t.face_neighbor[f];
+      const V3 dj = load(pts, j) - xi;
+      const double d2 = dot(dj, dj);
+      if (!(d2 < bound2)) continue;
+      double rmin = std::numeric_limits<double>::infinity();
+      for (int k = t.face_offset[f]; k < t.face_offset[f + 1]; ++k) {
+        const double r = t.radius[t.face_vertex[k]];
+        if (!(r >= rmin)) rmin = r;
+      }
+      const double mag = std::max({std::fabs(xi.x), std::fabs(xi.y), std::fabs(xi.z),
+                                   std::fabs(xi.x + dj.x), std::fabs(xi.y + dj.y),
+                                   std::fabs(xi.z + dj.z)});
+      const double lim = std::max({kMinSeparation3 * rmin, kMinSeparation3Coord * mag, kMinLength3});
+      const double d = std::sqrt(d2);
+      if (!(d >= lim) && (bi < 0 || d < bd)) bi = i, bj = j, bd = d, blim = lim;
+    }
+  }
+  if (bi < 0) return;
+  auto name = [&](int k) {
+    std::ostringstream s;
+    s.precision(17);
+    const double *p = pts.p(k);
+    s << point_name(k, ids) << " at (" << p[0] << ", " << p[1] << ", " << p[2] << ")";
+    return s.str();
+  };
+  // The pair in ID order (index order without ids), whichever cell found it.
+  const bool swap = ids ? ids[bj] < ids[bi] : bj < bi;
+  std::ostringstream s;
+  s << "tessera: two cell centres nearly coincide: " << name(swap ? bj : bi) << " and "
+    << name(swap ? bi : bj) << " are " << bd << " apart, closer than " << blim
+    << " (1e-6 of the radius of the Voronoi vertices between them, or 1e-10 of their "
+       "coordinates): the 3D cells cannot resolve the face between them; move or delete one "
+       "of them";
+  throw Error(s.str());
+}
+
+}  // namespace detail3
 
 void remeasure_3d(Tessellation3 &t, const Points3 &pts) {
   t.fourfold.clear();

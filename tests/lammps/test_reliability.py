@@ -131,6 +131,87 @@ run 3
         self.assertNotIn("non-collinear", run.output)
 
 
+def near_pair_3d(distance, incremental, approach=False, divide=None):
+    """A jittered simple cubic tissue of 64 cells (volume 1) and two more
+    cells, atoms 65 and 66, `distance` apart along x.  approach: 66 starts
+    1e-3 away and moves onto the distance in the first step (fix move, 65
+    held still, no neighbour-list rebuild: the flipped mesh's path).  divide: no pair;
+    every cell divides with this separation instead."""
+    start = 1e-3 if approach else distance
+    pair = "" if divide else f"""create_atoms 1 single 1.3 1.2 1.1 units box
+create_atoms 1 single {1.3 + start!r} 1.2 1.1 units box
+group mover id 66
+"""
+    moving = (f"group still id 65\ngroup rest subtract all mover still\n"
+              f"fix m mover move linear {-(start - distance) / 0.01!r} 0 0\n"
+              "fix s still move linear 0 0 0\n"
+              "fix b rest brownian 1.0 1 gamma_t 1.0 rng none\n" if approach else
+              f"fix div all cell/divide rate 1e6 seed 3 separation {divide!r} max 65\n"
+              "fix b all brownian 1.0 1 gamma_t 1.0 rng none\n" if divide else
+              "fix b all brownian 1.0 1 gamma_t 1.0 rng none\n")
+    return f"""units lj
+atom_style atomic
+boundary p p p
+lattice sc 1.0
+region box block 0 4 0 4 0 4
+create_box 1 box
+create_atoms 1 box
+mass * 1.0
+displace_atoms all random 0.2 0.2 0.2 4821 units box
+{pair}pair_style vertex/voronoi 3.0 incremental {incremental}
+pair_coeff * * 1.0 1.0 0.2 -1.6
+{"group mover empty" if not pair else ""}
+timestep 0.01
+{moving}thermo 1
+run 2
+"""
+
+
+class NearPair3d(LammpsTestCase):
+    """3D centres closer than the cells resolve (1e-8 .. 1e-15 apart, from
+    the start, approaching during a run, or a division's separation) stop
+    with one message naming the pair, their distance and the fix, whatever
+    the incremental mode and the number of ranks (they used to give NaN
+    forces blamed on the units, on an unrelated point)."""
+
+    def message(self, run):
+        self.assertLammpsError(run, "nearly coincide", "fix dt/reset")
+        line = [l for l in run.output.splitlines() if "ERROR" in l and "coincide" in l][0]
+        self.assertNotIn("not finite", run.output)
+        # The message without the source location of the rank that raised it.
+        return re.sub(r" \(\.\./.*$", "", line.split("ERROR", 1)[1].split(":", 1)[1])
+
+    def test_table(self):
+        cases = [(d, inc, approach, n) for d in (1e-8, 1e-13, 1e-15)
+                 for inc in ("yes", "no", "check") for approach in (False, True) for n in (1,)]
+        cases += [(1e-13, inc, approach, 4) for inc in ("yes", "no") for approach in (False, True)]
+        seen = {}
+        for d, inc, approach, n in cases:
+            with self.subTest(distance=d, incremental=inc, approach=approach, nprocs=n):
+                run = self.run_lmp(near_pair_3d(d, inc, approach), nprocs=n, ok=False)
+                msg = self.message(run)
+                self.assertIn("id 65 at (1.3, 1.2, 1.1", msg)
+                self.assertIn("id 66 at (1.3", msg)
+                self.assertIn("at step 1" if approach else "at step 0", msg)
+                got = float(re.search(r"are ([0-9.e+-]+) apart", msg).group(1))
+                # (1.3 + d rounds to a multiple of 2.2e-16)
+                self.assertAlmostEqual(got, d, delta=0.3 * d + 3e-16)
+                seen.setdefault((d, approach), set()).add(msg)
+        for key, msgs in seen.items():
+            self.assertEqual(len(msgs), 1, f"{key}: the message depends on the mode or ranks: {msgs}")
+
+    def test_resolved_pair_runs(self):
+        # 1e-5 apart is resolved: finite forces, the run goes on (the step
+        # guard names the pair if the timestep does not resolve it)
+        run = self.run_lmp(near_pair_3d(1e-5, "yes").replace("run 2", "run 0"))
+        self.assertNotIn("ERROR", run.output)
+
+    def test_division_separation(self):
+        run = self.run_lmp(near_pair_3d(None, "yes", divide=1e-9), ok=False)
+        msg = self.message(run)
+        self.assertRegex(msg, r"are [0-9.]+e-(09|10) apart")
+
+
 class LostAtoms(LammpsTestCase):
     """Atoms lost by other means (here an atom put far outside the box):
     the pair style names the count before tessellating what is left."""

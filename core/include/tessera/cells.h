@@ -101,8 +101,10 @@ public:
 
   // ---- Derived from the pieces, the same for every model ----
 
-  // Voronoi neighbours: shared pieces larger than rel_tol times the mean
-  // piece (2D, by length, free arcs not counted) or times the surface (3D).
+  // Voronoi neighbours: shared pieces (free arcs not counted) larger than
+  // rel_tol times the distance d between the two centres (2D and the
+  // sphere, by length) or d^2 (3D, by area): a property of the pair, so
+  // that neighbours agree.
   int coordination_number(int c, double rel_tol = 1e-9) const;
   // 2D: P / sqrt(A); 3D: S / V^(2/3).  0 for an empty cell.
   double shape_index(int c) const;

@@ -92,12 +92,17 @@ public:
   // previous call filled (t.mesh_stamp), unchanged since, the faces and
   // rings of the cells whose stars no flip touched are kept in it, moved in
   // place (only their geometry is computed again); any other t has every
-  // cell walked.  Do not edit the topology of t between calls.
+  // cell walked.  Do not edit the topology of t between calls.  Throws
+  // Error for two owned-cell neighbours nearly coincident (as
+  // tessellate_local_3d; doc/model.md, "Limits of the input").
   void cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long *ids = nullptr,
              bool throw_if_unbounded = true) const;
 
   // update() and then cells(): the per-step path.  Returns false when
-  // update() does (t is then not filled; call build() and cells()).
+  // update() does, or when cells() throws (nearly coincident centres, an
+  // owned cell outside the region of interest or on the hull: the mesh is
+  // then invalid, and build() and cells() with ids name the points); t is
+  // then not filled.
   bool advance(const Points3 &pts, int n_owned, const double *roi_lo, const double *roi_hi,
                Tessellation3 &t);
   // Whether the last advance() filled t from the repaired mesh (false after

@@ -70,7 +70,8 @@ struct SphereTessellation {
   // Position of point i / Voronoi vertex t on the sphere (c + R u).
   Vec3 point(int i) const;
   Vec3 vertex(int t) const;
-  // Number of edges longer than rel_tol times the cell's mean edge length.
+  // Number of edges longer than rel_tol times the geodesic distance between
+  // the cell's centre and the neighbour's (the same seen from either).
   int coordination_number(int c, double rel_tol = 1e-9) const;
 };
 

@@ -131,8 +131,9 @@ struct Tessellation3 {
 
 // Triangulate points (owned first, then ghosts) without periodicity and build
 // the owned cells.  ids (optional) name points in error messages.  Throws
-// Error on non-finite coordinates, coincident points, fewer than 4
-// non-coplanar points, and (if throw_if_unbounded) an owned cell on the hull.
+// Error on non-finite coordinates, coincident or nearly coincident points
+// (doc/model.md, "Limits of the input"), fewer than 4 non-coplanar points,
+// and (if throw_if_unbounded) an owned cell on the hull.
 Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *ids = nullptr,
                                   bool throw_if_unbounded = true);
 

@@ -413,41 +413,31 @@ void FixPolarity::initial_integrate(int /*vflag*/)
       if (!active || active[i]) tessera::rotate_polarities_reference(1, &unit[2 * i], &dth[i], mu[i], nullptr);
 }
 
-/* The neighbour lists (and 3d surfaces) of the pair style's cells, now,
-   at a force computation (only 'neighbor' alignment reads them). */
+/* Notes which force computation's cells the next step's alignment reads
+   (only 'neighbor' alignment reads them).  The pair style keeps their
+   neighbour lists even when it computes the cells again for output after
+   the end of the step (fix deform): PairVertexVoronoi::force_contacts(). */
 
 void FixPolarity::record_contacts()
 {
   if (params.J_S == 0.0 || !pair) return;
-  const tessera::CellView &v = pair->cells();
-  const tessera::Contacts t = v.contacts();
   rec_step = pair->cells_step();
-  const int n = t.n_owned;
-  rec_offset.assign(t.offset, t.offset + n + 1);
-  const int m = n > 0 ? t.offset[n] : 0;
-  rec_neighbor.assign(t.neighbor, t.neighbor + m);
-  rec_size.assign(t.size, t.size + m);
-  rec_boundary.resize(n);
-  for (int i = 0; i < n; i++) rec_boundary[i] = v.boundary(i);
+  rec_force = pair->force_count();
+  rec_n = pair->cells().n_owned();
 }
 
-/* The recorded neighbour lists, which must be those of state_step and of
-   the atoms now owned. */
+/* The neighbour lists of that force computation, which must be those of
+   state_step and of the atoms now owned. */
 
 tessera::Contacts FixPolarity::recorded_contacts(bigint state_step)
 {
-  const int n = rec_offset.empty() ? 0 : static_cast<int>(rec_offset.size()) - 1;
+  const int n = rec_force == pair->force_count() ? rec_n : -1;
   if (rec_step != state_step || n != atom->nlocal)
     error->one(FLERR,
                "fix polarity: the tessellation of pair vertex/voronoi is from step {} with {} "
                "cells, the polarities need it for step {} with {}",
                rec_step, n, state_step, atom->nlocal);
-  tessera::Contacts t;
-  t.n_owned = n;
-  t.offset = rec_offset.data();
-  t.neighbor = rec_neighbor.data();
-  t.size = rec_size.data();
-  return t;
+  return pair->force_contacts();
 }
 
 /* Polar order |<n>| and nematic order <cos 2(theta - phi_G)> over the group. */

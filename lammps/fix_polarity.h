@@ -54,9 +54,10 @@ class FixPolarity : public Fix, public CoupledDof {
   // the pair style may tessellate again for output after fix deform changed
   // the box at the end of a step, and the next angle update must still use
   // the state whose forces move the cells (fix_polarity.cpp).
-  std::vector<int> rec_offset, rec_neighbor;
-  std::vector<double> rec_size, rec_boundary;
-  bigint rec_step = -1;
+  // The pair style's cells at the last force computation (step, count,
+  // owned cells): it keeps their neighbour lists for us (force_contacts).
+  bigint rec_step = -1, rec_force = -1;
+  int rec_n = 0;
   void record_contacts();
   tessera::Contacts recorded_contacts(bigint state_step);
 

@@ -628,6 +628,7 @@ bool PairVertexVoronoi::ghost_shell_complete(double need_local)
 void PairVertexVoronoi::compute(int eflag, int vflag)
 {
   ncompute++;
+  nforce++;
   ev_init(eflag, vflag);
   check_lost_atoms();
   if (!unit) error->all(FLERR, "pair_style vertex/voronoi: compute before init");

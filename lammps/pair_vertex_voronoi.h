@@ -70,6 +70,14 @@ class PairVertexVoronoi : public Pair {
   // rank), the forces, energy and virial staying those of the step
   // (pair_vertex_voronoi_view.cpp).
   bool cells_current();
+  // The neighbour lists (and boundaries) of the cells of the last force
+  // computation, for what the next step integrates (fix polarity): the
+  // view's own, or, once refresh_view() recomputed the cells for output at
+  // this step, the copy it made of them just before.  force_count() counts
+  // force computations only (not refreshes).
+  tessera::Contacts force_contacts() const;
+  double force_boundary(int c) const;
+  bigint force_count() const { return nforce; }
   // Force computations, and computations of the cells for output after the
   // state changed (cells_current()), since the style was created (never
   // reset): tells computes whether the cells changed since they last looked.
@@ -211,6 +219,10 @@ class PairVertexVoronoi : public Pair {
   std::uint64_t position_hash() const;
   bool view_matches_state();
   void refresh_view();
+  bigint nforce = 0;         // force computations (compute()), never reset
+  bigint force_saved = -1;   // nforce whose contacts refresh_view() saved below
+  std::vector<int> force_offset, force_neighbor;
+  std::vector<double> force_size, force_bnd;
   std::string guard_id;
   double ghost_width() const;
   // 'surface sphere' (pair_vertex_voronoi_sphere.cpp: parsing, restart

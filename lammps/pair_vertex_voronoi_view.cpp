@@ -44,15 +44,19 @@ inline std::uint64_t mix64(std::uint64_t z)
 
 std::uint64_t PairVertexVoronoi::position_hash() const
 {
+  // A multiply-add per coordinate (every step, so kept cheap) and one final
+  // mix: a change of one coordinate always changes the sum (the factor is
+  // odd, so its powers are invertible modulo 2^64); several changes collide
+  // with a chance of about 2^-64.
   std::uint64_t h = static_cast<std::uint64_t>(atom->nlocal);
-  double **x = atom->x;
-  for (int i = 0; i < atom->nlocal; i++)
-    for (int d = 0; d < 3; d++) {
-      std::uint64_t b;
-      std::memcpy(&b, &x[i][d], sizeof b);
-      h = mix64(h ^ b);
-    }
-  return h;
+  const double *x = atom->nlocal > 0 ? &atom->x[0][0] : nullptr;
+  const int n = 3 * atom->nlocal;
+  for (int k = 0; k < n; k++) {
+    std::uint64_t b;
+    std::memcpy(&b, &x[k], sizeof b);
+    h = h * 0x100000001b3ULL + b;
+  }
+  return mix64(h);
 }
 
 void PairVertexVoronoi::record_view_state()
@@ -101,6 +105,22 @@ bool PairVertexVoronoi::cells_current()
 
 void PairVertexVoronoi::refresh_view()
 {
+  // What the step integrates next are the cells of its forces: keep their
+  // neighbour lists before the cells of the shown state replace them (once
+  // per force computation: a second refresh at the same step must not
+  // overwrite them with the first refresh's cells).
+  if (force_saved != nforce) {
+    const tessera::CellView &v = cells();
+    const tessera::Contacts t = v.contacts();
+    const int n = t.n_owned;
+    force_offset.assign(t.offset, t.offset + n + 1);
+    const int m = n > 0 ? t.offset[n] : 0;
+    force_neighbor.assign(t.neighbor, t.neighbor + m);
+    force_size.assign(t.size, t.size + m);
+    force_bnd.resize(n);
+    for (int c = 0; c < n; c++) force_bnd[c] = v.boundary(c);
+    force_saved = nforce;
+  }
   comm->forward_comm();
   const int nlocal = atom->nlocal;
   const int nall = nlocal + atom->nghost;
@@ -127,4 +147,20 @@ void PairVertexVoronoi::refresh_view()
   f = atom->f;
   for (int i = 0; i < nall; i++)
     for (int d = 0; d < 3; d++) f[i][d] = f_step[3 * i + d];
+}
+
+tessera::Contacts PairVertexVoronoi::force_contacts() const
+{
+  if (force_saved != nforce) return cells().contacts();
+  tessera::Contacts t;
+  t.n_owned = static_cast<int>(force_bnd.size());
+  t.offset = force_offset.data();
+  t.neighbor = force_neighbor.data();
+  t.size = force_size.data();
+  return t;
+}
+
+double PairVertexVoronoi::force_boundary(int c) const
+{
+  return force_saved != nforce ? cells().boundary(c) : force_bnd[c];
 }

@@ -347,6 +347,23 @@ class Examples(LammpsTestCase):
         np.testing.assert_allclose(four, one, rtol=1e-5)
         self.assertGreater(one[-1, 3], one[0, 3] + 10)    # the colony spread
 
+    def test_micropattern_rotates_coherently(self):
+        # examples/micropattern: 8 cells on an island, polarity aligned with
+        # velocity, rotate together (mean |phi| well above that of the same
+        # colony without the alignment), and fix wall/region keeps every
+        # centre on the island.
+        def rotation(jv):
+            script = example("micropattern") + ('compute rad all reduce max v_rr\n'
+                                                'thermo_style custom step c_rad\n'
+                                                'run 0\nprint "R $(sqrt(c_rad):%.10g) ${R}"\n')
+            run = self.run_lmp(script, args=["-var", "N", "8", "-var", "tend", "100", "-var", "JV", jv])
+            data = np.loadtxt(run.path("rot.dat"))
+            rmax, island = [float(w) for w in run.stdout.split("\nR ")[1].split()[:2]]
+            self.assertLess(rmax, island)
+            return np.abs(data[data[:, 0] > 20.0, 2]).mean()
+        aligned, plain = rotation("1.0"), rotation("0.0")
+        self.assertGreater(aligned, 0.7)
+        self.assertLess(plain, 0.5)
 
 class Errors(LammpsTestCase):
     def files(self):

@@ -158,6 +158,61 @@ print "X1 $(x[6]:%.17g) $(c_ps:%.17g)"
                 self.assertAlmostEqual(x1 - x0, 20 * 0.01 * 0.5 / 2.0, delta=1e-12)
 
 
+class DepositAmongCells(LammpsTestCase):
+    """fix deposit during a run with particles present: deposited particles
+    (type 2) never become cells, deposited cells (type 1) do.  The cells tile
+    the periodic box whatever lies under them, so the cells' areas sum to the
+    box area and their vertex energy is that of the same cells with the
+    particles deleted, computed by pair_style vertex/voronoi alone."""
+
+    def deposit(self, itype):
+        script = mixed() + f"""compute cell all vertex/atom
+variable iscell atom c_cell[1]>0
+compute ncell all reduce sum v_iscell
+compute asum all reduce sum c_cell[1]
+thermo_style custom step pe c_pv c_ps c_ncell c_asum
+thermo_modify norm no format float %.17g
+region inside block 0.1 7.4 0.1 11.0 -0.1 0.1 units box
+fix b all brownian 1.0 1 gamma_t 1.0 rng none
+fix dep all deposit 3 {itype} 5 4821 region inside near 0.3 attempt 200
+timestep 0.005
+run 0
+print "A $(atoms) $(c_ncell) $(c_asum:%.17g) $(lx*ly:%.17g)"
+run 20
+print "B $(atoms) $(c_ncell) $(c_asum:%.17g) $(c_pv:%.17g)"
+group newest type 2
+delete_atoms group newest compress no
+thermo_style custom step pe
+thermo_modify norm no
+uncompute pv
+uncompute ps
+pair_style vertex/voronoi 3.0
+pair_coeff * * 1.0 1.0 0.1 -0.5
+run 0
+print "C $(atoms) $(pe:%.17g)"
+"""
+        run = self.run_lmp(script)
+        return printed(run, "A")[0], printed(run, "B")[0], printed(run, "C")[0]
+
+    def test_deposited_particles_are_no_cells(self):
+        (n0, c0, a0, box), (n1, c1, a1, pv), (n2, e2) = self.deposit(2)
+        self.assertEqual(n1, n0 + 3)
+        self.assertEqual(c1, c0)
+        self.assertEqual(c0, n0 - 2)
+        self.assertAlmostEqual(a1, box, delta=1e-9 * box)
+        self.assertEqual(n2, c1)
+        self.assertAlmostEqual(pv, e2, delta=1e-10 * abs(e2))
+
+    def test_deposited_cells_with_particles_present(self):
+        (n0, c0, a0, box), (n1, c1, a1, pv), (n2, e2) = self.deposit(1)
+        self.assertEqual(n1, n0 + 3)
+        self.assertEqual(c1, c0 + 3)
+        self.assertAlmostEqual(a0, box, delta=1e-9 * box)
+        self.assertAlmostEqual(a1, box, delta=1e-9 * box)
+        self.assertEqual(n2, c1)
+        self.assertAlmostEqual(pv, e2, delta=1e-10 * abs(e2))
+
+
 class PillarExample(LammpsTestCase):
     """examples/pillar: the wound closes onto the pillar, where the same
     wound without it closes completely (test_finite.py), and a hole stays

@@ -27,13 +27,13 @@ def _slice(text):
         raise argparse.ArgumentTypeError(f"bad frame slice '{text}'") from None
 
 
-def _select_frames(path, sl):
+def _select_frames(path, sl, cell_types=None):
     from .dump import iter_dump, read_dump
 
     if all(v is None or v >= 0 for v in (sl.start, sl.stop)) and (sl.step is None or sl.step > 0):
-        frames = list(itertools.islice(iter_dump(path), sl.start, sl.stop, sl.step))
+        frames = list(itertools.islice(iter_dump(path, cell_types), sl.start, sl.stop, sl.step))
     else:
-        frames = read_dump(path)[sl]
+        frames = read_dump(path, cell_types=cell_types)[sl]
     if not frames:
         raise SystemExit(f"tessera-tools: no frames of {path} selected by the slice")
     return frames

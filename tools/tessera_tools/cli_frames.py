@@ -7,11 +7,28 @@ import numpy as np
 
 from .cli_common import _matplotlib, _progress, _select_frames, _slice
 
+CELL_TYPES_HELP = ("the atom types that are cells, e.g. 1 or 1,3 or 1*2 (the types with cell parameters in "
+                   "pair_coeff I I vertex/voronoi); other atoms are particles, never tessellated. Needs a "
+                   "'type' column. Default: every atom is a cell")
+
+
+def _types(text):
+    import argparse
+
+    from .dump import parse_types
+
+    try:
+        return parse_types(text)
+    except ValueError as err:
+        raise argparse.ArgumentTypeError(str(err)) from None
+
+
 def cmd_info(args):
     from .dump import iter_dump
 
+    cell_types = args.cell_types
     count, first, last = 0, None, None
-    for frame in iter_dump(args.dump):
+    for frame in iter_dump(args.dump, cell_types):
         if first is None:
             first = frame
         last = frame
@@ -19,7 +36,14 @@ def cmd_info(args):
     if first is None:
         raise SystemExit(f"tessera-tools: {args.dump} has no frames")
     print(f"{args.dump}: {count} frame(s), timesteps {first.timestep} .. {last.timestep}")
-    print(f"atoms: {first.natoms} (last frame {last.natoms})")
+    if cell_types is None:
+        print(f"atoms: {first.natoms} (last frame {last.natoms})")
+    else:
+        def kinds(f):
+            types = sorted(set(np.asarray(f.particles["type"]).astype(int).tolist()))
+            return (f"{f.natoms} cells, {f.particles.natoms} particles"
+                    + (f" (types {','.join(map(str, types))})" if types else ""))
+        print(f"atoms: {kinds(first)} (last frame {kinds(last)})")
     print(f"box (first frame): {first.box!r}, area {first.box.area:g}")
     print(f"columns: {' '.join(first.names)}")
     print(f"unwrapped positions: {'yes' if first.has_unwrapped() else 'no'}")
@@ -27,7 +51,7 @@ def cmd_info(args):
         from .junctions import contact_lengths, junction_columns, paired_frames
         from .measure import demix_series
 
-        atoms, local = paired_frames(args.dump, args.local)[-1]
+        atoms, local = paired_frames(args.dump, args.local, cell_types=cell_types)[-1]
         contacts = contact_lengths(atoms, local)
         print(f"timestep {atoms.timestep}: junction length by type pair "
               + ", ".join(f"{a}-{b} {v:.6g}" for (a, b), v in sorted(contacts.items()))
@@ -43,7 +67,7 @@ def cmd_info(args):
             from .junctions import junction_columns, junction_tessellation, paired_frames
             from .vtk import frame_cells3d
 
-            atoms, local = paired_frames(args.dump, args.local)[-1]
+            atoms, local = paired_frames(args.dump, args.local, cell_types=cell_types)[-1]
             if len(junction_columns(local)) == 9:
                 cells = frame_cells3d(atoms, local)
                 print(f"timestep {atoms.timestep} (cells of {args.local}): mean volume "
@@ -71,7 +95,7 @@ def _local_frames(args):
     both the atom dump and the --local dump hold, cells from the local dump's polygons."""
     from .junctions import junction_tessellation, paired_frames
 
-    pairs = paired_frames(args.dump, args.local)
+    pairs = paired_frames(args.dump, args.local, cell_types=args.cell_types)
     if args.frames is not None:
         pairs = pairs[args.frames]
     elif args.timestep is not None:
@@ -99,9 +123,9 @@ def cmd_render(args):
     if args.local:
         frames, tessellations = _local_frames(args)
     elif args.frames is not None:
-        frames = _select_frames(args.dump, args.frames)
+        frames = _select_frames(args.dump, args.frames, args.cell_types)
     else:
-        frames = [read_frame(args.dump, index=args.frame, timestep=args.timestep)]
+        frames = [read_frame(args.dump, index=args.frame, timestep=args.timestep, cell_types=args.cell_types)]
     series = args.output.lower().endswith((".gif", ".mp4", ".m4v", ".mkv", ".webm")) or "{" in args.output
     if series:
         try:
@@ -134,7 +158,7 @@ def cmd_vtk(args):
     try:
         written = write_vtk(args.dump, args.output, local_path=args.local, frames=args.frames or slice(None),
                             dt=args.dt, compute=args.junction_compute, progress=_progress(not args.quiet),
-                            radius=args.radius)
+                            radius=args.radius, cell_types=args.cell_types)
     except (RuntimeError, ValueError, KeyError) as err:
         raise SystemExit(f"tessera-tools vtk: {err.args[0] if err.args else err}") from None
     source = ("the cells of " + args.local if args.local else
@@ -142,7 +166,9 @@ def cmd_vtk(args):
               "the Voronoi tessellation of the centres")
     print(f"wrote {len(written)} frame(s) from {source}: {written[0]}" +
           (f" .. {written[-1]}" if len(written) > 1 else "") +
-          f"; time series {args.output}.pvd and {args.output}.vtu.series")
+          f"; time series {args.output}.pvd and {args.output}.vtu.series"
+          + (f"; particles {args.output}_particles_*.vtu ({args.output}_particles.pvd)"
+             if args.cell_types is not None else ""))
 
 
 def cmd_traj(args):
@@ -153,7 +179,8 @@ def cmd_traj(args):
     if any(v is not None and v < 0 for v in (sl.start, sl.stop, sl.step)):
         raise SystemExit("tessera-tools traj: --frames takes non-negative start:stop:step")
     extra = [c for c in (args.coordination_column, args.orientation_column) if c]
-    traj = load_trajectory(args.dump, sl.start, sl.stop, sl.step, velocity=tuple(args.velocity), extra=extra)
+    traj = load_trajectory(args.dump, sl.start, sl.stop, sl.step, velocity=tuple(args.velocity), extra=extra,
+                           cell_types=args.cell_types)
     if len(traj) < 2:
         raise SystemExit("tessera-tools traj: need at least two frames for trajectories")
     kinds = ("coordination", "orientation") if args.kind == "both" else (args.kind,)
@@ -210,6 +237,7 @@ def add_commands(sub):
                    help="dump local of compute vertex/local: also print the junction length between each pair "
                         "of cell types at the last common timestep, and the heterotypic junction fraction of "
                         "every frame both dumps hold (one line per frame)")
+    q.add_argument("--cell-types", type=_types, metavar="TYPES", help=CELL_TYPES_HELP)
     q.set_defaults(func=cmd_info)
 
     r = sub.add_parser("render", help="picture of the Voronoi tessellation of a frame (PNG), or a series (GIF/MP4)",
@@ -254,6 +282,8 @@ def add_commands(sub):
     r.add_argument("--categorical", action="store_true",
                    help="one colour per distinct value with a legend (default for type, mol, proc)")
     r.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    r.add_argument("--cell-types", type=_types, metavar="TYPES",
+                   help=CELL_TYPES_HELP + "; particles are drawn as black discs")
     r.set_defaults(func=cmd_render)
 
     v = sub.add_parser("vtk", help="VTK cell files (.vtu per frame, .pvd time series) for ParaView/OVITO",
@@ -279,6 +309,9 @@ def add_commands(sub):
     v.add_argument("--dt", type=float,
                    help="timestep, for the time of each frame (default: the dump's TIME item, else the step)")
     v.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    v.add_argument("--cell-types", type=_types, metavar="TYPES",
+                   help=CELL_TYPES_HELP + "; particles go to PREFIX_particles_<timestep>.vtu (points with "
+                        "their per-atom columns) and PREFIX_particles.pvd")
     v.set_defaults(func=cmd_vtk)
 
     t = sub.add_parser("traj", help="trajectories coloured by coordination / orientation, velocity-angle histogram",
@@ -313,4 +346,6 @@ def add_commands(sub):
     t.add_argument("--linewidth", type=float)
     t.add_argument("--title")
     t.add_argument("--dpi", type=int, default=150)
+    t.add_argument("--cell-types", type=_types, metavar="TYPES",
+                   help=CELL_TYPES_HELP + "; only the cells' trajectories are drawn")
     t.set_defaults(func=cmd_traj)

@@ -112,6 +112,8 @@ class Frame:
         self.columns = dict(columns)
         self.names = list(names) if names is not None else list(self.columns)
         self.time = time
+        #: the atoms that are no cells (a Frame), when the frame was read with ``cell_types``
+        self.particles = None
 
     @property
     def natoms(self):
@@ -170,6 +172,12 @@ class Frame:
                 images = np.column_stack([c["ix"], c["iy"]]).astype(float)
                 return p + images @ self.box.matrix.T
         raise KeyError("dump has no unwrapped positions: write xu yu, or x y with ix iy")
+
+    def subset(self, mask):
+        """A Frame of the rows where ``mask`` is true (same timestep, box and column names)."""
+        mask = np.asarray(mask, dtype=bool)
+        return Frame(self.timestep, self.box, {k: v[mask] for k, v in self.columns.items()},
+                     self.names, self.time, self.units)
 
     def vector(self, xname, yname):
         return np.column_stack([self[xname], self[yname]]).astype(float)
@@ -240,8 +248,65 @@ def _columns(names, rows, where):
     return out
 
 
-def iter_dump(path):
-    """Yield the frames of a dump file one by one (``.gz`` is read transparently)."""
+def parse_types(text):
+    """Atom types from a LAMMPS-like list: '1,2', '1*3', '2*' (open upper end), '*2'."""
+    if text is None:
+        return None
+    if not isinstance(text, str):
+        return frozenset(int(t) for t in text)
+    out = set()
+    for part in text.replace(" ", "").split(","):
+        if not part:
+            continue
+        try:
+            if "*" in part:
+                lo, hi = part.split("*", 1)
+                lo = int(lo) if lo else 1
+                if not hi:
+                    out.add((lo, None))
+                    continue
+                out.update(range(lo, int(hi) + 1))
+            else:
+                out.add(int(part))
+        except ValueError:
+            raise ValueError(f"cell types '{text}': '{part}' is no type, a range I*J, I* or *J") from None
+    if not out:
+        raise ValueError(f"cell types '{text}': no type given (e.g. --cell-types 1 or 1,3 or 1*2)")
+    return frozenset(out)
+
+
+def cell_mask(types, cell_types):
+    """True for the rows whose type is one of ``cell_types`` (from :func:`parse_types`)."""
+    types = np.asarray(types).astype(np.int64)
+    mask = np.zeros(len(types), dtype=bool)
+    for t in cell_types:
+        if isinstance(t, tuple):
+            mask |= types >= t[0]
+        else:
+            mask |= types == t
+    return mask
+
+
+def split_cells(frame, cell_types, where="dump"):
+    """The frame's cells (the atoms of ``cell_types``) as a Frame whose ``particles`` holds every
+    other atom (a Frame, possibly empty).  ``cell_types`` None: every atom is a cell."""
+    if cell_types is None:
+        return frame
+    if "type" not in frame:
+        raise ValueError(f"{where}: --cell-types needs a 'type' column in the dump "
+                         "(dump custom ... id type x y ...)")
+    mask = cell_mask(frame["type"], cell_types)
+    cells = frame.subset(mask)
+    cells.particles = frame.subset(~mask)
+    return cells
+
+
+def iter_dump(path, cell_types=None):
+    """Yield the frames of a dump file one by one (``.gz`` is read transparently).
+
+    ``cell_types`` (a set from :func:`parse_types`): each frame holds only the atoms of those
+    types (the cells) and its ``particles`` the other atoms, which are never tessellated.  None:
+    every atom is a cell.  Dump local frames (``ITEM: ENTRIES``) are never split."""
     with _open(path) as f:
         lineno = 0
 
@@ -294,32 +359,35 @@ def iter_dump(path):
             if "id" in columns and not local:
                 order = np.argsort(columns["id"], kind="stable")
                 columns = {k: v[order] for k, v in columns.items()}
-            yield Frame(timestep, box, columns, names, time, units)
+            frame = Frame(timestep, box, columns, names, time, units)
+            if cell_types is not None and not local:
+                frame = split_cells(frame, cell_types, f"{path} timestep {timestep}")
+            yield frame
             line = next_line()
 
 
-def read_dump(path, start=None, stop=None, every=None):
+def read_dump(path, start=None, stop=None, every=None, cell_types=None):
     """All frames of a dump (optionally a slice ``[start:stop:every]``) as a list."""
-    frames = itertools.islice(iter_dump(path), start, stop, every)
+    frames = itertools.islice(iter_dump(path, cell_types), start, stop, every)
     out = list(frames)
     if not out:
         raise DumpFormatError(f"{path}: no frames")
     return out
 
 
-def read_frame(path, index=-1, timestep=None):
+def read_frame(path, index=-1, timestep=None, cell_types=None):
     """One frame: by position (``index``, negative counts from the end) or by ``timestep``."""
     if timestep is not None:
-        for frame in iter_dump(path):
+        for frame in iter_dump(path, cell_types):
             if frame.timestep == timestep:
                 return frame
         raise KeyError(f"{path}: no frame at timestep {timestep}")
     if index >= 0:
-        for k, frame in enumerate(iter_dump(path)):
+        for k, frame in enumerate(iter_dump(path, cell_types)):
             if k == index:
                 return frame
         raise IndexError(f"{path}: frame index {index} out of range")
-    frames = read_dump(path)
+    frames = read_dump(path, cell_types=cell_types)
     return frames[index]
 
 

@@ -222,13 +222,14 @@ def face_areas(local, compute=None):
     return np.array(out_c, dtype=np.int64), np.array(out_j, dtype=np.int64), np.array(out_a, dtype=float)
 
 
-def paired_frames(atoms_path, local_path, frames=None):
+def paired_frames(atoms_path, local_path, frames=None, cell_types=None):
     """(atom frame, local frame) pairs of the timesteps both dumps hold, in order;
-    ``frames`` an optional slice over those pairs."""
+    ``frames`` an optional slice over those pairs; ``cell_types``: the atom frames hold the
+    cells only (their ``particles`` the other atoms), as the local dump does."""
     local = {}
     for f in iter_dump(local_path):
         local[f.timestep] = f
-    pairs = [(a, local[a.timestep]) for a in iter_dump(atoms_path) if a.timestep in local]
+    pairs = [(a, local[a.timestep]) for a in iter_dump(atoms_path, cell_types) if a.timestep in local]
     if not pairs:
         raise ValueError(f"{atoms_path} and {local_path} have no timestep in common")
     return pairs[frames] if frames is not None else pairs

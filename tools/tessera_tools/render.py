@@ -208,6 +208,11 @@ def draw_tessellation(ax, frame, tess, field="area", view="box", cmap=None, vmin
             hcoll.set_clip_path(boxpatch)
     if centres:
         ax.plot(pts[:, 0], pts[:, 1], ".", color="k", ms=max(1.0, 12.0 / math.sqrt(n)))
+    particles = getattr(frame, "particles", None)
+    if particles is not None and particles.natoms:
+        # atoms that are no cells (obstacles, beads): black discs with a white rim, never tiles
+        q = particles.positions()
+        ax.plot(q[:, 0], q[:, 1], "o", mfc="k", mec="w", mew=0.6, ms=max(2.0, 40.0 / math.sqrt(n)), zorder=4)
     if arrows:
         vec = _need(frame, arrows, "arrows")
         unit = np.zeros_like(vec)
@@ -248,7 +253,9 @@ def _title(frame, field, title):
     if title is not None:
         return title.format(timestep=frame.timestep, time=frame.time, field=field, n=frame.natoms)
     when = f"timestep {frame.timestep}" + (f", t = {frame.time:g}" if frame.time is not None else "")
-    return f"{frame.natoms} cells, {when}"
+    particles = getattr(frame, "particles", None)
+    others = f", {particles.natoms} particles" if particles is not None else ""
+    return f"{frame.natoms} cells{others}, {when}"
 
 
 def render_frame(frame, out, field="area", view="box", dpi=300, title=None, tess=None, vector=None,

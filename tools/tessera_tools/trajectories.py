@@ -151,7 +151,8 @@ def _warn(message):
     print(f"tessera-tools: {message}", file=sys.stderr)
 
 
-def load_trajectory(path, start=None, stop=None, every=None, velocity=("vx", "vy"), extra=(), quiet=False):
+def load_trajectory(path, start=None, stop=None, every=None, velocity=("vx", "vy"), extra=(), quiet=False,
+                    cell_types=None):
     """Read a multi-frame dump into a :class:`Trajectory`.
 
     Cells are matched by atom ID; frames may hold different IDs (dividing or
@@ -162,11 +163,13 @@ def load_trajectory(path, start=None, stop=None, every=None, velocity=("vx", "vy
     the unwrapped position of its nearest neighbour, e.g. its mother).
     Velocities come from the ``velocity`` columns; failing that from finite
     differences of the unwrapped positions (only their direction matters here;
-    NaN where a cell is not in the neighbouring frames).
+    NaN where a cell is not in the neighbouring frames).  ``cell_types`` (a set from
+    :func:`tessera_tools.dump.parse_types`): only the atoms of these types are followed, the
+    others (particles that are no cells) are left out.
     """
     import itertools
 
-    frames = list(itertools.islice(iter_dump(path), start, stop, every))
+    frames = list(itertools.islice(iter_dump(path, cell_types), start, stop, every))
     if not frames:
         raise ValueError(f"{path}: no frames selected")
     ids = np.unique(np.concatenate([np.asarray(f.ids) for f in frames]))

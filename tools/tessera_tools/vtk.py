@@ -21,6 +21,13 @@ sampled (:data:`tessera_tools.junctions.ARC_STEP`), in open boxes too; their
 the samples' chords).  Without a local dump, ``radius`` gives the finite
 Voronoi cells of the dumped centres (:mod:`tessera_tools.finite`).
 
+Atoms that are no cells (particles: obstacles, beads; the atoms whose type is not
+among ``cell_types``) are never tessellated: they go to a second series of files,
+``PREFIX_particles_<timestep>.vtu`` (one VTK vertex per particle, every numeric
+per-atom column as point data, ``velocity`` and ``polarity`` vectors as for the
+cells) with its own ``PREFIX_particles.pvd`` and ``.vtu.series``; a frame without
+particles gives a file with no points, so the two series keep the same frames.
+
 Cells on a sphere (a local dump with 9 columns and one row per cell and
 neighbour: geodesic edges) are polygons of their Voronoi vertices in space
 (:mod:`tessera_tools.sphere_cells`), with their spherical ``area``.
@@ -231,6 +238,26 @@ def frame_mesh3d(frame, cells, time=None):
     return cells_mesh(points, sizes, data, polyhedra, time)
 
 
+def particles_mesh(particles, time=None):
+    """A meshio.Mesh of the atoms that are no cells: one vertex cell per atom, at its position
+    wrapped into the box in x and y (z as dumped, else 0), every numeric column as point data."""
+    meshio = _meshio()
+    n = particles.natoms
+    points = np.zeros((n, 3))
+    if n:
+        points[:, :2] = particles.positions()       # wrapped into the box, as the cells
+        if "z" in particles:
+            points[:, 2] = np.asarray(particles["z"], dtype=float)
+    data = frame_columns(particles, n)
+    for vec, comps in VECTORS.items():
+        if all(c in particles for c in comps[:2]):
+            data[vec] = np.column_stack([np.asarray(particles[c], dtype=float) if c in particles
+                                         else np.zeros(n) for c in comps])
+    field_data = {} if time is None else {"TIME": np.array([float(time)])}
+    return meshio.Mesh(points, [("vertex", np.arange(n, dtype=np.int64)[:, None])], point_data=data,
+                       field_data=field_data)
+
+
 def _frame_time(frame, dt):
     if frame.time is not None:
         return frame.time
@@ -238,7 +265,7 @@ def _frame_time(frame, dt):
 
 
 def write_vtk(atoms_path, out_prefix, local_path=None, frames=None, dt=None, compute=None, progress=None,
-              radius=None):
+              radius=None, cell_types=None):
     """Write ``{out_prefix}_{timestep}.vtu`` for the selected frames, ``{out_prefix}.pvd`` and
     ``{out_prefix}.vtu.series``; returns the list of .vtu paths.
 
@@ -246,9 +273,11 @@ def write_vtk(atoms_path, out_prefix, local_path=None, frames=None, dt=None, com
     ``dt``: time per step for the time values (default: the dump's TIME item, else the timestep);
     ``progress``: a callable wrapping an iterable (e.g. tqdm) or None; ``radius``: without a
     local dump, the finite Voronoi cells of that radius (any box) instead of the periodic
-    Voronoi tessellation."""
+    Voronoi tessellation; ``cell_types`` (a set from :func:`tessera_tools.dump.parse_types`):
+    the atoms of other types are particles, written to ``{out_prefix}_particles_{timestep}.vtu``
+    (listed in ``{out_prefix}_particles.pvd``) instead of being tessellated."""
     if local_path:
-        pairs = paired_frames(atoms_path, local_path, frames)
+        pairs = paired_frames(atoms_path, local_path, frames, cell_types)
         from .sphere_cells import is_sphere_local, frame_sphere_cells
 
         if is_sphere_local(pairs[0][1], compute):    # cells on a sphere: one row per edge
@@ -258,7 +287,7 @@ def write_vtk(atoms_path, out_prefix, local_path=None, frames=None, dt=None, com
         else:
             work = [(a, lambda a=a, l=l: junction_tessellation(a, l, compute)) for a, l in pairs]
     else:
-        chosen = list(iter_dump(atoms_path))
+        chosen = list(iter_dump(atoms_path, cell_types))
         chosen = chosen[frames] if frames is not None else chosen
         if not chosen:
             raise ValueError(f"{atoms_path}: no frames selected")
@@ -281,7 +310,7 @@ def write_vtk(atoms_path, out_prefix, local_path=None, frames=None, dt=None, com
     if directory:
         os.makedirs(directory, exist_ok=True)
     width = max(len(str(a.timestep)) for a, _ in work)
-    written, entries = [], []
+    written, entries, particle_entries = [], [], []
     iterable = progress(work) if progress else work
     for frame, make in iterable:
         tess = make()
@@ -298,11 +327,22 @@ def write_vtk(atoms_path, out_prefix, local_path=None, frames=None, dt=None, com
         mesh.write(path)
         written.append(path)
         entries.append((time, os.path.basename(path)))
-    _write_pvd(out_prefix + ".pvd", entries)
-    with open(out_prefix + ".vtu.series", "w") as f:
+        if frame.particles is not None:
+            ppath = f"{out_prefix}_particles_{frame.timestep:0{width}d}.vtu"
+            particles_mesh(frame.particles, time).write(ppath)
+            particle_entries.append((time, os.path.basename(ppath)))
+    _write_series(out_prefix, entries)
+    if cell_types is not None:
+        _write_series(out_prefix + "_particles", particle_entries)
+    return written
+
+
+def _write_series(prefix, entries):
+    """``prefix.pvd`` and ``prefix.vtu.series``: the files of ``entries`` (time, name) as a time series."""
+    _write_pvd(prefix + ".pvd", entries)
+    with open(prefix + ".vtu.series", "w") as f:
         json.dump({"file-series-version": "1.0",
                    "files": [{"name": name, "time": t} for t, name in entries]}, f, indent=1)
-    return written
 
 
 def _write_pvd(path, entries):

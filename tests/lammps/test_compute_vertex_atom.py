@@ -558,8 +558,10 @@ class Migration(LammpsTestCase):
 
     def test_thermo_of_vertex_atom_stops(self):
         script = tissue().replace("thermo_style custom step pe c_vt[1]", "thermo_style custom step pe c_va[1]")
+        # LAMMPS 2021: "Thermo compute does not compute vector"; 2026: "Thermo
+        # custom compute va does not compute a vector".
         self.assertLammpsError(self.run_lmp(script + "run 0\n", ok=False),
-                               "Thermo compute does not compute vector")
+                               "does not compute")
 
     def test_variable_and_fix_ave_time_of_vertex_atom_stop(self):
         for extra in ("variable q equal c_va[3]\nthermo_style custom step v_q\nrun 0\n",

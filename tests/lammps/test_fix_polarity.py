@@ -305,7 +305,7 @@ class PerCellActiveForce(LammpsTestCase):
     """f_a given as d_name: each cell's own active force, which fix
     cell/adapt may change during a run.  Free particles (2d, 3d): each
     moves with d_fa / gamma_T along its polarity, one with d_fa = 0 stays
-    put.  Tissues (confluent 2d, 3d, sphere): the force the fix adds at step
+    put.  Tissues (confluent and finite 2d, 3d, sphere): the force the fix adds at step
     k (total force minus the force stored by fix store/force before it) is
     d_fa n, with d_fa as set by cell/adapt at the end of step k-1, which
     varies per cell and in time and is 0 for every fourth cell."""
@@ -379,6 +379,9 @@ run {steps}
 
     def test_added_force_sphere(self):
         self.added_force("sphere")
+
+    def test_added_force_finite(self):
+        self.added_force("finite_open")
 
     def test_errors(self):
         run = self.run_lmp(FREE + "create_atoms 1 random 3 1 box\n"

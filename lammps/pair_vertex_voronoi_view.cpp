@@ -40,18 +40,33 @@ inline std::uint64_t mix64(std::uint64_t z)
 
 }    // namespace
 
-/* A hash of the bits of the owned atoms' positions, in their order. */
+/* A hash of the bits of the owned atoms' positions, in their order: the
+   sum over the coordinates k of mix64(bits_k ^ k C), whose terms are
+   independent of each other (the processor overlaps them; a chain of
+   mixes through every coordinate took as long as a small part of the
+   step, and it is computed at every force computation and at every
+   consumer's check). */
 
 std::uint64_t PairVertexVoronoi::position_hash() const
 {
-  std::uint64_t h = static_cast<std::uint64_t>(atom->nlocal);
+  const int n = atom->nlocal;
   double **x = atom->x;
-  for (int i = 0; i < atom->nlocal; i++)
-    for (int d = 0; d < 3; d++) {
-      std::uint64_t b;
-      std::memcpy(&b, &x[i][d], sizeof b);
-      h = mix64(h ^ b);
-    }
+  const std::uint64_t C = 0xd1b54a32d192ed03ULL;
+  std::uint64_t h = mix64(static_cast<std::uint64_t>(n));
+  auto term = [&](std::uint64_t k, const double &v) {
+    std::uint64_t b;
+    std::memcpy(&b, &v, sizeof b);
+    return mix64(b ^ (k * C));
+  };
+  // Rows of one block (memory->create): one flat loop over 3 n values.
+  if (n > 0 && x[n - 1] == x[0] + 3 * static_cast<long>(n - 1)) {
+    const double *v = x[0];
+    const std::uint64_t m = 3 * static_cast<std::uint64_t>(n);
+    for (std::uint64_t k = 0; k < m; k++) h += term(k + 1, v[k]);
+  } else {
+    for (int i = 0; i < n; i++)
+      for (int d = 0; d < 3; d++) h += term(3 * static_cast<std::uint64_t>(i) + d + 1, x[i][d]);
+  }
   return h;
 }
 

@@ -37,7 +37,7 @@ using namespace FixConst;
 using namespace cell_events;
 
 static const char SYNTAX[] =
-    "fix ID group cell/divide rate R | cycle T spread s | area Ac, seed S [axis "
+    "fix ID group cell/divide rate R|d_name | cycle T spread s | area Ac, seed S [axis "
     "random|long|short|polarity] [separation d] [growth none|linear] [region ID] [max N] "
     "[noise eta] [file path] [split d_name ...]";
 
@@ -80,7 +80,12 @@ FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
       need(iarg, 1, kw);
       one_trigger(iarg, 1);
       trigger = RATE;
-      rate = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      if (strncmp(arg[iarg + 1], "d_", 2) == 0 && arg[iarg + 1][2]) {
+        rate_name = arg[iarg + 1] + 2;    // per cell, read at every decision
+        rate = 0.0;
+      } else {
+        rate = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+      }
       if (!(rate >= 0.0) || !std::isfinite(rate))
         error->all(FLERR, "fix cell/divide: rate R must be >= 0 (divisions per cell per time), got {}",
                    arg[iarg + 1]);
@@ -194,7 +199,7 @@ FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR,
                "fix cell/divide: growth linear needs a cycle time (trigger 'rate R', mean cycle "
                "1/R, or 'cycle T spread s'), not 'area'");
-  if (growth && trigger == RATE && rate == 0.0)
+  if (growth && trigger == RATE && rate == 0.0 && rate_name.empty())
     error->all(FLERR, "fix cell/divide: growth linear with rate 0 has no cycle time (1/R)");
   if (axis == POLARITY && !atom->mu_flag)
     error->all(FLERR, "fix cell/divide: axis polarity needs atom_style dipole (the polarity is mu)");
@@ -264,6 +269,15 @@ void FixCellDivide::init()
                  "ID all property/atom d_{}'",
                  name, name);
   }
+  rate_index = -1;
+  if (!rate_name.empty()) {
+    rate_index = atom->find_custom(rate_name.c_str(), flag, cols);
+    if (rate_index < 0 || flag != 1 || cols != 0)
+      error->all(FLERR,
+                 "fix cell/divide: rate d_{}: no such per-atom property; define it with 'fix ID "
+                 "all property/atom d_{}' and give every cell a rate with 'set'",
+                 rate_name, rate_name);
+  }
   area0_index = atom->find_custom("area0", flag, cols);
   if (area0_index >= 0 && (flag != 1 || cols != 0)) area0_index = -1;
   if (growth && area0_index < 0)
@@ -305,7 +319,9 @@ void FixCellDivide::set_area0()
   const int *mask = atom->mask;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
-    const double cyc = trigger == CYCLE ? cellstate[i][CYCLE_TIME] : 1.0 / rate;
+    // (a cell of rate 0 has an infinite cycle: it keeps its base)
+    const double cyc = trigger == CYCLE ? cellstate[i][CYCLE_TIME]
+                                        : 1.0 / (rate_index < 0 ? rate : cell_rate(i));
     const double base = cellstate[i][AREA0_BASE];
     if (base > 0.0) a0[i] = base * (1.0 + MIN(cellstate[i][AGE] / cyc, 1.0));
   }
@@ -488,7 +504,7 @@ void FixCellDivide::decide()
     if (region && !region->match(x[i][0], x[i][1], x[i][2])) continue;
     bool divide = false;
     if (trigger == RATE)
-      divide = uniform01(seed, tag[i], step, DIVIDE) < rate * dt;
+      divide = uniform01(seed, tag[i], step, DIVIDE) < (rate_index < 0 ? rate : cell_rate(i)) * dt;
     else if (trigger == CYCLE)
       divide = cellstate[i][AGE] >= cellstate[i][CYCLE_TIME];
     else
@@ -625,6 +641,20 @@ void FixCellDivide::pre_exchange()
   if (nall > 0) refresh_dumps(output);
 }
 
+/* The division rate of owned cell i from 'rate d_name', which must be
+   finite and >= 0. */
+
+double FixCellDivide::cell_rate(int i) const
+{
+  const double r = atom->dvector[rate_index][i];
+  if (!(r >= 0.0) || !std::isfinite(r))
+    error->one(FLERR,
+               "fix cell/divide {}: rate d_{} of cell {} is {} at step {}; it must be >= 0 and "
+               "finite (divisions per cell per time)",
+               id, rate_name, atom->tag[i], r, update->ntimestep);
+  return r;
+}
+
 double FixCellDivide::compute_scalar()
 {
   return (double) events.total;
@@ -633,103 +663,4 @@ double FixCellDivide::compute_scalar()
 double FixCellDivide::compute_vector(int n)
 {
   return events.vector(n, update->ntimestep);
-}
-
-/* ---------------------------------------------------------------------- */
-
-/* The global record: a marker -1 (older files start with the event count,
-   which is >= 0), the event count, the step of the last event, the clock. */
-
-void FixCellDivide::write_restart(FILE *fp)
-{
-  if (comm->me != 0) return;
-  double list[4] = {-1.0, (double) events.total, (double) events.last_step, clock};
-  const int size = sizeof(list);
-  fwrite(&size, sizeof(int), 1, fp);
-  fwrite(list, sizeof(double), 4, fp);
-}
-
-void FixCellDivide::restart(char *buf)
-{
-  log.continuing();
-  const double *list = reinterpret_cast<const double *>(buf);
-  if (list[0] >= 0.0) {    // an older file: no clock, keep LAMMPS's time
-    events.restart(buf);
-    return;
-  }
-  events.total = static_cast<bigint>(list[1]);
-  events.last_step = static_cast<bigint>(list[2]);
-  clock = list[3];
-}
-
-double FixCellDivide::memory_usage()
-{
-  return (double) atom->nmax * NCOL * sizeof(double);
-}
-
-void FixCellDivide::grow_arrays(int nmax)
-{
-  memory->grow(cellstate, nmax, NCOL, "cell/divide:cellstate");
-  array_atom = cellstate;
-}
-
-void FixCellDivide::copy_arrays(int i, int j, int /*delflag*/)
-{
-  for (int c = 0; c < NCOL; c++) cellstate[j][c] = cellstate[i][c];
-}
-
-/* A cell that appears other than by division (create_atoms, read_data after
-   this fix, fix deposit), or exists when the fix is defined: age 0,
-   generation 0, its own cycle time, no mother (ID 0), born now. */
-
-void FixCellDivide::set_arrays(int i)
-{
-  cellstate[i][AGE] = 0.0;
-  cellstate[i][GENERATION] = 0.0;
-  cellstate[i][CYCLE_TIME] = draw_cycle(atom->tag[i], CREATION);
-  cellstate[i][AREA0_BASE] = 0.0;
-  cellstate[i][MOTHER] = 0.0;
-  cellstate[i][BIRTH] = clock;
-}
-
-int FixCellDivide::pack_exchange(int i, double *buf)
-{
-  for (int c = 0; c < NCOL; c++) buf[c] = cellstate[i][c];
-  return NCOL;
-}
-
-int FixCellDivide::unpack_exchange(int nlocal, double *buf)
-{
-  for (int c = 0; c < NCOL; c++) cellstate[nlocal][c] = buf[c];
-  return NCOL;
-}
-
-int FixCellDivide::pack_restart(int i, double *buf)
-{
-  buf[0] = NCOL + 1;
-  for (int c = 0; c < NCOL; c++) buf[c + 1] = cellstate[i][c];
-  return NCOL + 1;
-}
-
-void FixCellDivide::unpack_restart(int nlocal, int nth)
-{
-  double **extra = atom->extra;
-  int m = 0;
-  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
-  // A restart file of an older version has fewer (leading) columns: the
-  // others keep their defaults (no mother, birth time 0).
-  const int ncol = MIN(static_cast<int>(extra[nlocal][m]) - 1, (int) NCOL);
-  m++;
-  for (int c = 0; c < ncol; c++) cellstate[nlocal][c] = extra[nlocal][m++];
-  for (int c = ncol; c < NCOL; c++) cellstate[nlocal][c] = 0.0;
-}
-
-int FixCellDivide::size_restart(int /*nlocal*/)
-{
-  return NCOL + 1;
-}
-
-int FixCellDivide::maxsize_restart()
-{
-  return NCOL + 1;
 }

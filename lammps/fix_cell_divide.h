@@ -67,6 +67,9 @@ class FixCellDivide : public Fix {
   class Region *region;
   class PairVertexVoronoi *pair;
   int area0_index;    // d_area0 in atom->dvector, or -1
+  std::string rate_name;    // 'rate d_name': each cell's own rate, a per-atom property
+  int rate_index = -1;
+  double cell_rate(int i) const;
   std::vector<std::string> split_names;    // 'split d_name': halved between the daughters
   std::vector<int> split_index;
 

@@ -52,7 +52,7 @@ inline bool one_block(double **a, int n, int stride)
 }    // namespace
 
 /* ----------------------------------------------------------------------
-   fix ID group polarity f_a gamma_R [neighbor J_S] [groove J_G phi]
+   fix ID group polarity f_a|d_name gamma_R [neighbor J_S] [groove J_G phi]
                                      [velocity J_V] [noise D_r seed] [seed S]
 ------------------------------------------------------------------------- */
 
@@ -63,7 +63,16 @@ FixPolarity::FixPolarity(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR,
                "Illegal fix polarity command: expected 'fix ID group polarity f_a gamma_R "
                "[neighbor J_S] [groove J_G phi] [velocity J_V] [noise D_r seed] [seed S]'");
-  f_active = utils::numeric(FLERR, arg[3], false, lmp);
+  // f_a: a number, or d_name, a per-atom property giving each cell's own.
+  if (strncmp(arg[3], "d_", 2) == 0) {
+    if (!arg[3][2])
+      error->all(FLERR, "fix polarity: active force 'd_' names no per-atom property; give a "
+                        "number or d_name (fix property/atom d_name)");
+    fa_name = arg[3] + 2;
+    f_active = 0.0;
+  } else {
+    f_active = utils::numeric(FLERR, arg[3], false, lmp);
+  }
   gamma_r = utils::numeric(FLERR, arg[4], false, lmp);
   if (!std::isfinite(f_active))
     error->all(FLERR, "fix polarity: active force f_a must be finite, got {}", arg[3]);
@@ -139,6 +148,16 @@ int FixPolarity::setmask()
 
 void FixPolarity::init()
 {
+  fa_index = -1;
+  if (!fa_name.empty()) {
+    int flag = -1, cols = -1;
+    fa_index = atom->find_custom(fa_name.c_str(), flag, cols);
+    if (fa_index < 0 || flag != 1 || cols != 0)
+      error->all(FLERR,
+                 "fix polarity {}: active force d_{} is no per-atom double property; define it "
+                 "with 'fix ID all property/atom d_{}' and give every cell a value with 'set'",
+                 id, fa_name, fa_name);
+  }
 
   pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
   if (!pair && params.J_S != 0.0)
@@ -304,7 +323,8 @@ void FixPolarity::post_force(int /*vflag*/)
       if (m_i[0] == 0.0 && m_i[1] == 0.0) fresh_angle(i);
       const double len = m_i[3];
       if (!(len > 0.0)) continue;
-      const double inv = len == 1.0 ? f_active : f_active / len;    // the same value
+      const double fa = fa_index < 0 ? f_active : active_force(i);
+      const double inv = len == 1.0 ? fa : fa / len;    // the same value
       double *f_i = row_f(i);
       f_i[0] += inv * m_i[0];
       f_i[1] += inv * m_i[1];
@@ -315,6 +335,20 @@ void FixPolarity::post_force(int /*vflag*/)
          [f0 = f[0]](int i) { return f0 + 3 * static_cast<long>(i); });
   else
     pass([mu](int i) { return mu[i]; }, [f](int i) { return f[i]; });
+}
+
+/* The active force of owned atom i from the per-atom property d_name
+   (fix polarity d_name gamma_R ...), which must be finite. */
+
+double FixPolarity::active_force(int i) const
+{
+  const double fa = atom->dvector[fa_index][i];
+  if (!std::isfinite(fa))
+    error->one(FLERR,
+               "fix polarity {}: active force d_{} of cell {} is {} at step {}; it must be "
+               "finite (set it with 'set' or fix cell/adapt)",
+               id, fa_name, atom->tag[i], fa, update->ntimestep);
+  return fa;
 }
 
 /* Forward Euler (Euler-Maruyama with noise) step of the angle, at the start

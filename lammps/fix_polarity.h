@@ -19,6 +19,7 @@ FixStyle(polarity,FixPolarity);
 #include "tessera/tessellation.h"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -35,6 +36,9 @@ class FixPolarity : public Fix, public CoupledDof {
 
  protected:
   double f_active, gamma_r;
+  std::string fa_name;    // 'd_name' given for f_a: each cell's own active force
+  int fa_index = -1;      // its index in atom->dvector (init)
+  double active_force(int i) const;
   tessera::PolarityParams params;
   double d_rot;
   int seed;

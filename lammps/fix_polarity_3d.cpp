@@ -85,7 +85,7 @@ void FixPolarity::post_force_3d()
       has_v[i] = 0;
     }
     if (!(mask[i] & groupbit) || !(mu[i][3] > 0.0)) continue;
-    const double inv = f_active / mu[i][3];
+    const double inv = (fa_index < 0 ? f_active : active_force(i)) / mu[i][3];
     for (int d = 0; d < 3; d++) f[i][d] += inv * mu[i][d];
   }
 }

@@ -100,7 +100,13 @@ double PairVertexVoronoi::sphere_radius()
                "pair_style vertex/voronoi: sphere radius variable '{}' must be equal-style (one "
                "number, e.g. 'variable {} equal 10+0.01*time')",
                sphere_var, sphere_var);
+  // As fix adapt does: computes the variable reads are evaluated anew (a
+  // value cached earlier in the step, or in an earlier step when nothing
+  // cleared it, would lag behind divisions or per-atom changes since, and
+  // by how much would depend on the output settings).
+  modify->clearstep_compute();
   const double R = input->variable->compute_equal(ivar);
+  modify->addstep_compute(update->ntimestep + 1);
   if (!(R > 0.0) || !std::isfinite(R))
     error->all(FLERR,
                "pair_style vertex/voronoi: sphere radius v_{} is {} at step {}; it must be > 0",

@@ -40,21 +40,25 @@ inline std::uint64_t mix64(std::uint64_t z)
 
 }    // namespace
 
-/* A hash of the bits of the owned atoms' positions, in their order. */
+/* A hash of the bits of the owned atoms' positions, in their order,
+   computed at every force computation and at every consumer's check, so
+   kept cheap: the sum over the coordinates k of (bits_k ^ k) C with C odd,
+   whose terms are independent of each other (the processor overlaps them),
+   and one final mix.  A change of one coordinate always changes the sum
+   (multiplying by an odd C is invertible modulo 2^64); several changes
+   collide with a chance of about 2^-64.  atom->x is one block (rows of
+   memory->create). */
 
 std::uint64_t PairVertexVoronoi::position_hash() const
 {
-  // A multiply-add per coordinate (every step, so kept cheap) and one final
-  // mix: a change of one coordinate always changes the sum (the factor is
-  // odd, so its powers are invertible modulo 2^64); several changes collide
-  // with a chance of about 2^-64.
-  std::uint64_t h = static_cast<std::uint64_t>(atom->nlocal);
-  const double *x = atom->nlocal > 0 ? &atom->x[0][0] : nullptr;
+  const std::uint64_t C = 0xd1b54a32d192ed03ULL;
   const int n = 3 * atom->nlocal;
+  const double *x = n > 0 ? &atom->x[0][0] : nullptr;
+  std::uint64_t h = static_cast<std::uint64_t>(atom->nlocal);
   for (int k = 0; k < n; k++) {
     std::uint64_t b;
     std::memcpy(&b, &x[k], sizeof b);
-    h = h * 0x100000001b3ULL + b;
+    h += (b ^ static_cast<std::uint64_t>(k)) * C;
   }
   return mix64(h);
 }

@@ -433,6 +433,51 @@ run 1000
         self.assertEqual(f["d_area0"][1], 1.0)
         self.assertGreater(f["c_v[1]"][0], 1.2)
 
+    def test_division_rate_follows_a_variable(self):
+        """fix cell/divide rate d_rate: each cell's own rate.  With rate dt = 1
+        a cell divides for certain, with 0 never: fix cell/adapt switches
+        the rate of cells 1..5 from 0 to 1/dt at the end of step 4; the
+        fix decides then and the five divide at step 5 (and not before),
+        the others never; cells of rate 0 keep their base d_area0 with
+        growth linear (an infinite cycle)."""
+        run = self.run_lmp(hex_tissue(4, 4) + """
+fix sp all property/atom d_rate d_area0
+set group all d_rate 0.0
+set group all d_area0 1.0
+variable r atom (id<=5)*(step>=4)*100.0
+fix ad all cell/adapt 1 d_rate v_r
+fix div all cell/divide rate d_rate seed 5 growth linear
+fix move all brownian 1.0 1 gamma_t 1.0 rng none
+timestep 0.01
+thermo_style custom step atoms
+thermo 1
+dump d all custom 1 a.txt id f_div[2] f_div[5] d_area0
+dump_modify d sort id
+run 6
+""")
+        atoms = {int(r["Step"]): int(r["Atoms"]) for r in thermo_rows(run)}
+        # step 6: the five again, not their new daughters (IDs 33..37, which
+        # the variable gives rate 0)
+        self.assertEqual([atoms[k] for k in range(7)], [32] * 5 + [37, 42])
+        f = run.dump("a.txt")[5]
+        self.assertEqual(sorted(f["f_div[5]"][f["f_div[2]"] == 1].astype(int)), sorted(2 * [1, 2, 3, 4, 5]))
+        others = (f["id"] > 5) & (f["id"] <= 32)
+        self.assertTrue(np.all(f["f_div[2]"][others] == 0))
+        np.testing.assert_array_equal(f["d_area0"][others], 1.0)
+
+    def test_bad_division_rate_is_named(self):
+        run = self.run_lmp(hex_tissue(3, 3) + """
+fix sp all property/atom d_rate
+set group all d_rate 0.1
+set atom 4 d_rate -1.0
+fix div all cell/divide rate d_rate seed 5
+run 1
+""", ok=False)
+        self.assertLammpsError(run, "rate d_rate of cell 4 is -1", ">= 0")
+        run = self.run_lmp(hex_tissue(3, 3) + "fix div all cell/divide rate d_nope seed 5\nrun 1\n",
+                           ok=False)
+        self.assertLammpsError(run, "rate d_nope: no such per-atom property")
+
 
 class Errors(LammpsTestCase):
     def fails(self, law, *fragments, setup=""):

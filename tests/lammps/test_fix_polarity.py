@@ -301,6 +301,99 @@ thermo_modify format float %.15g
         self.assertAlmostEqual(float(row[2]), nematic, delta=1e-12)
 
 
+class PerCellActiveForce(LammpsTestCase):
+    """f_a given as d_name: each cell's own active force, which fix
+    cell/adapt may change during a run.  Free particles (2d, 3d): each
+    moves with d_fa / gamma_T along its polarity, one with d_fa = 0 stays
+    put.  Tissues (confluent and finite 2d, 3d, sphere): the force the fix adds at step
+    k (total force minus the force stored by fix store/force before it) is
+    d_fa n, with d_fa as set by cell/adapt at the end of step k-1, which
+    varies per cell and in time and is 0 for every fourth cell."""
+
+    def free_drift(self, dim):
+        fa_of = lambda ids: 0.25 * (ids % 4)          # id 4, 8, ...: 0
+        gT, dt, steps = 2.0, 0.01, 30
+        script = FREE + "create_atoms 1 random 20 4412 box\n"
+        if dim == 3:
+            script = script.replace("dimension 2\n", "").replace("-0.5 0.5", "0 20")
+        script += "set group all dipole/random 881 1.0\n"
+        script += f"""fix fa all property/atom d_fa
+variable f atom 0.25*(id%4)
+set group all d_fa v_f
+timestep {dt}
+fix p all polarity d_fa 5.0
+fix b all brownian 1.0 1 gamma_t {gT} rng none
+dump d all custom {steps} pol.dump id xu yu zu mux muy muz
+dump_modify d sort id format float %.17g
+run {steps}
+"""
+        first, last = self.run_lmp(script).dump("pol.dump")
+        n = np.column_stack([first["mux"], first["muy"], first["muz"]])
+        n /= np.linalg.norm(n, axis=1)[:, None]
+        disp = np.column_stack([last[c] - first[c] for c in ("xu", "yu", "zu")])
+        speed = fa_of(first["id"]) / gT
+        np.testing.assert_allclose(disp, (speed * dt * steps)[:, None] * n, atol=1e-12)
+        self.assertTrue((speed == 0).any() and (speed > 0).any())
+
+    def test_free_drift_2d(self):
+        self.free_drift(2)
+
+    def test_free_drift_3d(self):
+        self.free_drift(3)
+
+    def added_force(self, model):
+        from feature_models import model_script
+        steps = 6
+        script = model_script(model) + f"""fix fa all property/atom d_fa
+set group all d_fa 0.5
+variable f atom 0.3*(id%4)*(1+0.5*sin(0.7*step))
+fix sf all store/force
+fix p all polarity d_fa 1.0 neighbor 0.2
+fix b all brownian 1.0 1 gamma_t 1.0 rng none
+fix ad all cell/adapt 1 d_fa v_f
+timestep 0.01
+dump d all custom 1 pol.dump id fx fy fz f_sf[1] f_sf[2] f_sf[3] mux muy muz d_fa
+dump_modify d sort id format float %.17g
+run {steps}
+"""
+        frames = self.run_lmp(script).dump("pol.dump")
+        self.assertEqual(len(frames), steps + 1)
+        for prev, fr in zip(frames[:-1], frames[1:]):
+            n = np.column_stack([fr["mux"], fr["muy"], fr["muz"]])
+            n /= np.linalg.norm(n, axis=1)[:, None]
+            added = np.column_stack([fr[c] - fr["f_sf[%d]" % (k + 1)]
+                                     for k, c in enumerate(("fx", "fy", "fz"))])
+            np.testing.assert_allclose(added, prev["d_fa"][:, None] * n, atol=1e-10,
+                                       err_msg=f"{model} step {fr['step']}")
+            expect = 0.3 * (fr["id"] % 4) * (1 + 0.5 * np.sin(0.7 * fr["step"]))
+            np.testing.assert_allclose(fr["d_fa"], expect, atol=1e-12)
+        # the values the forces used changed during the run, and some are 0
+        self.assertGreater(np.abs(frames[-2]["d_fa"] - frames[1]["d_fa"]).max(), 0.05)
+        self.assertTrue((frames[1]["d_fa"] == 0).any())
+
+    def test_added_force_confluent(self):
+        self.added_force("confluent")
+
+    def test_added_force_3d(self):
+        self.added_force("3d")
+
+    def test_added_force_sphere(self):
+        self.added_force("sphere")
+
+    def test_added_force_finite(self):
+        self.added_force("finite_open")
+
+    def test_errors(self):
+        run = self.run_lmp(FREE + "create_atoms 1 random 3 1 box\n"
+                           "fix p all polarity d_fa 1.0\nrun 0\n", ok=False)
+        self.assertLammpsError(run, "d_fa is no per-atom double property", "property/atom d_fa")
+        run = self.run_lmp(FREE + "create_atoms 1 random 3 1 box\nfix fa all property/atom d_fa\n"
+                           "variable f atom 1+(id==2)*1e308*10\nset group all d_fa v_f\n"
+                           "set group all dipole/random 1 1.0\n"
+                           "fix p all polarity d_fa 1.0\nrun 0\n", ok=False)
+        self.assertLammpsError(run, "active force d_fa of cell 2", "must be finite")
+
+
 class Errors(LammpsTestCase):
 
     def test_without_dipole(self):

@@ -365,6 +365,38 @@ timestep 0.02
             np.testing.assert_allclose(f[col], whole[col], rtol=0, atol=1e-10, err_msg=col)
 
 
+class RadiusFromComputes(LammpsTestCase):
+    """R = v_R reading a compute, here sqrt(sum of d_area0 / 4 pi) with
+    d_area0 = 1: the cells sit on the sphere of the current number of cells
+    at every dumped step while cells divide between the dumps (the compute
+    is evaluated anew at every use, not taken from an earlier step)."""
+
+    def test_radius_follows_the_divisions(self):
+        R0 = 4.0
+        n0 = 200
+        script = (head("v_R", cut=3.0).replace("pair_style", "fix pa all property/atom d_area0\n"
+                                               "set group all d_area0 1.0\n"
+                                               "compute a all property/atom d_area0\n"
+                                               "compute s all reduce sum c_a\n"
+                                               "variable R equal sqrt(c_s/(4*PI))\n"
+                                               "pair_style", 1) +
+                  tissue_coeffs(1.0) + """fix b all brownian 1.0 17 gamma_t 1.0 rng none
+fix div all cell/divide rate 2.0 seed 4821 separation 0.1
+timestep 0.01
+thermo 1000
+dump d all custom 5 cells.dump id x y z
+dump_modify d format float %.17g
+run 30
+""")
+        run = self.run_lmp(script, files={"cells.data": tissue(n0, R0)})
+        frames = run.dump("cells.dump")
+        self.assertGreater(len(frames[-1]["id"]), n0 + 20)
+        for fr in frames:
+            R = math.sqrt(len(fr["id"]) / (4 * math.pi))
+            r = np.linalg.norm(positions(fr) - C, axis=1)
+            np.testing.assert_allclose(r, R, rtol=1e-12, err_msg=f"step {fr['step']}")
+
+
 class ActiveRuns(LammpsTestCase):
     """Active runs stay on the sphere: |x - c| = R(t) (R growing by a
     variable), unit tangent polarities, areas adding up to 4 pi R(t)^2 and

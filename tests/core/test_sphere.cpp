@@ -68,17 +68,6 @@ std::vector<double> place(const Vec3 &c, const std::vector<W> &dirs, double R, R
 
 const double kPhi = (1.0 + std::sqrt(5.0)) / 2.0;
 
-std::vector<W> icosahedron() {
-  std::vector<W> v;
-  for (int s1 : {-1, 1})
-    for (int s2 : {-1, 1}) {
-      v.push_back({0.0, 1.0 * s1, kPhi * s2});
-      v.push_back({1.0 * s1, kPhi * s2, 0.0});
-      v.push_back({kPhi * s2, 0.0, 1.0 * s1});
-    }
-  return v;
-}
-
 // The regular dodecahedron dual to icosahedron(): its vertices are the
 // directions of the icosahedron's face centres.
 std::vector<W> dodecahedron() {

@@ -32,18 +32,6 @@ std::vector<double> on_sphere(const Vec3 &c, double R, const std::vector<W> &dir
   return xyz;
 }
 
-std::vector<W> icosahedron() {
-  const double phi = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<W> v;
-  for (int s1 : {-1, 1})
-    for (int s2 : {-1, 1}) {
-      v.push_back({0.0, 1.0 * s1, phi * s2});
-      v.push_back({1.0 * s1, phi * s2, 0.0});
-      v.push_back({phi * s2, 0.0, 1.0 * s1});
-    }
-  return v;
-}
-
 // Slow oracle: integral of the unit direction over the geodesic triangle
 // (a, b, c), by splitting it 4^level times (midpoints pushed onto the
 // sphere) and summing solid angle x centroid direction of the pieces.

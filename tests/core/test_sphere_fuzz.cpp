@@ -46,18 +46,6 @@ std::vector<W> octahedron() {
   return v;
 }
 
-std::vector<W> icosahedron() {
-  const double phi = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<W> v;
-  for (int s1 : {-1, 1})
-    for (int s2 : {-1, 1}) {
-      v.push_back({0.0, 1.0 * s1, phi * s2});
-      v.push_back({1.0 * s1, phi * s2, 0.0});
-      v.push_back({phi * s2, 0.0, 1.0 * s1});
-    }
-  return v;
-}
-
 std::vector<W> random_dirs(int n, Rng &rng) {
   std::vector<W> d;
   for (int i = 0; i < n; ++i) {

@@ -126,11 +126,11 @@ template <class Term> void FixPolarity::for_each_neighbour(bigint state_step, Te
 {
   const int nlocal = atom->nlocal;
   const tessera::Contacts t = recorded_contacts(state_step);
-  std::vector<double> bnd(nlocal);
-  for (int i = 0; i < nlocal; i++) bnd[i] = pair->force_boundary(i);
-  for (int i = 0; i < nlocal; i++)
+  for (int i = 0; i < nlocal; i++) {
+    const double floor = 1e-9 * pair->force_boundary(i);
     for (int f = t.offset[i]; f < t.offset[i + 1]; f++)
-      if (t.size[f] > 1e-9 * bnd[i]) term(i, t.neighbor[f]);
+      if (t.size[f] > floor) term(i, t.neighbor[f]);
+  }
 }
 
 /* The field h_i = J_S sum_j n_j + J_G (n_i.g) g + J_V vhat_i of every

@@ -55,6 +55,7 @@ constexpr double MAX_LOSS = 0.5;
 FixCellSignal::FixCellSignal(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), nsub_fixed(0), nsub_last(0), pair(nullptr)
 {
+  create_attribute = 1;
   auto need = [&](int iarg, int n, const char *kw) {
     if (iarg + n >= narg)
       error->all(FLERR, "fix cell/signal: keyword '{}' needs {} value(s); syntax: {}", kw, n,
@@ -191,6 +192,21 @@ int FixCellSignal::field_of(const char *arg, const char *keyword)
                keyword, arg, name);
   fields.push_back({name, index, false, 0.0, 0.0, 0.0, 0.0});
   return static_cast<int>(fields.size()) - 1;
+}
+
+/* Cells made by fix deposit, fix pour or create_atoms start without any of
+   the species this fix changes (LAMMPS leaves a new atom's custom
+   properties holding whatever the memory held, often a ghost's value);
+   daughters of fix cell/divide are copies, not new atoms here. */
+
+void FixCellSignal::set_arrays(int i)
+{
+  for (const Field &f : fields) {
+    if (!f.species) continue;
+    int flag = -1, cols = -1;
+    const int index = atom->find_custom(f.name.c_str(), flag, cols);
+    if (index >= 0 && flag == 1 && cols == 0) atom->dvector[index][i] = 0.0;
+  }
 }
 
 int FixCellSignal::setmask()

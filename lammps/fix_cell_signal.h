@@ -26,6 +26,7 @@ class FixCellSignal : public Fix {
   void init() override;
   void setup(int) override;
   void end_of_step() override;
+  void set_arrays(int) override;
   double compute_vector(int) override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;

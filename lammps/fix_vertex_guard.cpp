@@ -13,6 +13,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "force.h"
 #include "update.h"
 
 #include <cmath>
@@ -21,7 +22,28 @@
 using namespace LAMMPS_NS;
 using namespace FixConst;
 
-FixVertexGuard::FixVertexGuard(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg) {}
+FixVertexGuard::FixVertexGuard(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
+{
+  create_attribute = 1;
+}
+
+/* A new atom (fix deposit, fix pour, create_atoms; not a daughter of fix
+   cell/divide, which copies its mother): its type's values in the per-cell
+   properties the pair style reads.  The pair style is looked up each time
+   (a new pair_style command replaces the object this fix was given). */
+
+void FixVertexGuard::set_arrays(int i)
+{
+  static const char *names[4] = {"area0", "ka", "kp", "perim0"};
+  auto *p = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  double values[4] = {0.0, 0.0, 0.0, 0.0};
+  if (p) p->type_cell_values(atom->type[i], values);
+  for (int k = 0; k < 4; k++) {
+    int flag = -1, cols = -1;
+    const int index = atom->find_custom(names[k], flag, cols);
+    if (index >= 0 && flag == 1 && cols == 0) atom->dvector[index][i] = values[k];
+  }
+}
 
 Fix *FixVertexGuard::creator(LAMMPS *lmp, int narg, char **arg)
 {

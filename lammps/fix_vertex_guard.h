@@ -28,7 +28,11 @@ class PairVertexVoronoi;
    compares, in every dimension of the run.  A step that moves an atom by more
    than a cell diameter does not resolve the forces: a warning, once per run.
    A step that moves it so far that LAMMPS would lose it, or to a non-finite
-   position, stops the run with an error.  Integrator-independent. */
+   position, stops the run with an error.  Integrator-independent.
+   It also gives atoms made during a run (fix deposit, fix pour) or by
+   create_atoms their type's values in the per-cell properties d_area0,
+   d_ka, d_kp and d_perim0, which LAMMPS would leave holding whatever the
+   memory held (often a ghost atom's value). */
 
 class FixVertexGuard : public Fix {
  public:
@@ -41,6 +45,7 @@ class FixVertexGuard : public Fix {
   // per step, the first time at its predicted positions).
   void end_of_step() override { record(); }
   void post_integrate() override;
+  void set_arrays(int) override;
   PairVertexVoronoi *pair = nullptr;
 
   // The style name, and the function that makes one (for the pair style,

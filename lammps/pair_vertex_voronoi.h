@@ -114,6 +114,12 @@ class PairVertexVoronoi : public Pair {
   // For cell-only commands: an error naming the first atom of the group
   // that is not a cell.
   void require_cells(int igroup, const char *command) const;
+  // The values a new cell of this type takes in the per-cell properties
+  // d_area0, d_ka, d_kp, d_perim0 (the quadratic form of its type's
+  // parameters in use; 0 for a type that is no cell, and d_perim0 0 for a
+  // type without a perimeter modulus): what the step guard gives atoms that
+  // fix deposit, fix pour or create_atoms make.
+  void type_cell_values(int type, double values[4]) const;
 
  protected:
   void keyword_defaults();    // the pair_style keywords' defaults

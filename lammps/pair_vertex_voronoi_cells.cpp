@@ -171,3 +171,19 @@ void PairVertexVoronoi::require_cells(int igroup, const char *command) const
              "...'",
              command, all, group->names[igroup], tall);
 }
+
+/* A new cell is a cell of its type: A0, KA = K/2, KP = Gamma/2 and
+   P0 = -w Lambda_tt / Gamma (tessera::Model's quadratic form), as the type's
+   cells have without per-cell properties. */
+
+void PairVertexVoronoi::type_cell_values(int type, double values[4]) const
+{
+  for (int k = 0; k < 4; k++) values[k] = 0.0;
+  if (!is_cell_type(type) || type < 1 || type > model.ntypes()) return;
+  const tessera::CellType &c = model.types[type - 1];
+  values[0] = c.A0;
+  values[1] = 0.5 * c.K;
+  values[2] = 0.5 * c.Gamma;
+  if (c.Gamma > 0.0)
+    values[3] = -model.tension_weight() * model.lambda_of(type - 1, type - 1) / c.Gamma;
+}

@@ -230,6 +230,41 @@ run 40
         self.assertGreater(rows[-1]["f_s[1]"], rows[0]["f_s[1]"] * 1.01)
 
 
+    def test_deaths_take_their_amounts(self):
+        """A dying cell takes its amounts with it, nothing more: between two
+        consecutive steps the total falls by exactly the amounts the vanished
+        cells had at the earlier step (cell/death deletes at the next step's
+        start, after the dump of the step that chose them)."""
+        data = random_tissue(self)
+        run = self.run_lmp(CONSERVE + """
+fix die all cell/death rate 0.3 seed 11
+compute pu all property/atom d_u
+dump du all custom 1 u.txt id c_pu
+dump_modify du sort id format float %.17g
+run 120
+""", files={"cfg.data": data})
+        frames = run.dump("u.txt")
+        deaths = 0
+        for a, b in zip(frames, frames[1:]):
+            gone = ~np.isin(a["id"], b["id"])
+            self.assertTrue(np.all(np.isin(b["id"], a["id"])))
+            deaths += int(gone.sum())
+            lost = a["c_pu"][gone].sum()
+            np.testing.assert_allclose(b["c_pu"].sum(), a["c_pu"].sum() - lost,
+                                       rtol=1e-13, atol=0, err_msg=f"step {b['step']}")
+        self.assertGreater(deaths, 3)
+
+    def test_deposits_start_empty(self):
+        """Cells made by fix deposit start with 0: the total stays while the
+        count grows."""
+        data = random_tissue(self)
+        rows = self.totals(1, data, "region dep block EDGE EDGE EDGE EDGE -0.1 0.1 units box\n"
+                           "fix dep all deposit 4 1 20 4821 region dep near 0.4 attempt 200\n")
+        self.assertGreater(rows[-1]["Atoms"], rows[0]["Atoms"])
+        u = np.array([r["f_s[1]"] for r in rows])
+        np.testing.assert_allclose(u, u[0], rtol=1e-13, atol=0)
+
+
 def collier_rates(a, b, v, k=2, h=2):
     """Collier et al.'s model, Notch n' = f(<d>) - n, Delta d' = v (g(n) - d),
     f(x) = x^k / (a + x^k), g(x) = 1 / (1 + b x^h): the homogeneous state

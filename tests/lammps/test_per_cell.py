@@ -302,6 +302,52 @@ write_dump all custom end.dump id d_perim0 d_kp modify format float %.17g
             self.assertEqual(kp, start[p0])
 
 
+class PerCellNewCells(LammpsTestCase):
+    """Cells that fix deposit makes during a run are cells of their type:
+    d_area0, d_ka, d_kp and d_perim0 hold the type's pair_coeff values
+    (LAMMPS itself would leave in them whatever the memory held, often a
+    ghost atom's values); the other cells keep theirs."""
+
+    TYPES = {"2d": {1: (1.0, 1.0, 0.1, 3.7), 2: (0.9, 1.2, 0.12, 3.8)},
+             "3d": {1: (1.0, 1.0, 0.05, 5.6), 2: (0.9, 1.2, 0.06, 5.5)}}
+
+    def check(self, model):
+        three = model.startswith("3d")
+        zlo, zhi = ("EDGE", "EDGE") if three else ("-0.1", "0.1")
+        script = model_script(model) + per_cell(model) + f"""
+write_dump all custom start.dump id d_area0 d_ka d_kp d_perim0 modify format float %.17g
+region dep block EDGE EDGE EDGE EDGE {zlo} {zhi} units box
+fix b all brownian 1.0 1 gamma_t 1.0 rng none
+fix dep1 all deposit 2 1 3 4821 region dep near 0.3 attempt 500
+fix dep2 all deposit 2 2 4 1234 region dep near 0.3 attempt 500
+timestep 0.001
+run 9
+write_dump all custom end.dump id type d_area0 d_ka d_kp d_perim0 modify format float %.17g
+"""
+        run = self.run_lmp(script)
+        a, b = run.dump("start.dump")[0], run.dump("end.dump")[0]
+        n0 = len(a["id"])
+        self.assertEqual(len(b["id"]), n0 + 4)
+        cols = ("d_area0", "d_ka", "d_kp", "d_perim0")
+        old = np.isin(b["id"], a["id"])
+        for c in cols:
+            np.testing.assert_array_equal(b[c][old], a[c])
+        types = self.TYPES["3d" if three else "2d"]
+        new = np.flatnonzero(~old)
+        self.assertEqual(sorted(b["type"][new].astype(int)), [1, 1, 2, 2])
+        for i in new:
+            want = types[int(b["type"][i])]
+            got = [b[c][i] for c in cols]
+            np.testing.assert_allclose(got, want, rtol=1e-13, atol=0,
+                                       err_msg=f"new atom {b['id'][i]} of type {int(b['type'][i])}")
+
+    def test_confluent(self):
+        self.check("confluent")
+
+    def test_3d(self):
+        self.check("3d")
+
+
 class PerCellAdapt(LammpsTestCase):
 
     def test_adapt_of_kappa_does_not_override_d_ka(self):

@@ -14,7 +14,7 @@ against things that do not come from the run itself:
   the beads deleted; tessera-tools info and vtk --cell-types count the cells
   and the beads;
 * write_restart / read_restart continues the run (the anchors' springs keep
-  their rest positions);
+  their rest positions), and 2 ranks run the trajectory of 1;
 * what the README says: with fibres the cells are slower, and they align
   the fibres along their migration axis x, with the bonds near rest."""
 
@@ -226,6 +226,21 @@ print "E $(pe:%.17g)"
         second = self.run_lmp(again + "run 100\n" + end).dump("end.dump")[0]
         for col in ("xu", "yu", "mux", "muy"):
             np.testing.assert_allclose(second[col], whole[col], rtol=0, atol=1e-9, err_msg=col)
+
+    @lmptest.nprocs(2)
+    def test_two_ranks_agree(self):
+        # bonds, angles and crosslinks across the ranks' boundary, ghosts of
+        # cells and beads: the same trajectory on 1 and 2 ranks
+        d = self.new_dir()
+        data_file(os.path.join(d, "fibres.data"))
+        end = "write_dump all custom end.dump id xu yu mux muy modify sort id format float %.17g\n"
+        script = example(noise=False) + "run 400\n" + end
+        runs = [self.run_lmp(script, nprocs=n, variables={"data": os.path.join(d, "fibres.data")})
+                for n in (1, 2)]
+        one, two = (r.dump("end.dump")[0] for r in runs)
+        self.assertIn("2 by 1 by 1 MPI processor grid", runs[1].output)
+        for col in ("xu", "yu", "mux", "muy"):
+            np.testing.assert_allclose(two[col], one[col], rtol=0, atol=1e-9, err_msg=col)
 
     def test_fibres_slow_the_cells_and_align(self):
         d = self.new_dir()

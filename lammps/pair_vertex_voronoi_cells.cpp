@@ -72,8 +72,8 @@ void PairVertexVoronoi::check_cell_types()
   // which adds styles to a pair) gives a pair to the style its last pair_coeff
   // names alone: that would leave the pair's junctions in the tessellation
   // while hybrid says the pair is another style's.
-  auto *hybrid = force->pair == this ? nullptr : dynamic_cast<PairHybrid *>(force->pair);
-  if (hybrid && strcmp(force->pair_style, "hybrid") == 0) {
+  if (force->pair != this && strcmp(force->pair_style, "hybrid") == 0) {
+    auto *hybrid = static_cast<PairHybrid *>(force->pair);
     char name[] = "vertex/voronoi";
     for (int i = 1; i <= n; i++)
       for (int j = i; j <= n; j++)

@@ -22,7 +22,9 @@
 #include "error.h"
 #include "force.h"
 #include "group.h"
+#include "pair_hybrid.h"
 
+#include <cstring>
 #include <limits>
 
 using namespace LAMMPS_NS;
@@ -65,6 +67,27 @@ void PairVertexVoronoi::check_cell_types()
                    "junctions); give it cell parameters with 'pair_coeff {} {} vertex/voronoi "
                    "...' or remove this pair_coeff",
                    i, j, i, j, type_set[i] ? j : i, type_set[i] ? j : i, type_set[i] ? j : i);
+  // Every two cells share the tessellation, whatever their types, so a pair of
+  // cell types stays this style's.  pair_style hybrid (not hybrid/overlay,
+  // which adds styles to a pair) gives a pair to the style its last pair_coeff
+  // names alone: that would leave the pair's junctions in the tessellation
+  // while hybrid says the pair is another style's.
+  if (force->pair != this && strcmp(force->pair_style, "hybrid") == 0) {
+    auto *hybrid = static_cast<PairHybrid *>(force->pair);
+    char name[] = "vertex/voronoi";
+    for (int i = 1; i <= n; i++)
+      for (int j = i; j <= n; j++)
+        if (type_set[i] && type_set[j] && hybrid->setflag[i][j] &&
+            !hybrid->check_ijtype(i, j, name))
+          error->all(FLERR,
+                     "pair_style hybrid: pair_coeff {} {} gives the type pair {} {}, both cell "
+                     "types, to another style alone, but their cells still share junctions "
+                     "(every two neighbouring cells do); to add a style to cells use 'pair_style "
+                     "hybrid/overlay', which keeps the pair with vertex/voronoi; if type {}'s "
+                     "atoms are no cells, give cell parameters to the cell types only "
+                     "('pair_coeff I I vertex/voronoi ...' instead of '* *')",
+                     i, j, i, j, j);
+  }
 }
 
 void PairVertexVoronoi::gather_cells()

@@ -14,7 +14,9 @@ colony's outer loop encloses its cells and its holes; the cells and holes of
 a tissue filling a periodic box, orthogonal or triclinic, tile the box,
 also with a wound across the box's edges); the largest hole and the
 'min_area' keyword against the analytic area of the gap at a three-cell
-corner and the geometry of a removed cell's hole; and the errors."""
+corner and the geometry of a removed cell's hole; the hole around a
+particle (a site of a hexagonal tissue that is no cell) against its closed
+form, itself checked on a fine grid; and the errors."""
 
 import math
 
@@ -489,6 +491,160 @@ print "G {values}"
                                                        "compute loops all vertex/loops min_area " + value),
                                files={"cells.data": data}, ok=False)
             self.assertLammpsError(run, "compute vertex/loops loops", fragment)
+
+
+def hole_around_a_site(a, r):
+    """The hole left by removing one site of a hexagonal lattice of spacing a
+    whose other sites carry discs of radius r, a/2 < r < a (closed form,
+    derived in doc/model.md): the circles of neighbours k and k+1 cross at
+    rho = (sqrt(3)/2) a - sqrt(r^2 - a^2/4) from the site, six corners of a
+    regular hexagon of side rho; each neighbour's arc between two corners
+    subtends theta = 2 asin(rho / (2 r)) at its centre.  Returns (area,
+    length, rho) with area = (3 sqrt(3)/2) rho^2 - 3 r^2 (theta - sin theta)
+    (the hexagon less six circular segments) and length = 6 r theta."""
+    rho = math.sqrt(3.0) / 2.0 * a - math.sqrt(r * r - a * a / 4.0)
+    theta = 2.0 * math.asin(rho / (2.0 * r))
+    return 1.5 * math.sqrt(3.0) * rho ** 2 - 3.0 * r * r * (theta - math.sin(theta)), 6.0 * r * theta, rho
+
+
+def uncovered_area_on_grid(a, r, n=1200):
+    """Independent of hole_around_a_site: the area of the region around the
+    removed site (the origin) that no disc of the lattice's three rings
+    covers, counted on an n x n grid of cell midpoints; the region is the
+    grid's connected uncovered component at the origin.  Returns the area and
+    whether that component reaches the grid's edge (then the window, 1.1 rho
+    wide on each side, did not hold the hole)."""
+    from scipy import ndimage
+
+    w = 1.1 * hole_around_a_site(a, r)[2]
+    x = (np.arange(n) + 0.5) / n * 2 * w - w
+    X, Y = np.meshgrid(x, x)
+    free = np.ones(X.shape, bool)
+    for i in range(-5, 6):
+        for j in range(-5, 6):
+            c = (a * (i + 0.5 * j), a * math.sqrt(3.0) / 2.0 * j)
+            if (i, j) != (0, 0) and math.hypot(*c) < 3.5 * a:
+                free &= (X - c[0]) ** 2 + (Y - c[1]) ** 2 > r * r
+    labels, _ = ndimage.label(free)
+    hole = labels == labels[n // 2, n // 2]
+    edge = hole[0].any() or hole[-1].any() or hole[:, 0].any() or hole[:, -1].any()
+    return hole.sum() * (2 * w / n) ** 2, bool(edge)
+
+
+class HoleAroundAParticle(LammpsTestCase):
+    """A periodic hexagonal tissue of finite cells (spacing a, radius r) with
+    one site holding a particle instead of a cell (type 2, pair soft under
+    hybrid/overlay, no cell parameters): the cells leave around it the hole
+    of hole_around_a_site, whose area and length compute vertex/loops gives
+    to round-off (the largest hole, its centroid on the site and its six
+    cells; the total of all holes; the cells and holes tiling the box), with
+    the particle on the site or off it (the particle never enters the
+    tessellation), on 1 and 2 ranks (the hole split between them).  For
+    r < a/sqrt(3) the lattice's three-cell corners leave gaps too (2 per
+    site, less the 6 around the removed one).  Made a cell, the particle
+    fills the hole."""
+
+    # (a, r): r/a from just above 1/2 (gaps at the corners) to near 1 (a small hole)
+    CASES = [(1.0, 0.52), (1.2, 0.66), (1.0, 0.6), (1.0, 0.75), (1.3, 0.9), (0.8, 0.76)]
+    NX, NY, SITE = 6, 6, (3, 2)
+
+    def test_closed_form_against_the_discs(self):
+        for a, r in self.CASES + [(1.0, 0.95), (2.0, 1.5)]:
+            with self.subTest(a=a, r=r):
+                area, length, rho = hole_around_a_site(a, r)
+                grid, reaches_edge = uncovered_area_on_grid(a, r)
+                self.assertFalse(reaches_edge)
+                self.assertAlmostEqual(area, grid, delta=5e-4 * area)
+                # the length is minus the derivative of the area in r (growing every
+                # disc by dr moves the whole boundary inwards by dr)
+                dr = 1e-6 * r
+                d_area = (hole_around_a_site(a, r + dr)[0] - hole_around_a_site(a, r - dr)[0]) / (2 * dr)
+                self.assertAlmostEqual(-d_area, length, delta=1e-7 * length)
+                # and the corners-and-segments construction of hole_geometry
+                sites = [(a * (i + 0.5 * j), a * math.sqrt(3.0) / 2.0 * j)
+                         for i in range(-3, 4) for j in range(-3, 4) if (i, j) != (0, 0)]
+                geo_area, geo_length, corners = hole_geometry(sites, r, np.zeros(2), within=a)
+                self.assertEqual(corners, 6)
+                self.assertAlmostEqual(geo_area, area, delta=1e-12)
+                self.assertAlmostEqual(geo_length, length, delta=1e-12)
+
+    def measure(self, a, r, offset=(0.0, 0.0), nprocs=1, particle_is_cell=False):
+        """The global values of compute vertex/loops and the sum of the cell
+        areas, and the site's position."""
+        h = a * math.sqrt(3.0) / 2.0
+        sites = np.array([((i + 0.5 * (j % 2)) * a, j * h) for j in range(self.NY) for i in range(self.NX)])
+        sites += np.array([0.05, 0.1]) * a
+        k = self.SITE[1] * self.NX + self.SITE[0]
+        xy = sites.copy()
+        xy[k] += np.asarray(offset) * a
+        types = [2 if q == k else 1 for q in range(len(xy))]
+        data = data_file(xy, (0.0, self.NX * a, 0.0, self.NY * h), types=types)
+        cells = "* *" if particle_is_cell else "1 1"
+        values = " ".join("$(c_loops[%d]:%%.17g)" % q for q in range(1, 10))
+        text = f"""
+dimension 2
+units lj
+atom_style atomic
+boundary p p p
+{"processors 2 1 1" if nprocs == 2 else ""}
+read_data cells.data
+pair_style hybrid/overlay vertex/voronoi {2 * r + 0.1} radius {r} soft {0.4 * a}
+pair_coeff {cells} vertex/voronoi quadratic 1.0 1.2 0.1 3.9 free 0.2
+pair_coeff * 2 soft 1.0 {0.4 * a}
+compute loops all vertex/loops
+compute va all vertex/atom
+compute asum all reduce sum c_va[1]
+thermo_style custom step pe c_loops[1] c_asum
+run 0
+print "G {values} $(c_asum:%.17g)"
+"""
+        run = self.run_lmp(text, nprocs=nprocs, files={"cells.data": data})
+        g = [[float(w) for w in line.split()[1:]] for line in run.stdout.splitlines()
+             if line.startswith("G ")][0]
+        return g, sites[k]
+
+    def check(self, a, r, g, site):
+        area, length, _ = hole_around_a_site(a, r)
+        n = self.NX * self.NY
+        gaps = 2 * n - 6 if r < a / math.sqrt(3.0) else 0
+        gap = corner_gap_area(a, r) if gaps else 0.0
+        self.assertLess(gap, area)
+        self.assertEqual(g[0], 1 + gaps)                                  # holes
+        self.assertAlmostEqual(g[1], area + gaps * gap, delta=1e-9)       # their total area
+        self.assertEqual(g[2:4], [1 + gaps, 0])                           # loops, wrapping
+        self.assertAlmostEqual(g[4], area, delta=1e-10)                   # the largest hole
+        np.testing.assert_allclose(g[5:7], site, rtol=0, atol=1e-9)       # centred on the site
+        self.assertAlmostEqual(g[7], length, delta=1e-10)                 # bounded by six arcs
+        self.assertEqual(g[8], 6)
+        box = self.NX * a * self.NY * a * math.sqrt(3.0) / 2.0
+        self.assertAlmostEqual(g[9] + g[1], box, delta=1e-9 * box)        # cells + holes = box
+
+    def test_hole_on_and_off_the_site(self):
+        for a, r in self.CASES:
+            for offset in ((0.0, 0.0), (0.21, -0.13)):
+                with self.subTest(a=a, r=r, offset=offset):
+                    self.check(a, r, *self.measure(a, r, offset))
+
+    @nprocs(2)
+    def test_hole_split_between_two_ranks(self):
+        # The sub-domains meet at x = 3 a, 0.05 a from the site.
+        for a, r in self.CASES:
+            with self.subTest(a=a, r=r):
+                g2, site = self.measure(a, r, (0.21, -0.13), nprocs=2)
+                self.check(a, r, g2, site)
+                g1, _ = self.measure(a, r, (0.21, -0.13))
+                np.testing.assert_allclose(g2, g1, rtol=1e-12, atol=1e-12)
+
+    def test_a_tessellated_particle_fills_the_hole(self):
+        # Given cell parameters, the particle is a cell: no hole but the gaps.
+        for a, r in ((1.0, 0.52), (1.0, 0.75)):
+            with self.subTest(a=a, r=r):
+                g, _ = self.measure(a, r, particle_is_cell=True)
+                n = self.NX * self.NY
+                gaps = 2 * n if r < a / math.sqrt(3.0) else 0
+                self.assertEqual(g[0], gaps)
+                self.assertAlmostEqual(g[4], corner_gap_area(a, r) if gaps else 0.0, delta=1e-10)
+
 
 if __name__ == "__main__":
     lmptest.main()

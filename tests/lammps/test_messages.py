@@ -103,6 +103,22 @@ CASES = [
     ("death_default_floor_on_sphere", sphere() + BROWNIAN +
      "fix d all cell/death rate 5.0 seed 7\ntimestep 0.1\nrun 50\n",
      False, ["fix cell/death d:", "the floor 'min 4' (the default)", "at least 4 cells"], []),
+    # pair_style hybrid (not overlay) giving a pair of cell types to another style alone:
+    # their cells would still share junctions
+    ("hybrid_takes_a_pair_of_cell_types", lmptest.tissue(6, 3, ntypes=2) + "set type 1 type/fraction 2 0.5 5\n"
+     "pair_style hybrid vertex/voronoi 3.0 soft 1.0\npair_coeff * * vertex/voronoi 1 1 0.1 -0.5\n"
+     "pair_coeff 1 2 soft 1.0 1.0\nrun 0\n",
+     True, ["pair_style hybrid: pair_coeff 1 2 gives the type pair 1 2, both cell types, to another style",
+            "'pair_style hybrid/overlay'"], ["All pair coeffs are not set"]),
+    ("hybrid_particles_given_cell_parameters", lmptest.tissue(6, 3, ntypes=2) + "set atom 5 type 2\n"
+     "pair_style hybrid vertex/voronoi 3.0 soft 1.0\npair_coeff * * vertex/voronoi 1 1 0.1 -0.5\n"
+     "pair_coeff * 2 soft 1.0 1.0\nrun 0\n",
+     True, ["pair_coeff 1 2 gives the type pair 1 2", "if type 2's atoms are no cells",
+            "'pair_coeff I I vertex/voronoi ...' instead of '* *'"], []),
+    ("hybrid_cell_type_own_pair_to_another_style", lmptest.tissue(6, 3, ntypes=2) + "set atom 5 type 2\n"
+     "pair_style hybrid vertex/voronoi 3.0 soft 1.0\npair_coeff * * vertex/voronoi 1 1 0.1 -0.5\n"
+     "pair_coeff 1 2 vertex/voronoi -0.5\npair_coeff 2 2 soft 1.0 1.0\nrun 0\n",
+     True, ["pair_coeff 2 2 gives the type pair 2 2"], ["All pair coeffs are not set"]),
 ]
 
 

@@ -4,10 +4,13 @@
 with LAMMPS commands (examples/moduli/in.moduli: change_box ... remap,
 minimize, pxy / press) and the exact Hessian of the dumped minimum
 (tessera-hessian through tools/tessera_tools/moduli.py); and both against the
-closed-form moduli of the hexagonal lattice."""
+closed-form moduli of the hexagonal lattice, also with particles (atoms that are
+no cells) in the box."""
 
 import math
 import os
+import re
+import subprocess
 import sys
 
 import lmptest
@@ -95,6 +98,45 @@ class ModuliRoutes(LammpsTestCase):
                           exe=hessian_exe())
         self.assertAlmostEqual(ex["G"], 0.75 * PH * (PH - 3.8), delta=1e-9)
         self.assertGreater(ex["negative_modes"], 0)
+
+
+    def test_hexagonal_lattice_with_particles(self):
+        """The example's hexagonal tissue with three particles (type 2, pair soft under
+        hybrid/overlay) at Voronoi vertices, out of soft's reach of every cell: the strain
+        steps (LAMMPS's stress of every pair style) and tessera-tools moduli --cell-types 1 on
+        the dump (the cells' Hessian, the particles left out) both give the closed form; without
+        --cell-types the tool stops naming the particles' type and the option."""
+        p0 = 3.5
+        a = math.sqrt(2 / math.sqrt(3))
+        h = a * math.sqrt(3) / 2
+        spots = [(0.5 * a, h / 3), (2.5 * a, h / 3), (3 * a, 2 * h / 3)]    # a / sqrt(3) from three cells
+        script = open(EXAMPLE).read().replace("create_box 1 box", "create_box 2 box")
+        script = script.replace("mass            1 1.0\n", "mass            * 1.0\n" + "".join(
+            f"create_atoms 2 single {x!r} {y!r} 0 units box\n" for x, y in spots))
+        script = script.replace("pair_style      vertex/voronoi 4.0\npair_coeff      * * quadratic",
+                                "pair_style      hybrid/overlay vertex/voronoi 4.0 soft 0.5\n"
+                                "pair_coeff      * 2 soft 10.0 0.5\n"
+                                "pair_coeff      1 1 vertex/voronoi quadratic")
+        self.assertEqual(script.count("create_atoms 2 single"), 3)
+        self.assertIn("hybrid/overlay", script)
+        run = self.run_lmp(script, variables=dict(p0=p0, tissue="hex"))
+        qs = fit_quasistatic(run.path("qs.dat"))
+        G, B = 0.75 * PH * (PH - p0), 2 + PH * p0 / 2
+        self.assertLess(abs(qs["G"] - G), 3 * qs["G_err"] + 1e-6, qs)
+        self.assertLess(abs(qs["B"] - B), 3 * qs["B_err"] + 1e-6, qs)
+        tool = os.path.join(ROOT, "tools", "tessera-tools")
+        env = dict(os.environ, TESSERA_HESSIAN=hessian_exe())
+        args = [sys.executable, tool, "moduli", "minimised.dump", "--quadratic", "1", "1", "1", str(p0)]
+        proc = subprocess.run(args + ["--cell-types", "1"], cwd=run.dir, capture_output=True, text=True, env=env)
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertIn("left out 3 atom(s) of type 2", proc.stdout)
+        found = re.search(r"Hessian: G = ([-0-9.e+]+) .*B = ([-0-9.e+]+)", proc.stdout)
+        self.assertAlmostEqual(float(found.group(1)), G, delta=1e-6)
+        self.assertAlmostEqual(float(found.group(2)), B, delta=1e-5)
+        proc = subprocess.run(args, cwd=run.dir, capture_output=True, text=True, env=env)
+        self.assertNotEqual(proc.returncode, 0)
+        self.assertIn("type 2 (3 atoms)", proc.stderr)
+        self.assertIn("--cell-types 1", proc.stderr)
 
 
 if __name__ == "__main__":

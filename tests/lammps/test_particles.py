@@ -81,8 +81,11 @@ group p id""") + "run 0\n"
 
     def test_a_cell_type_also_in_another_sub_style(self):
         # Cells that also repel each other through soft: the energies add up
-        # and forces are still the central differences of the total pe.
-        script = mixed("pair_coeff 1 1 soft 0.5 1.3", soft=1.3) + """group a id 17
+        # and forces are still the central differences of the total pe; for
+        # confluent and finite cells.
+        for radius in ("", " radius 0.7"):
+            with self.subTest(model="finite" if radius else "confluent"):
+                script = mixed("pair_coeff 1 1 soft 0.5 1.3", soft=1.3, cut="3.0" + radius) + """group a id 17
 run 0
 print "F $(fx[17]:%.17g) $(pe:%.17g) $(c_pv:%.17g) $(c_ps:%.17g)"
 displace_atoms a move 1e-5 0 0 units box
@@ -92,33 +95,41 @@ displace_atoms a move -2e-5 0 0 units box
 run 0
 print "EM $(pe:%.17g)"
 """
-        run = self.run_lmp(script)
-        f, pe, pv, ps = printed(run, "F")[0]
-        self.assertAlmostEqual(pe, pv + ps, delta=1e-12 * abs(pe))
-        self.assertGreater(ps, 0.0)
-        fd = -(printed(run, "EP")[0][0] - printed(run, "EM")[0][0]) / 2e-5
-        self.assertAlmostEqual(f, fd, delta=1e-6 * (abs(f) + 1))
+                run = self.run_lmp(script)
+                f, pe, pv, ps = printed(run, "F")[0]
+                self.assertAlmostEqual(pe, pv + ps, delta=1e-12 * abs(pe))
+                self.assertGreater(ps, 0.0)
+                fd = -(printed(run, "EP")[0][0] - printed(run, "EM")[0][0]) / 2e-5
+                self.assertAlmostEqual(f, fd, delta=1e-6 * (abs(f) + 1))
 
     def test_a_particle_at_a_cell_centre(self):
-        # A particle on top of cell 17: the cells do not see it (their energy
-        # is that of the tissue without it), soft's force at zero distance is 0.
-        script = mixed(particles="6") + """create_atoms 2 single $(x[17]) $(y[17]) 0 units box
+        # A particle on top of cell 17, or 0.3 from its centre (inside the
+        # disc of radius 0.7 of finite cells): the cells do not see it (their
+        # energy is that of the tissue without it); soft's force at zero
+        # distance is 0.
+        for radius in ("", " radius 0.7"):
+            for dx in (0.0, 0.3):
+                with self.subTest(model="finite" if radius else "confluent", offset=dx):
+                    script = mixed(particles="6", cut="3.0" + radius) + f"""create_atoms 2 single $(x[17]+{dx}) $(y[17]) 0 units box
 run 0
 print "E $(c_pv:%.17g) $(fx[85]:%.17g) $(fy[85]:%.17g) $(atoms)"
 """
-        run = self.run_lmp(script)
-        pv, fx, fy, n = printed(run, "E")[0]
-        self.assertEqual(n, 85)
-        self.assertEqual((fx, fy), (0.0, 0.0))
-        alone = tissue() + """group p id 6
+                    run = self.run_lmp(script)
+                    pv, fx, fy, n = printed(run, "E")[0]
+                    self.assertEqual(n, 85)
+                    if dx == 0.0:
+                        self.assertEqual((fx, fy), (0.0, 0.0))
+                    else:
+                        self.assertGreater(abs(fx), 0.1)    # soft pushes it away from cell 17
+                    alone = tissue() + f"""group p id 6
 delete_atoms group p compress no
-pair_style vertex/voronoi 3.0
+pair_style vertex/voronoi 3.0{radius}
 pair_coeff * * 1.0 1.0 0.1 -0.5
 thermo_modify norm no format float %.17g
 run 0
 print "E $(pe:%.17g)"
 """
-        self.assertAlmostEqual(pv, printed(self.run_lmp(alone), "E")[0][0], delta=1e-10 * abs(pv))
+                    self.assertAlmostEqual(pv, printed(self.run_lmp(alone), "E")[0][0], delta=1e-10 * abs(pv))
 
     def test_per_cell_values_and_fix_adapt_inside_hybrid(self):
         # Particles need no d_area0 (theirs stays 0); fix adapt of a

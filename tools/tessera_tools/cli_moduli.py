@@ -100,6 +100,66 @@ def _fnorm_cause(m):
             + "; dump fx fy with the state to tell which, or raise --fnorm-max")
 
 
+def _types_text(types, sep=", "):
+    """'1, 3' (or with sep ',': '1,3', as --cell-types takes them) or '2*' for a list of types
+    (ints, or (lo, None) for lo and above)."""
+    return sep.join(f"{t[0]}*" if isinstance(t, tuple) else str(t)
+                     for t in sorted(types, key=lambda t: t[0] if isinstance(t, tuple) else t))
+
+
+def _cells_and_particles(path, frame, cell_types, option):
+    """Check which atoms of ``frame`` are cells for the one parameter set of ``option``
+    (--quadratic or --coeff) and return the particles left out (a Frame) or None.
+
+    Without --cell-types every atom is a cell, so atoms of several types are refused with the
+    fix: particles (types without cell parameters) are left out with --cell-types.  With it,
+    ``frame`` holds the cells (read_dump split them) and ``frame.particles`` the other atoms."""
+    if "type" not in frame:
+        return None
+    if cell_types is None:
+        present = sorted(set(np.asarray(frame["type"]).astype(int).tolist()))
+        if len(present) > 1:
+            counts = np.unique(np.asarray(frame["type"]).astype(int), return_counts=True)[1]
+            listed = ", ".join(f"type {t} ({c} atoms)" for t, c in zip(present, counts))
+            others = _types_text(present[1:])
+            raise SystemExit(
+                f"tessera-tools moduli: {path}: the dump has atoms of several types ({listed}) and {option} "
+                f"gives the parameters of one cell type. If the atoms of type {others} are no cells (particles under "
+                f"pair_style hybrid/overlay, without 'pair_coeff I I vertex/voronoi' cell parameters), give "
+                f"--cell-types {present[0]} to leave them out; if all are cells with these parameters, give "
+                f"--cell-types {_types_text(present, ',')}; cells with several parameter sets need the Python API "
+                "(tessera_tools.moduli.run_hessian with a Model of several types, doc/howto_moduli.md)")
+        return None
+    particles = getattr(frame, "particles", None)
+    if len(frame) == 0:
+        ptypes = sorted(set(np.asarray(particles["type"]).astype(int).tolist())) if particles else []
+        raise SystemExit(f"tessera-tools moduli: {path}: --cell-types {_types_text(cell_types, ',')}: no atom of the "
+                         f"dump has these types (it has types {_types_text(ptypes)}); give the types that have "
+                         "cell parameters in 'pair_coeff I I vertex/voronoi'")
+    if particles is None or len(particles) == 0:
+        return None
+    return particles
+
+
+def _particles_note(particles):
+    ptypes = _types_text(sorted(set(np.asarray(particles["type"]).astype(int).tolist())))
+    return f"{len(particles)} atom(s) of type {ptypes}"
+
+
+def _particle_contact(m, particles, path, fnorm_max):
+    """With particles left out, the Hessian route has the cells' vertex energy only.  When the
+    dump's forces on the cells differ from that energy's, something else (the particles' pair
+    style) pushes on them, and its stiffness is missing too: the error to stop with, or None."""
+    if m.get("force_mismatch") is None or m["force_mismatch"] <= fnorm_max:
+        return None
+    return (f"{path}: the dump's forces on the cells (fx fy) differ from those of the cells' vertex energy by up "
+            f"to {m['force_mismatch']:.3g} (> --fnorm-max {fnorm_max:g}): the particles left out "
+            f"({_particles_note(particles)}) push on the cells through their pair style, whose stiffness the "
+            "Hessian of the cells leaves out, so its G and B would not be the moduli of this state. Measure "
+            "them with the strain steps of examples/moduli/in.moduli run with the particles (LAMMPS's stress "
+            "includes every pair style) and give their qs.dat with --quasistatic")
+
+
 def cmd_moduli(args):
     from .dump import read_dump
     from .moduli import Model, fit_quasistatic, frame_moduli, seed_average
@@ -119,12 +179,21 @@ def cmd_moduli(args):
     if ref <= 0:
         raise SystemExit(f"tessera-tools moduli: the area stiffness times A0 is {ref:g}; it must be positive")
 
+    option = "--quadratic" if args.quadratic else "--coeff"
     states = []
     for k, path in enumerate(dumps):
-        frame = read_dump(path)[args.frame]
-        state = dict(path=path, frame=frame, hessian=None, qs=None)
+        frame = read_dump(path, cell_types=args.cell_types)[args.frame]
+        particles = _cells_and_particles(path, frame, args.cell_types, option)
+        state = dict(path=path, frame=frame, hessian=None, qs=None, particles=particles)
         try:
-            state["hessian"] = frame_moduli(frame, model, exe=args.exe)
+            state["hessian"] = frame_moduli(frame, model, exe=args.exe, use_types=False)
+            contact = particles is not None and _particle_contact(state["hessian"], particles, path,
+                                                                  args.fnorm_max)
+            if contact:
+                state["hessian"] = None
+                if not qs_files:
+                    raise SystemExit(f"tessera-tools moduli: {contact}")
+                state["hessian_error"] = contact
         except (RuntimeError, FileNotFoundError) as err:
             if not qs_files or isinstance(err, FileNotFoundError) and args.exe:
                 if isinstance(err, FileNotFoundError):
@@ -166,6 +235,13 @@ def cmd_moduli(args):
             if "eigenvalues" in m:
                 print(f"  spectrum: {m['zero_modes']} zero modes (2 are translations), {m['negative_modes']} "
                       f"negative, lowest non-zero eigenvalue {m['lowest_nonzero']:.6g} energy/length^2 per mass")
+            if s["particles"] is not None:
+                checked = ("the dump's forces on the cells are those of their vertex energy: no particle "
+                           "pushes on a cell" if "force_mismatch" in m else
+                           "dump fx fy with the state to check that no particle pushes on a cell")
+                print(f"  cells: {m['n']} atoms of --cell-types {_types_text(args.cell_types, ',')}; left out "
+                      f"{_particles_note(s['particles'])}, no cells: G and B are those of the cells' vertex "
+                      f"energy alone, without the particles' pair styles ({checked})")
             if m["cells"]:
                 print(f"  per-cell parameters from the dump: {' '.join(m['cells'])} (they replace the types' "
                       "values, as in pair vertex/voronoi)")
@@ -227,6 +303,8 @@ def cmd_moduli(args):
 
 def add_commands(sub):
     """Add this module's commands to the subparsers ``sub`` of tessera-tools."""
+    from .cli_frames import CELL_TYPES_HELP, _types
+
     mo = sub.add_parser("moduli", help="elastic moduli and vibrational spectrum of a minimised tissue (exact Hessian)",
                         description="Shear, bulk and Young's modulus, Poisson's ratio and the Hessian's spectrum of "
                                     "an energy-minimised periodic configuration, from the exact Hessian "
@@ -240,6 +318,10 @@ def add_commands(sub):
     mp.add_argument("--coeff", type=float, nargs=4, metavar=("K", "A0", "GAMMA", "LAMBDA"),
                     help="one cell type, pair_coeff * * K A0 Gamma Lambda")
     mo.add_argument("--tension", choices=("edge", "cell"), default="edge", help="pair_style's tension (default edge)")
+    mo.add_argument("--cell-types", type=_types, metavar="TYPES",
+                    help=CELL_TYPES_HELP + ". The cells take the parameters of --quadratic/--coeff; the Hessian "
+                         "route then has the cells' vertex energy only, and stops if the dump's forces show "
+                         "particles pushing on cells (measure those states with --quasistatic)")
     mo.add_argument("--quasistatic", metavar="QS.DAT",
                     help="also fit the strain steps of examples/moduli/in.moduli (its qs.dat; with --seeds a "
                          "pattern with {seed}); this route also works where the Hessian does not exist "

@@ -223,16 +223,18 @@ def frame_cells(frame):
     return {name: frame[col] for col, name in CELL_COLUMNS.items() if col in frame}
 
 
-def frame_moduli(frame, model, exe=None, dense_limit=4000):
+def frame_moduli(frame, model, exe=None, dense_limit=4000, use_types=True):
     """moduli() of a tessera_tools.dump.Frame (positions x y, optional type column, and the
-    per-cell parameters d_area0, d_ka, d_kp, d_perim0 where the dump has them).
+    per-cell parameters d_area0, d_ka, d_kp, d_perim0 where the dump has them).  Every atom of
+    the frame is a cell: read the dump with ``cell_types`` to leave particles out.
+    ``use_types`` False gives every cell the model's first type, whatever its type column.
 
     The result also holds 'cells' (the per-cell columns used) and, when the dump has the
     forces fx fy, 'dump_fnorm' (their 2-norm) and 'force_mismatch' (the largest difference
     between them and the forces of the energy used here): a state whose own forces vanish
     while this energy's do not was run with another energy (other coefficients, or per-cell
     parameters the dump does not carry)."""
-    types = frame["type"] if "type" in frame else None
+    types = frame["type"] if use_types and "type" in frame else None
     cells = frame_cells(frame)
     out = moduli(run_hessian(frame.box, frame.positions(), model, types, exe, cells), dense_limit)
     out["cells"] = [col for col in CELL_COLUMNS if col in frame]

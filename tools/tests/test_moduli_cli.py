@@ -1,6 +1,7 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """tessera-tools moduli: units, error bars over seeds, the quasistatic route where the
-Hessian does not exist, the fnorm warning, and where tessera-hessian is looked for.
+Hessian does not exist, the fnorm warning, where tessera-hessian is looked for, and dumps
+with particles (atoms that are no cells).
 Expected values are analytic (hexagon closed form, slopes of synthetic strain steps),
 never the tool's own earlier output."""
 
@@ -309,6 +310,81 @@ class WithHessian(unittest.TestCase):
         self.assertAlmostEqual(numbers_after(out, "B")[0], 1.5, places=5)
         self.assertIn("multifold", err)
         self.assertRegex(out, r"G = [0-9.e+-]+ \+- [0-9.e+-]+ energy/length\^2")
+
+
+@unittest.skipUnless(have_hessian(), "tessera-hessian not built")
+class WithParticles(unittest.TestCase):
+    """A dump with atoms that are no cells (particles of other types, under pair_style
+    hybrid/overlay): refused without --cell-types with the fix; with it the particles are left
+    out and the cells' moduli are the hexagon's closed form whatever their own type; a dump whose
+    forces show particles pushing on cells is refused for the Hessian route (no stiffness of the
+    particles' pair style there) and measured by the strain steps with --quasistatic."""
+
+    KP, P0 = 1.0, 3.5
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.addCleanup(self.tmp.cleanup)
+
+    def path(self, name):
+        return os.path.join(self.tmp.name, name)
+
+    def dump(self, name, cell_type=1, particle_types=(2, 2, 3), push=0.0):
+        """A 6 x 4 hexagonal tissue of unit-area cells with particles at three Voronoi vertices
+        (IDs mixed with the cells'); forces fx fy: zero, but `push` on cell 5 along x."""
+        a = math.sqrt(2 / math.sqrt(3))
+        cells, box = hex_lattice(6, 4, a=a)
+        h = a * math.sqrt(3) / 2
+        particles = np.array([[0.5 * a, h / 3], [2.5 * a, h / 3], [3.0 * a, 2 * h / 3]])
+        pos = np.vstack([particles, cells])
+        n, m = len(cells), len(particles)
+        types = np.concatenate([particle_types, np.full(n, cell_type)])
+        ids = np.concatenate([[2, 9, 20], [i for i in range(1, n + m + 1) if i not in (2, 9, 20)]])
+        fx = np.zeros(n + m)
+        fx[m + 5] = push
+        write_dump(self.path(name), [frame_from(pos, box, id=ids, type=types, fx=fx, fy=np.zeros(n + m))])
+        return self.path(name)
+
+    def moduli(self, *args):
+        return run("moduli", *args, "--quadratic", "1", "1", str(self.KP), str(self.P0))
+
+    def test_several_types_refused_with_the_fix(self):
+        code, out, err = self.moduli(self.dump("p.dump"))
+        self.assertNotEqual(code, 0)
+        self.assertIn("type 1 (24 atoms), type 2 (2 atoms), type 3 (1 atoms)", err)
+        self.assertIn("If the atoms of type 2, 3 are no cells", err)
+        self.assertIn("give --cell-types 1 to leave them out", err)
+        code, out, err = self.moduli(self.dump("p.dump"), "--cell-types", "4")
+        self.assertNotEqual(code, 0)
+        self.assertIn("--cell-types 4: no atom of the dump has these types (it has types 1, 2, 3)", err)
+
+    def test_particles_left_out(self):
+        G = 0.75 * self.KP * PH * (PH - self.P0)
+        B = 2 + self.KP * PH * self.P0 / 2
+        for cell_type, particle_types, option in ((1, (2, 2, 3), "1"), (2, (1, 3, 3), "2"),
+                                                  (2, (1, 1, 1), "2*")):
+            with self.subTest(cells=option):
+                code, out, err = self.moduli(self.dump("p.dump", cell_type, particle_types), "--cell-types", option)
+                self.assertEqual(code, 0, err)
+                self.assertAlmostEqual(numbers_after(out, "G")[0], G, places=6)
+                self.assertAlmostEqual(numbers_after(out, "B")[0], B, places=5)
+                self.assertIn(f"24 cells, area {24:.10g} length^2", out)
+                self.assertIn(f"cells: 24 atoms of --cell-types {option}; left out 3 atom(s) of type", out)
+                self.assertIn("no particle pushes on a cell", out)
+                self.assertNotIn("warning", err)
+
+    def test_particles_pushing_on_cells(self):
+        path = self.dump("push.dump", push=0.3)
+        code, out, err = self.moduli(path, "--cell-types", "1")
+        self.assertNotEqual(code, 0)
+        self.assertRegex(err, r"differ from those of the cells' vertex energy by up to 0.3 .*the particles left "
+                              r"out \(3 atom\(s\) of type 2, 3\) push on the cells.*--quasistatic")
+        write_qs(self.path("qs.dat"), 0.4, 2.5, noise=1e-9)
+        code, out, err = self.moduli(path, "--cell-types", "1", "--quasistatic", self.path("qs.dat"))
+        self.assertEqual(code, 0, err)
+        self.assertAlmostEqual(numbers_after(out, "G")[0], 0.4, places=5)
+        self.assertAlmostEqual(numbers_after(out, "B")[0], 2.5, places=5)
+        self.assertIn("no Hessian route", err)
 
 
 if __name__ == "__main__":

@@ -35,14 +35,13 @@ BIN = 0.5        # grid spacing of the coarse-grained field
 
 
 def read_params(log):
-    """F, Rp and p0 as the run used them (the log's variable lines)."""
-    out = {}
+    """F, Rp, p0 and dt as the run used them (the line in.flow prints)."""
     with open(log) as f:
         for line in f:
-            w = line.split()
-            if len(w) >= 4 and w[0] == "variable" and w[1] in ("F", "Rp", "p0", "dt") and w[2] == "index":
-                out.setdefault(w[1], float(w[3]))
-    return out
+            if line.startswith("PARAMS "):
+                w = line.split()[1:]
+                return {k: float(v) for k, v in zip(w[::2], w[1::2])}
+    raise SystemExit(f"{log}: no PARAMS line (run in.flow first)")
 
 
 def coarse_grain(frames, nbx, nby, tau):

@@ -11,7 +11,7 @@ import os
 import numpy as np
 
 import lmptest
-from lmptest import LammpsTestCase
+from lmptest import LammpsTestCase, nprocs
 
 EXAMPLES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples")
 
@@ -242,9 +242,11 @@ class FlowPillarsExample(LammpsTestCase):
     So the cells' summed displacement over the run is dt / gamma times the
     sum over steps of (N F - the pillar's force), that force read from the
     pillar atom, which is in no integrator's group and must not move; and no
-    cell centre may cross into the core of the pillar's repulsion."""
+    cell centre may cross into the core of the pillar's repulsion.  On two
+    ranks the pillar's force also sums the pushes of cells owned by the other
+    rank."""
 
-    def test_pillar_reaction_balances_the_drive(self):
+    def check(self, nranks):
         with open(os.path.join(EXAMPLES, "flow_pillars", "in.flow")) as f:
             script = f.read()
         script = script[:script.index("run             $(round(v_tdump/v_dt))")]
@@ -257,7 +259,7 @@ fix fstep all print 1 "$(c_fp[1]:%.17g) $(c_rmin:%.17g)" file steps.dat screen n
 run {nsteps}
 print "B $(xcm(cells,x):%.17g) $(bound(pillar,xmin):%.17g) $(bound(pillar,ymin):%.17g)"
 """
-        run = self.run_lmp(script, args=["-var", "tend", "1.0", "-var", "tdump", "1.0"])
+        run = self.run_lmp(script, nprocs=nranks, args=["-var", "tend", "1.0", "-var", "tdump", "1.0"])
         n, x0, fp0, px0, py0 = printed(run, "A")[0]
         x1, px1, py1 = printed(run, "B")[0]
         steps = np.loadtxt(run.path("steps.dat"))
@@ -274,6 +276,13 @@ print "B $(xcm(cells,x):%.17g) $(bound(pillar,xmin):%.17g) $(bound(pillar,ymin):
         self.assertEqual((px1, py1), (px0, py0))
         # the pillar's soft force (range 2) keeps every centre out of its core
         self.assertGreater(np.min(steps[:, 1]), 1.0)
+
+    def test_pillar_reaction_balances_the_drive(self):
+        self.check(1)
+
+    @nprocs(2)
+    def test_pillar_reaction_balances_the_drive_two_ranks(self):
+        self.check(2)
 
 
 if __name__ == "__main__":

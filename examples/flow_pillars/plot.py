@@ -192,7 +192,7 @@ def main():
     ax.set_xlim(b.xlo, b.xhi)
     ax.set_ylim(b.ylo, b.yhi)
     ax.set_aspect("equal")
-    ax.set_title(f"cells driven along +x past a pillar (periodic: a square array), "
+    ax.set_title(f"cells driven along +x past a pillar (periodic box: an array of pillars), "
                  f"$\\langle v_x\\rangle$ = {vmean / v0:.2f} F/$\\gamma$", fontsize=10)
     fig.tight_layout()
     fig.savefig(os.path.join(fig_dir, "flow_field.png"), dpi=110)

@@ -11,7 +11,7 @@ import os
 import numpy as np
 
 import lmptest
-from lmptest import LammpsTestCase
+from lmptest import LammpsTestCase, nprocs
 
 EXAMPLES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples")
 
@@ -241,6 +241,59 @@ class PillarExample(LammpsTestCase):
         self.assertTrue(np.all(late[:, 2] > 0.5) and np.all(late[:, 2] < 0.15 * data[0, 2]))
         x, y, xc, yc = printed(run, "P")[0]
         np.testing.assert_allclose([x, y], [xc, yc], rtol=0, atol=1e-12)    # (xcm's rounding)
+
+
+class FlowPillarsExample(LammpsTestCase):
+    """examples/flow_pillars, briefly: a confluent tissue driven along +x by
+    fix addforce past a fixed pillar.  The cells are overdamped, so their
+    centre of mass moves by dt / gamma times the total force on them each
+    step; the vertex forces between cells sum to zero (the energy does not
+    change when every cell moves alike) and the pillar pushes the cells with
+    minus the force they put on it (Newton's third law through pair soft).
+    So the cells' summed displacement over the run is dt / gamma times the
+    sum over steps of (N F - the pillar's force), that force read from the
+    pillar atom, which is in no integrator's group and must not move; and no
+    cell centre may cross into the core of the pillar's repulsion.  On two
+    ranks the pillar's force also sums the pushes of cells owned by the other
+    rank."""
+
+    def check(self, nranks):
+        with open(os.path.join(EXAMPLES, "flow_pillars", "in.flow")) as f:
+            script = f.read()
+        script = script[:script.index("run             $(round(v_tdump/v_dt))")]
+        nsteps = 1500
+        script += f"""variable r atom sqrt((x-v_xc)^2+(y-v_yc)^2)
+compute rmin cells reduce min v_r
+run 0
+print "A $(count(cells)) $(xcm(cells,x):%.17g) $(c_fp[1]:%.17g) $(bound(pillar,xmin):%.17g) $(bound(pillar,ymin):%.17g)"
+fix fstep all print 1 "$(c_fp[1]:%.17g) $(c_rmin:%.17g)" file steps.dat screen no
+run {nsteps}
+print "B $(xcm(cells,x):%.17g) $(bound(pillar,xmin):%.17g) $(bound(pillar,ymin):%.17g)"
+"""
+        run = self.run_lmp(script, nprocs=nranks, args=["-var", "tend", "1.0", "-var", "tdump", "1.0"])
+        n, x0, fp0, px0, py0 = printed(run, "A")[0]
+        x1, px1, py1 = printed(run, "B")[0]
+        steps = np.loadtxt(run.path("steps.dat"))
+        # fix print writes steps 0..n; the moves of steps 1..n use the forces of steps 0..n-1
+        self.assertEqual(len(steps), nsteps + 1)
+        self.assertEqual(steps[0, 0], fp0)
+        fp = steps[:-1, 0]
+        F, dt = 0.1, 0.01
+        predicted = dt * np.sum(n * F - fp) / n
+        self.assertGreater(np.mean(fp), 0.05 * n * F)    # the pillar does hold the tissue back
+        self.assertAlmostEqual(x1 - x0, predicted, delta=1e-9 * abs(predicted))
+        self.assertLess(x1 - x0, nsteps * dt * F)
+        # the pillar stays where it was created
+        self.assertEqual((px1, py1), (px0, py0))
+        # the pillar's soft force (range 2) keeps every centre out of its core
+        self.assertGreater(np.min(steps[:, 1]), 1.0)
+
+    def test_pillar_reaction_balances_the_drive(self):
+        self.check(1)
+
+    @nprocs(2)
+    def test_pillar_reaction_balances_the_drive_two_ranks(self):
+        self.check(2)
 
 
 if __name__ == "__main__":

@@ -17,6 +17,8 @@ LAMMPS (4 Jul 2026 in CI) through tesseraplugin.so.
 
 import os
 import re
+import subprocess
+import tempfile
 
 import numpy as np
 import unittest
@@ -41,16 +43,29 @@ VARIANTS = {"shear_fluid": ("shear", "in.shear", {"p0": 4.0})}    # examples/she
 CASES.update({k: v for k, v in VARIANTS.items() if os.path.exists(os.path.join(EXAMPLES, v[0], v[1]))})
 # Examples whose full run takes long are compared over a shorter run of the
 # same input (the hosts must agree to every printed digit whatever the length).
-SHORTER = {"erk_waves": {"tend": 20.0}}
+SHORTER = {"erk_waves": {"tend": 20.0}, "fibre_network": {"tend": 2.0}}
 for _case, _vars in SHORTER.items():
     if _case in CASES:
         CASES[_case] = (CASES[_case][0], CASES[_case][1], dict(CASES[_case][2], **_vars))
 
 
+# Examples whose input reads a file that a script of theirs writes (not
+# committed): directory -> (script, its output option, the file).
+GENERATED = {"fibre_network": ("make_network.py", "-o", "fibres.data")}
+
+
 def example_files(directory):
     """The text files an example's input may read (data files, includes), not
-    its reference logs or outputs."""
+    its reference logs or outputs; and the files its own scripts generate."""
     files = {}
+    if directory in GENERATED:
+        script, option, name = GENERATED[directory]
+        with tempfile.TemporaryDirectory() as tmp:
+            subprocess.run(["/usr/bin/python3", os.path.join(EXAMPLES, directory, script),
+                            option, os.path.join(tmp, name)], check=True,
+                           stdout=subprocess.DEVNULL)
+            with open(os.path.join(tmp, name)) as f:
+                files[name] = f.read()
     path = os.path.join(EXAMPLES, directory)
     for name in os.listdir(path):
         if name.startswith(("log.", "dump.")) or name.endswith((".md", ".png", ".gif")):

@@ -10,7 +10,8 @@ of time) and over the atoms of each kind, with the displacement measured
 against the cells' centre of mass (the tissue's own frame: the whole box
 drifts by a random walk of diffusion coefficient T/N under fix brownian).
 The long-time diffusion coefficient D is the slope of MSD = 6 D t + c
-fitted over lags from FIT[0] to FIT[1].
+fitted over the lags from a fifth of the longest to the longest (20 to 100
+for the default run to t = 200).
 
     /usr/bin/python3 plot.py [--dumps SOLID FLUID] [--rb 0.8] [--temp 0.005]
 """
@@ -32,8 +33,6 @@ from scipy.spatial import cKDTree  # noqa: E402
 
 from tessera_tools.dump import read_dump  # noqa: E402
 
-FIT = (20.0, 100.0)
-
 
 def trajectory(path):
     """Unwrapped positions (frames x atoms x 3), types, times, the last frame."""
@@ -54,10 +53,15 @@ def msd(xyz, cells, lags):
     return np.array(out)
 
 
+def fit_range(t):
+    return t[-1] / 5.0, t[-1]
+
+
 def diffusion(t, m):
     """D from MSD = 6 D t + c, and the exponent alpha of MSD ~ t^alpha,
-    both fitted over lags FIT[0] to FIT[1]."""
-    sel = (t >= FIT[0]) & (t <= FIT[1])
+    both fitted over the lags of fit_range."""
+    lo, hi = fit_range(t)
+    sel = (t >= lo) & (t <= hi)
     return (np.polyfit(t[sel], m[sel], 1)[0] / 6.0,
             np.polyfit(np.log(t[sel]), np.log(m[sel]), 1)[0])
 
@@ -137,8 +141,8 @@ def main():
         print("%s: %d cells, %d beads; MSD at lag %g: cells %.3g, beads %.3g; "
               "lags %g-%g: D cells %.2g, beads %.2g (free %g), MSD ~ t^alpha with alpha "
               "cells %.2f, beads %.2f"
-              % (lbl, cells.sum(), (~cells).sum(), tl[-1], m[-1, 0], m[-1, 1], FIT[0], FIT[1],
-                 dc, db, a.temp, ac, ab))
+              % ((lbl, cells.sum(), (~cells).sum(), tl[-1], m[-1, 0], m[-1, 1]) + fit_range(tl)
+                 + (dc, db, a.temp, ac, ab)))
         ax.loglog(tl, m[:, 0], "-", color=c, label="cells, %s" % lbl)
         ax.loglog(tl, m[:, 1], "--o", ms=3, color=c, label="beads, %s" % lbl)
     ax.loglog(t, 6 * a.temp * t, ":", color="grey", label="free particle, 6 T t")

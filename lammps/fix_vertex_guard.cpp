@@ -98,6 +98,14 @@ double FixVertexGuard::loss_limit() const
 
 std::string FixVertexGuard::describe(int i, double moved, double size) const
 {
+  // An atom that is no cell: the cells' forces do not move it.
+  if (!pair->is_cell_type(atom->type[i]))
+    return fmt::format(
+        "atom {} of type {}, which is no cell (no vertex/voronoi parameters), moved by {:.3g} in "
+        "the step from {} to {}: the forces on it come from the other sub-styles of the pair "
+        "style, its bonds and angles, and the fixes that act on it (check their parameters "
+        "and that the timestep resolves their stiffest force)",
+        atom->tag[i], atom->type[i], moved, step0, update->ntimestep);
   tagint j = 0;
   double d = -1.0;
   if (static_cast<int>(x0.size()) == dim * atom->nlocal)

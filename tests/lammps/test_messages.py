@@ -105,6 +105,13 @@ CASES = [
      False, ["fix cell/death d:", "the floor 'min 4' (the default)", "at least 4 cells"], []),
     # pair_style hybrid (not overlay) giving a pair of cell types to another style alone:
     # their cells would still share junctions
+    # an atom that is no cell jumps by the force of another sub-style: the
+    # message names its type and the forces that moved it, not the cells'
+    ("particle_jump", lmptest.tissue(6, 3, ntypes=2) + "create_atoms 2 single 2.0 2.0 0.0 units box\n"
+     "create_atoms 2 single 2.3 2.0 0.0 units box\nmass * 1.0\n"
+     "pair_style hybrid/overlay vertex/voronoi 3.0 lj/cut 1.0\npair_coeff 1 1 vertex/voronoi 1 1 0.1 -0.5\n"
+     "pair_coeff * 2 lj/cut 1.0 1.0\npair_coeff 1 1 lj/cut 0.0 1.0\n" + BROWNIAN + "run 5\n",
+     True, ["of type 2, which is no cell", "bonds and angles"], ["finite cells", "Voronoi forces grow"]),
     ("hybrid_takes_a_pair_of_cell_types", lmptest.tissue(6, 3, ntypes=2) + "set type 1 type/fraction 2 0.5 5\n"
      "pair_style hybrid vertex/voronoi 3.0 soft 1.0\npair_coeff * * vertex/voronoi 1 1 0.1 -0.5\n"
      "pair_coeff 1 2 soft 1.0 1.0\nrun 0\n",

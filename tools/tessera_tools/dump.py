@@ -276,7 +276,12 @@ def parse_types(text):
 
 
 def cell_mask(types, cell_types):
-    """True for the rows whose type is one of ``cell_types`` (from :func:`parse_types`)."""
+    """True for the rows whose type is one of ``cell_types`` (from :func:`parse_types`; a
+    string such as '1,3' or '2*', an int or a list of ints is read with it)."""
+    if isinstance(cell_types, (int, np.integer)):
+        cell_types = frozenset([int(cell_types)])
+    elif not isinstance(cell_types, frozenset):
+        cell_types = parse_types(cell_types)
     types = np.asarray(types).astype(np.int64)
     mask = np.zeros(len(types), dtype=bool)
     for t in cell_types:

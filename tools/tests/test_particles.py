@@ -63,6 +63,14 @@ class CellTypes(unittest.TestCase):
             with self.assertRaises(ValueError):
                 parse_types(bad)
 
+    def test_types_given_as_text_or_numbers(self):
+        """A string, an int or a list selects the same rows as parse_types's set
+        (a plain '1' once selected none: its characters are no types)."""
+        for given in ("1,3", [1, 3], (3, 1)):
+            self.assertEqual(cell_mask([1, 2, 3, 1], given).tolist(), [True, False, True, True])
+        self.assertEqual(cell_mask([1, 2, 3], 2).tolist(), [False, True, False])
+        self.assertEqual(cell_mask([1, 2, 3], "2*").tolist(), [False, True, True])
+
 
 class Particles(unittest.TestCase):
 

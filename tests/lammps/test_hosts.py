@@ -5,9 +5,10 @@ LAMMPS (4 Jul 2026 in CI) through tesseraplugin.so.
 
 * The examples print the same thermo output on both hosts, on 1 and 2 ranks:
   every thermo value as the same printed number (the 2026 thermo pads its
-  columns differently, so values are compared token by token).  All examples
-  use `fix brownian ... rng none`, where upstream BROWNIAN's fix brownian and
-  Tessera's compute the same floating-point operations.  These run on the
+  columns differently, so values are compared token by token).  The examples
+  use `fix brownian`, where upstream BROWNIAN's fix brownian and Tessera's
+  compute the same floating-point operations, with `rng none` or with noise
+  (examples/3d, examples/spheroid_beads: the same generator and seed).  These run on the
   plugin host, which knows both executables (--tessera-lmp); with
   --intree-lmp also an lmp with the TESSERA package compiled in.
 * The `plugin` command: `plugin load` registers every style of the table

@@ -435,6 +435,10 @@ int FixCellSignal::pack_forward_comm(int n, int *list, double *buf, int /*pbc_fl
   int m = 0;
   if (comm_packed) {
     const size_t nf = fields.size();
+    if (nf == 1) {
+      for (int k = 0; k < n; k++) buf[k] = value[list[k]];
+      return n;
+    }
     for (int k = 0; k < n; k++) {
       const double *v = &value[nf * list[k]];
       for (size_t f = 0; f < nf; f++) buf[m++] = v[f];

@@ -78,8 +78,9 @@ class FixCellSignal : public Fix {
   std::vector<double> coef_kneg, coef_P;    // per field: -k and P (0 if not a species)
   bool comm_packed = false;    // forward-communicate `value`
   void pack_values();
-  template <int NF, bool PLAIN> double explicit_pass(double h, bool want_fastest, int &bad);
-  double explicit_rates(double h, bool want_fastest, int &bad);
+  template <int NF, bool PLAIN>
+  double explicit_pass(bool apply, double h, bool want_fastest, int &bad);
+  double explicit_rates(bool apply, double h, bool want_fastest, int &bad);
   void explicit_apply(double dt);
   void explicit_step(double dt);
   double hill_term(const Production &p, int i, const double *x, int stride) const;

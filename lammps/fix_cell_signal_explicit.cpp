@@ -5,12 +5,10 @@
    fix cell/signal: the explicit Euler substeps of a step.  Every field of
    every owned and ghost cell sits in one array, cell after cell, so that a
    substep is one copy of the owned values, one forward communication of all
-   fields, one pass over the junctions that accumulates the exchange of
+   fields and one pass over the junctions that accumulates the exchange of
    every species at once (and the junction sizes that 'substeps auto' and
-   the neighbour means need), and one pass that applies the rates.  Each
-   species' arithmetic is that of a species integrated alone.  With
-   'substeps auto' the first substep's rates are computed before the number
-   of substeps is known: they do not depend on it.
+   the neighbour means need) and applies the rates.  Each species'
+   arithmetic is that of a species integrated alone.
 ------------------------------------------------------------------------- */
 
 #include "fix_cell_signal.h"
@@ -55,22 +53,22 @@ void FixCellSignal::pack_values()
 /* One pass over the owned group cells and their junctions for all fields
    (NF of them, or any number when NF is 0), from `value`.  Each species'
    rate is -k u + Pb F (cb - u) + P sum_j s_ij (u_j - u_i) + productions,
-   summed in that order (a term of a zero rate adds a zero).  With h > 0 the
-   species become u + h rate at once (in atom->dvector; `value` keeps the
-   old values) and `bad` counts the cells where one would be negative or not
-   finite; with h = 0 the rates go to drate[nf * i + f].  With want_fastest,
+   summed in that order (a term of a zero rate adds a zero).  With apply,
+   the species become u + h rate at once (in atom->dvector; `value` keeps
+   the old values) and `bad` counts the cells where one would be negative or
+   not finite; else the rates go to drate[nf * i + f].  With want_fastest,
    returns this rank's largest P W_i + Pb F_i + k over the group cells and
    species (W_i: cell i's total junction size), which sets the substeps.
    PLAIN: group all, no bath, no production (every field is a species). */
 
 template <int NF, bool PLAIN>
-double FixCellSignal::explicit_pass(double h, bool want_fastest, int &bad)
+double FixCellSignal::explicit_pass(bool apply, double h, bool want_fastest, int &bad)
 {
   const int nf = NF > 0 ? NF : static_cast<int>(fields.size());
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
   const bool all = igroup == 0;
-  const bool store = !(h > 0.0);
+  const bool store = !apply;
   if (store) {
     const size_t need = static_cast<size_t>(nf) * std::max(nlocal, 1);
     if (drate.size() < need) drate.resize(need);
@@ -82,7 +80,7 @@ double FixCellSignal::explicit_pass(double h, bool want_fastest, int &bad)
     if (exch_out.size() < static_cast<size_t>(nf)) exch_out.resize(nf);
   }
   double *ex = NF > 0 ? fixed : exch.data();    // exchange sums
-  double *rloc = ex + nf;                        // rates (h > 0)
+  double *rloc = ex + nf;                        // rates (apply)
   double **out = NF > 0 ? fixed_out : exch_out.data();
   for (int f = 0; f < nf; f++) out[f] = fields[f].species ? atom->dvector[fields[f].index] : nullptr;
   const double *v = value.data();
@@ -163,24 +161,24 @@ double FixCellSignal::explicit_pass(double h, bool want_fastest, int &bad)
   return fastest;
 }
 
-double FixCellSignal::explicit_rates(double h, bool want_fastest, int &bad)
+double FixCellSignal::explicit_rates(bool apply, double h, bool want_fastest, int &bad)
 {
   const bool plain = laws.empty() && !any_bath && igroup == 0;
   switch (fields.size()) {
     case 1:
-      return plain ? explicit_pass<1, true>(h, want_fastest, bad)
-                   : explicit_pass<1, false>(h, want_fastest, bad);
+      return plain ? explicit_pass<1, true>(apply, h, want_fastest, bad)
+                   : explicit_pass<1, false>(apply, h, want_fastest, bad);
     case 2:
-      return plain ? explicit_pass<2, true>(h, want_fastest, bad)
-                   : explicit_pass<2, false>(h, want_fastest, bad);
+      return plain ? explicit_pass<2, true>(apply, h, want_fastest, bad)
+                   : explicit_pass<2, false>(apply, h, want_fastest, bad);
     case 3:
-      return plain ? explicit_pass<3, true>(h, want_fastest, bad)
-                   : explicit_pass<3, false>(h, want_fastest, bad);
+      return plain ? explicit_pass<3, true>(apply, h, want_fastest, bad)
+                   : explicit_pass<3, false>(apply, h, want_fastest, bad);
     case 4:
-      return plain ? explicit_pass<4, true>(h, want_fastest, bad)
-                   : explicit_pass<4, false>(h, want_fastest, bad);
+      return plain ? explicit_pass<4, true>(apply, h, want_fastest, bad)
+                   : explicit_pass<4, false>(apply, h, want_fastest, bad);
     default:
-      return explicit_pass<0, false>(h, want_fastest, bad);
+      return explicit_pass<0, false>(apply, h, want_fastest, bad);
   }
 }
 
@@ -225,7 +223,7 @@ void FixCellSignal::explicit_step(double dt)
   pack_values();
   const int guess = nsub_fixed ? nsub_fixed : std::max(nsub_last, 1);
   int bad = 0;
-  const double fastest = explicit_rates(dt / guess, nsub_fixed == 0, bad);
+  const double fastest = explicit_rates(true, dt / guess, nsub_fixed == 0, bad);
   int n = nsub_fixed;
   if (n == 0) {
     double all = 0.0;
@@ -241,14 +239,14 @@ void FixCellSignal::explicit_step(double dt)
   nsub_last = n;
   const double h = dt / n;
   if (n != guess || bad) {
-    explicit_rates(0.0, false, bad);
+    explicit_rates(false, 0.0, false, bad);
     explicit_apply(h);
   }
   for (int s = 1; s < n; s++) {
     pack_values();
-    explicit_rates(h, false, bad);
+    explicit_rates(true, h, false, bad);
     if (bad) {
-      explicit_rates(0.0, false, bad);
+      explicit_rates(false, 0.0, false, bad);
       explicit_apply(h);
     }
   }

@@ -76,7 +76,7 @@ class FixCellSignal : public Fix {
   std::vector<double> value, drate, exch;
   std::vector<double *> exch_out;
   std::vector<double> coef_kneg, coef_P;    // per field: -k and P (0 if not a species)
-  bool comm_packed = false;    // forward-communicate `value`
+  bool comm_packed = false;                 // forward-communicate `value`
   void pack_values();
   template <int NF, bool PLAIN>
   double explicit_pass(bool apply, double h, bool want_fastest, int &bad);
@@ -97,7 +97,7 @@ class FixCellSignal : public Fix {
   // degradation per step (fix_cell_signal_implicit.cpp).
   int implicit = 0;
   double *comm_vector = nullptr;    // forward-communicate this vector, not the fields
-  std::vector<double> rate;    // implicit: productions, nfields x nlocal
+  std::vector<double> rate;         // implicit: productions, nfields x nlocal
   std::vector<double> cg_x, cg_r, cg_p, cg_q, cg_b;
   void implicit_step(double dt);
   void apply_matrix(const Field &f, double dt, double *x, double *out);

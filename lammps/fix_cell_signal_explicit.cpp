@@ -80,9 +80,10 @@ double FixCellSignal::explicit_pass(bool apply, double h, bool want_fastest, int
     if (exch_out.size() < static_cast<size_t>(nf)) exch_out.resize(nf);
   }
   double *ex = NF > 0 ? fixed : exch.data();    // exchange sums
-  double *rloc = ex + nf;                        // rates (apply)
+  double *rloc = ex + nf;                       // rates (apply)
   double **out = NF > 0 ? fixed_out : exch_out.data();
-  for (int f = 0; f < nf; f++) out[f] = fields[f].species ? atom->dvector[fields[f].index] : nullptr;
+  for (int f = 0; f < nf; f++)
+    out[f] = fields[f].species ? atom->dvector[fields[f].index] : nullptr;
   const double *v = value.data();
   const double *kneg = coef_kneg.data(), *perm = coef_P.data();
   const int *offset = row_offset, *index = row_index;

@@ -17,8 +17,9 @@
    and the amounts non-negative.  Productions: atom-style variables
    (evaluated once per step) and Hill functions of a field or of its
    junction-weighted mean over the neighbours (evaluated every substep).
-   'implicit yes' replaces the substeps by one backward-Euler step of
-   exchange, bath and degradation (fix_cell_signal_implicit.cpp).
+   The substeps are in fix_cell_signal_explicit.cpp; 'implicit yes'
+   replaces them by one backward-Euler step of exchange, bath and
+   degradation (fix_cell_signal_implicit.cpp).
 ------------------------------------------------------------------------- */
 
 #include "fix_cell_signal.h"
@@ -45,12 +46,6 @@ static const char SYNTAX[] =
     "fix ID group cell/signal keyword args ...; keywords: exchange d_u P | bath d_u Pb cb | "
     "degrade d_u k | produce d_u v_name | produce d_u hill|hillr vmax K n [mean] d_x | "
     "substeps auto|N | implicit yes|no";
-
-namespace {
-// 'substeps auto': no cell loses more than this fraction of an amount per
-// substep to exchange, the bath and degradation.
-constexpr double MAX_LOSS = 0.5;
-}    // namespace
 
 FixCellSignal::FixCellSignal(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), nsub_fixed(0), nsub_last(0), pair(nullptr)
@@ -156,9 +151,14 @@ FixCellSignal::FixCellSignal(LAMMPS *lmp, int narg, char **arg) :
       error->all(FLERR, "fix cell/signal: unknown keyword '{}'; syntax: {}", kw, SYNTAX);
     }
   }
-  int nspecies = 0;
-  for (const Field &f : fields) nspecies += f.species ? 1 : 0;
-  if (nspecies == 0)
+  for (size_t f = 0; f < fields.size(); f++) {
+    coef_kneg.push_back(fields[f].species ? -fields[f].k : 0.0);
+    coef_P.push_back(fields[f].species ? fields[f].P : 0.0);
+    if (!fields[f].species) continue;
+    species.push_back(static_cast<int>(f));
+    if (fields[f].Pb > 0.0) any_bath = true;
+  }
+  if (species.empty())
     error->all(FLERR, "fix cell/signal: no species; give at least one law; syntax: {}", SYNTAX);
   if (!atom->tag_enable) error->all(FLERR, "fix cell/signal requires atom IDs");
 
@@ -295,64 +295,44 @@ void FixCellSignal::evaluate_variables()
   modify->addstep_compute(update->ntimestep + 1);
 }
 
-/* The substeps of a step of length dt: the fixed count, or (auto) enough
-   that dt_sub (P W_i + Pb F_i + k) <= MAX_LOSS for every cell and species. */
+/* This step's rows of junctions between group cells, and (with a bath or
+   the implicit step) the free arc lengths. */
 
-int FixCellSignal::substeps(double dt)
+void FixCellSignal::prepare_rows()
 {
   const tessera::CellView &v = pair->cells();
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
-  weight.assign(nlocal, 0.0);
-  freelen.assign(nlocal, 0.0);
   // The shared pieces in compressed rows (tessera::Contacts: no free arcs).
   const tessera::Contacts c = v.contacts();
+  if (any_bath || implicit) {
+    freelen.resize(nlocal);
+    for (int i = 0; i < nlocal; i++) freelen[i] = (mask[i] & groupbit) ? v.free_length(i) : 0.0;
+  } else
+    freelen.clear();
   if (igroup == 0) {
     row_offset = c.offset;
     row_index = c.neighbor;
     row_size = c.size;
-    for (int i = 0; i < nlocal; i++) {
-      for (int k = c.offset[i]; k < c.offset[i + 1]; k++) weight[i] += c.size[k];
-      freelen[i] = v.free_length(i);
-    }
-  } else {
-    nb_offset.assign(nlocal + 1, 0);
-    nb_index.clear();
-    nb_size.clear();
-    for (int i = 0; i < nlocal; i++) {
-      if (mask[i] & groupbit) {
-        for (int k = c.offset[i]; k < c.offset[i + 1]; k++) {
-          const int j = c.neighbor[k];
-          if (j < 0 || !(mask[j] & groupbit)) continue;
-          nb_index.push_back(j);
-          nb_size.push_back(c.size[k]);
-          weight[i] += c.size[k];
-        }
-        freelen[i] = v.free_length(i);
+    return;
+  }
+  nb_offset.assign(nlocal + 1, 0);
+  nb_index.clear();
+  nb_size.clear();
+  for (int i = 0; i < nlocal; i++) {
+    if (mask[i] & groupbit) {
+      for (int k = c.offset[i]; k < c.offset[i + 1]; k++) {
+        const int j = c.neighbor[k];
+        if (j < 0 || !(mask[j] & groupbit)) continue;
+        nb_index.push_back(j);
+        nb_size.push_back(c.size[k]);
       }
-      nb_offset[i + 1] = static_cast<int>(nb_index.size());
     }
-    row_offset = nb_offset.data();
-    row_index = nb_index.data();
-    row_size = nb_size.data();
+    nb_offset[i + 1] = static_cast<int>(nb_index.size());
   }
-  if (implicit) return 1;
-  if (nsub_fixed) return nsub_fixed;
-  double fastest = 0.0, all;
-  for (const Field &f : fields) {
-    if (!f.species) continue;
-    for (int i = 0; i < nlocal; i++)
-      if (mask[i] & groupbit)
-        fastest = std::max(fastest, f.P * weight[i] + f.Pb * freelen[i] + f.k);
-  }
-  MPI_Allreduce(&fastest, &all, 1, MPI_DOUBLE, MPI_MAX, world);
-  const double n = std::ceil(dt * all / MAX_LOSS);
-  if (!(n < 1e7))
-    error->all(FLERR,
-               "fix cell/signal {}: exchange and degradation at rate {} need {} substeps of a "
-               "step of {}; lower the rates or the timestep",
-               id, all, n, dt);
-  return std::max(1, static_cast<int>(n));
+  row_offset = nb_offset.data();
+  row_index = nb_index.data();
+  row_size = nb_size.data();
 }
 
 namespace {
@@ -364,41 +344,36 @@ double hill_value(int kind, double vmax, double K, double n, double x)
 }    // namespace
 
 /* The junction-weighted mean of x over owned cell i's group neighbours
-   (as junction_mean(), from this step's rows). */
+   (as junction_mean(), from this step's rows); the values of cell j are
+   x[stride * j]. */
 
-double FixCellSignal::mean_of(int i, const double *x) const
+double FixCellSignal::mean_of(int i, const double *x, int stride) const
 {
-  double sum = 0.0;
-  for (int k = row_offset[i]; k < row_offset[i + 1]; k++) sum += row_size[k] * x[row_index[k]];
-  return weight[i] > 0.0 ? sum / weight[i] : 0.0;
+  double sum = 0.0, weight = 0.0;
+  for (int k = row_offset[i]; k < row_offset[i + 1]; k++) {
+    sum += row_size[k] * x[static_cast<size_t>(stride) * row_index[k]];
+    weight += row_size[k];
+  }
+  return weight > 0.0 ? sum / weight : 0.0;
 }
 
-/* This substep's rates of every species on the owned group cells, from the
-   values on owned and ghost cells; without transport (the implicit step),
-   the productions alone. */
+/* Production p's rate in owned cell i, reading its input field from x as
+   mean_of() does. */
 
-void FixCellSignal::rates(bool transport)
+double FixCellSignal::hill_term(const Production &p, int i, const double *x, int stride) const
+{
+  const double in = p.mean ? mean_of(i, x, stride) : x[static_cast<size_t>(stride) * i];
+  return hill_value(p.kind == HILL ? 1 : 0, p.vmax, p.K, p.n, in);
+}
+
+/* The productions of every species on the owned group cells (the implicit
+   step's right-hand side), from the values on owned and ghost cells. */
+
+void FixCellSignal::productions()
 {
   const int nlocal = atom->nlocal;
   const int *mask = atom->mask;
   rate.assign(fields.size() * static_cast<size_t>(nlocal), 0.0);
-  for (size_t f = 0; f < fields.size(); f++) {
-    const Field &fd = fields[f];
-    if (!fd.species || !transport) continue;
-    const double *u = atom->dvector[fd.index];
-    double *r = &rate[f * nlocal];
-    for (int i = 0; i < nlocal; i++) {
-      if (!(mask[i] & groupbit)) continue;
-      double sum = -fd.k * u[i] + fd.Pb * freelen[i] * (fd.cb - u[i]);
-      if (fd.P > 0.0) {
-        double ex = 0.0;
-        for (int k = row_offset[i]; k < row_offset[i + 1]; k++)
-          ex += row_size[k] * (u[row_index[k]] - u[i]);
-        sum += fd.P * ex;
-      }
-      r[i] = sum;
-    }
-  }
   for (const Production &p : laws) {
     double *r = &rate[p.target * static_cast<size_t>(nlocal)];
     if (p.kind == VAR) {
@@ -407,18 +382,18 @@ void FixCellSignal::rates(bool transport)
       continue;
     }
     const double *x = atom->dvector[fields[p.input].index];
-    for (int i = 0; i < nlocal; i++) {
-      if (!(mask[i] & groupbit)) continue;
-      const double in = p.mean ? mean_of(i, x) : x[i];
-      r[i] += hill_value(p.kind == HILL ? 1 : 0, p.vmax, p.K, p.n, in);
-    }
+    for (int i = 0; i < nlocal; i++)
+      if (mask[i] & groupbit) r[i] += hill_term(p, i, x, 1);
   }
 }
 
 /* Stops the run: field f of owned cell i would become next.  The law to
-   blame: a production that is negative or not finite, else `otherwise`. */
+   blame: a production that is negative or not finite, else `otherwise`.
+   The fields' values the rates were computed from: field g of cell j at
+   x[stride * j + g], or (x null) in atom->dvector. */
 
-void FixCellSignal::fail(size_t f, int i, double next, const std::string &otherwise)
+void FixCellSignal::fail(size_t f, int i, double next, const std::string &otherwise,
+                         const double *x, int stride)
 {
   std::string blame = otherwise;
   for (const Production &p : laws) {
@@ -426,11 +401,10 @@ void FixCellSignal::fail(size_t f, int i, double next, const std::string &otherw
     double term;
     if (p.kind == VAR)
       term = p.value[i];
-    else {
-      const double *x = atom->dvector[fields[p.input].index];
-      const double in = p.mean ? mean_of(i, x) : x[i];
-      term = hill_value(p.kind == HILL ? 1 : 0, p.vmax, p.K, p.n, in);
-    }
+    else if (!x)
+      term = hill_term(p, i, atom->dvector[fields[p.input].index], 1);
+    else
+      term = hill_term(p, i, x + p.input, stride);
     if (!(term >= 0.0) || !std::isfinite(term)) {
       blame = fmt::format("law '{}' gives {}", p.text, term);
       break;
@@ -440,50 +414,17 @@ void FixCellSignal::fail(size_t f, int i, double next, const std::string &otherw
              fields[f].name, atom->tag[i], next, update->ntimestep, blame);
 }
 
-/* One explicit substep of length dt; a value that would become negative or
-   not finite stops the run with the law to blame. */
-
-void FixCellSignal::advance(double dt)
-{
-  comm_vector = nullptr;
-  tessera_compat::forward_comm(comm, this);
-  rates(true);
-  const int nlocal = atom->nlocal;
-  const int *mask = atom->mask;
-  for (size_t f = 0; f < fields.size(); f++) {
-    if (!fields[f].species) continue;
-    double *u = atom->dvector[fields[f].index];
-    const double *r = &rate[f * nlocal];
-    for (int i = 0; i < nlocal; i++) {
-      if (!(mask[i] & groupbit)) continue;
-      const double next = u[i] + dt * r[i];
-      if (next >= 0.0 && std::isfinite(next)) continue;
-      fail(f, i, next,
-           fmt::format("exchange and degradation remove more than it holds in a substep of {}; "
-                       "use 'substeps auto' or more substeps",
-                       dt));
-    }
-  }
-  // All rates were computed from the same values: now apply them.
-  for (size_t f = 0; f < fields.size(); f++) {
-    if (!fields[f].species) continue;
-    double *u = atom->dvector[fields[f].index];
-    const double *r = &rate[f * nlocal];
-    for (int i = 0; i < nlocal; i++)
-      if (mask[i] & groupbit) u[i] += dt * r[i];
-  }
-}
-
 void FixCellSignal::end_of_step()
 {
   check_cells("fix cell/signal integrates after the force computation of each step");
   const double dt = update->dt;
   evaluate_variables();
-  nsub_last = substeps(dt);
-  if (implicit)
+  prepare_rows();
+  if (implicit) {
+    nsub_last = 1;
     implicit_step(dt);
-  else
-    for (int s = 0; s < nsub_last; s++) advance(dt / nsub_last);
+  } else
+    explicit_step(dt);
 }
 
 /* Totals of each field over the group (index f), and the last step's
@@ -508,6 +449,18 @@ int FixCellSignal::pack_forward_comm(int n, int *list, double *buf, int /*pbc_fl
     return n;
   }
   int m = 0;
+  if (comm_packed) {
+    const size_t nf = fields.size();
+    if (nf == 1) {
+      for (int k = 0; k < n; k++) buf[k] = value[list[k]];
+      return n;
+    }
+    for (int k = 0; k < n; k++) {
+      const double *v = &value[nf * list[k]];
+      for (size_t f = 0; f < nf; f++) buf[m++] = v[f];
+    }
+    return m;
+  }
   for (const Field &f : fields) {
     const double *u = atom->dvector[f.index];
     for (int k = 0; k < n; k++) buf[m++] = u[list[k]];
@@ -519,6 +472,11 @@ void FixCellSignal::unpack_forward_comm(int n, int first, double *buf)
 {
   if (comm_vector) {
     for (int k = 0; k < n; k++) comm_vector[first + k] = buf[k];
+    return;
+  }
+  if (comm_packed) {
+    const size_t nf = fields.size();
+    std::copy(buf, buf + nf * n, &value[nf * first]);
     return;
   }
   int m = 0;

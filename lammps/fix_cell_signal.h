@@ -56,9 +56,10 @@ class FixCellSignal : public Fix {
   int nsub_fixed;    // substeps N (0: auto)
   int nsub_last;     // substeps of the last step
   class PairVertexVoronoi *pair;
-  std::vector<double> rate;    // nspecies x nlocal
-  // Per owned atom: total junction size to group cells, free arc length.
-  std::vector<double> weight, freelen;
+  std::vector<int> species;    // the fields that are species
+  bool any_bath = false;       // some species has a bath (Pb > 0)
+  // Per owned atom: free arc length (only with a bath or 'implicit yes').
+  std::vector<double> freelen;
   // This step's junctions of each owned group cell with group cells
   // (compressed rows: local index and size), read once from the cells.
   // For group all, the cells' own rows; else a filtered copy.
@@ -66,20 +67,38 @@ class FixCellSignal : public Fix {
   std::vector<double> nb_size;
   const int *row_offset = nullptr, *row_index = nullptr;
   const double *row_size = nullptr;
-  double mean_of(int i, const double *x) const;
+  // The junction-weighted mean over owned cell i's group neighbours of the
+  // values x[stride * j].
+  double mean_of(int i, const double *x, int stride) const;
+
+  // Explicit substeps (fix_cell_signal_explicit.cpp): every field of owned
+  // and ghost cells in one array, cell-major (value[nfields * i + f]), so
+  // that one pass over the junctions serves every species; rates likewise.
+  std::vector<double> value, drate, exch;
+  std::vector<double *> exch_out;
+  std::vector<double> coef_kneg, coef_P;    // per field: -k and P (0 if not a species)
+  bool comm_packed = false;                 // forward-communicate `value`
+  void pack_values();
+  template <int NF, bool PLAIN>
+  double explicit_pass(bool apply, double h, bool want_fastest, int &bad);
+  double explicit_rates(bool apply, double h, bool want_fastest, int &bad);
+  void explicit_apply(double dt);
+  void explicit_step(double dt);
+  double hill_term(const Production &p, int i, const double *x, int stride) const;
 
   int field_of(const char *arg, const char *keyword);
   void check_cells(const char *when);
   void check_values(const char *when);
   void evaluate_variables();
-  int substeps(double dt);
-  void rates(bool transport);
-  void advance(double dt);
-  void fail(size_t f, int i, double next, const std::string &otherwise);
+  void prepare_rows();
+  void productions();
+  void fail(size_t f, int i, double next, const std::string &otherwise, const double *x,
+            int stride);
   // 'implicit yes': one backward-Euler step of exchange, bath and
   // degradation per step (fix_cell_signal_implicit.cpp).
   int implicit = 0;
   double *comm_vector = nullptr;    // forward-communicate this vector, not the fields
+  std::vector<double> rate;         // implicit: productions, nfields x nlocal
   std::vector<double> cg_x, cg_r, cg_p, cg_q, cg_b;
   void implicit_step(double dt);
   void apply_matrix(const Field &f, double dt, double *x, double *out);

@@ -63,7 +63,7 @@ void FixCellSignal::implicit_step(double dt)
 {
   comm_vector = nullptr;
   tessera_compat::forward_comm(comm, this);
-  rates(false);    // the productions, from the values at the start of the step
+  productions();    // from the values at the start of the step
   const int nlocal = atom->nlocal;
   const size_t nall = atom->nmax;
   const int *mask = atom->mask;
@@ -121,7 +121,7 @@ void FixCellSignal::implicit_step(double dt)
       out[i] = u[i] +
           dt * (fd.P * ex + fd.Pb * freelen[i] * (fd.cb - cg_x[i]) - fd.k * cg_x[i] + prod[i]);
       if (!(out[i] >= 0.0) || !std::isfinite(out[i]))
-        fail(f, i, out[i], "the implicit step gives a negative value");
+        fail(f, i, out[i], "the implicit step gives a negative value", nullptr, 1);
     }
   }
   for (size_t f = 0; f < fields.size(); f++) {

@@ -16,6 +16,7 @@ import math
 import numpy as np
 
 import lmptest
+from feature_models import local_rows
 from lmptest import LammpsTestCase, nprocs
 
 PAIR = """
@@ -410,6 +411,78 @@ run 0
                 num[i] += s * f[col][j]
                 den[i] += s
             np.testing.assert_allclose(f[mean], num / den, rtol=1e-12)
+
+
+class OneStep(LammpsTestCase):
+    """One explicit step of several species at once against the rate law
+    evaluated from compute vertex/local's junctions (length = distance
+    between each junction's ends):
+    u' = u + dt (-k u + P sum_j s_ij (u_j - u_i) + Hill productions), each
+    species with its own P and k, a Hill law of another species' neighbour
+    mean and one of a field that is only read.  The cells do not move.
+    Rows: the fields (a species has (P, k); None: read only) and the Hill
+    laws (target, kind, vmax, K, n, mean, input)."""
+
+    CASES = [
+        ({"u": (1.0, 0.1)}, []),
+        ({"a": (1.0, 0.1), "b": (0.3, 0.0), "c": (2.5, 0.7), "e": (0.0, 0.4)},
+         [("a", "hill", 0.5, 0.8, 2.0, True, "c"), ("e", "hillr", 0.3, 1.2, 3.0, False, "b")]),
+        ({"a": (0.7, 0.2), "b": (1.9, 0.05), "c": (0.2, 0.3), "e": (1.1, 0.0), "x": None},
+         [("b", "hill", 0.4, 1.0, 2.0, True, "x"), ("a", "hillr", 0.6, 1.1, 1.5, True, "e")]),
+    ]
+
+    def check(self, fields, laws, dt=0.01):
+        names = list(fields)
+        args = []
+        for n, pk in fields.items():
+            if pk is not None:
+                args.append(f"exchange d_{n} {pk[0]!r} degrade d_{n} {pk[1]!r}")
+        for t, kind, vmax, K, expo, mean, inp in laws:
+            args.append(f"produce d_{t} {kind} {vmax!r} {K!r} {expo!r} {'mean ' if mean else ''}d_{inp}")
+        sets = "".join(f"variable i{n} atom 1.0+0.5*sin(0.37*id+{s})\nset group all d_{n} v_i{n}\n"
+                       f"compute p{n} all property/atom d_{n}\n" for s, n in enumerate(names))
+        cols = " ".join(f"c_p{n}" for n in names)
+        run = self.run_lmp(lmptest.tissue(5, 4) + PAIR + f"""
+displace_atoms all random 0.2 0.2 0 4821 units box
+fix sp all property/atom {" ".join("d_" + n for n in names)}
+{sets}fix s all cell/signal {" ".join(args)} substeps 1
+compute loc all vertex/local
+dump d all custom 1 a.txt id {cols}
+dump_modify d sort id format float %.17g
+dump l all local 1 l.txt c_loc[*]
+dump_modify l format float %.17g
+timestep {dt!r}
+run 1
+""")
+        before, after = run.dump("a.txt")[0], run.dump("a.txt")[1]
+        index = {int(t): k for k, t in enumerate(before["id"])}
+        nc = len(index)
+        S = np.zeros((nc, nc))
+        for r in local_rows(run, "l.txt")[0]:
+            S[index[int(r[0])], index[int(r[1])]] += math.hypot(r[4] - r[2], r[5] - r[3])
+        W = S.sum(axis=1)
+        u = {n: np.asarray(before[f"c_p{n}"]) for n in names}
+        for n, pk in fields.items():
+            want = u[n].copy()
+            if pk is not None:
+                P, k = pk
+                rate = -k * u[n] + P * (S @ u[n] - W * u[n])
+                for t, kind, vmax, K, expo, mean, inp in laws:
+                    if t != n:
+                        continue
+                    x = (S @ u[inp]) / W if mean else u[inp]
+                    xn = (x / K) ** expo
+                    rate = rate + (vmax * xn / (1 + xn) if kind == "hill" else vmax / (1 + xn))
+                want = u[n] + dt * rate
+            np.testing.assert_allclose(after[f"c_p{n}"], want, rtol=1e-12, atol=1e-14,
+                                       err_msg=f"d_{n}")
+            if pk is not None and pk[0] > 0:
+                self.assertGreater(np.abs(want - u[n]).max(), 1e-4)
+
+    def test_species_together(self):
+        for fields, laws in self.CASES:
+            with self.subTest(fields=list(fields)):
+                self.check(fields, laws)
 
 
 class Restart(LammpsTestCase):

@@ -42,25 +42,38 @@ inline std::uint64_t mix64(std::uint64_t z)
 
 /* A hash of the bits of the owned atoms' positions, in their order,
    computed at every force computation and at every consumer's check, so
-   kept cheap: the sum over the coordinates k of (bits_k ^ k) C with C odd,
-   whose terms are independent of each other (the processor overlaps them),
-   and one final mix.  A change of one coordinate always changes the sum
-   (multiplying by an odd C is invertible modulo 2^64); several changes
-   collide with a chance of about 2^-64.  atom->x is one block (rows of
-   memory->create). */
+   kept cheap: mix(n + C sum_k (bits_k ^ k)) over the coordinates k that
+   the cells depend on (x and y in 2d, where z plays no part; all three in
+   3d, on the sphere too), k = 3 i + d for coordinate d of owned atom i,
+   with C odd and the sum modulo 2^64.  The sum is one xor and one add per
+   coordinate, independent of each other, which the compiler vectorizes;
+   multiplying once by C gives the same value as multiplying every term
+   (multiplication distributes over the sum modulo 2^64).  A change of one
+   coordinate always changes the hash (the sum changes, and multiplying by
+   an odd C is invertible modulo 2^64); changes of several coordinates
+   leave it unchanged only when the changes of their xored bit patterns
+   cancel modulo 2^64.  atom->x is one block (rows of memory->create). */
 
 std::uint64_t PairVertexVoronoi::position_hash() const
 {
   const std::uint64_t C = 0xd1b54a32d192ed03ULL;
-  const int n = 3 * atom->nlocal;
-  const double *x = n > 0 ? &atom->x[0][0] : nullptr;
-  std::uint64_t h = static_cast<std::uint64_t>(atom->nlocal);
-  for (int k = 0; k < n; k++) {
-    std::uint64_t b;
-    std::memcpy(&b, &x[k], sizeof b);
-    h += (b ^ static_cast<std::uint64_t>(k)) * C;
+  const std::uint64_t nlocal = atom->nlocal;
+  const double *x = nlocal > 0 ? &atom->x[0][0] : nullptr;
+  std::uint64_t sum = 0;
+  if (domain->dimension == 2) {
+    for (std::uint64_t k = 0; k < 3 * nlocal; k += 3) {
+      std::uint64_t b[2];
+      std::memcpy(b, &x[k], sizeof b);
+      sum += (b[0] ^ k) + (b[1] ^ (k + 1));
+    }
+  } else {
+    for (std::uint64_t k = 0; k < 3 * nlocal; k++) {
+      std::uint64_t b;
+      std::memcpy(&b, &x[k], sizeof b);
+      sum += b ^ k;
+    }
   }
-  return mix64(h);
+  return mix64(nlocal + C * sum);
 }
 
 void PairVertexVoronoi::record_view_state()

@@ -8,9 +8,9 @@
    positions; output (dumps, thermo) comes after it.  The pair style
    records the state its cells were computed for (the box and a hash of the
    owned atoms' positions); when a consumer asks for the cells of this step
-   (cells_current()) and that state changed since, the cells of the current
-   state are computed again, without changing the forces, the energy or the
-   virial of the step.
+   (require_current_cells()) and that state changed since, the cells of the
+   current state are computed again, without changing the forces, the
+   energy or the virial of the step.
 ------------------------------------------------------------------------- */
 
 #include "pair_vertex_voronoi.h"
@@ -86,6 +86,7 @@ void PairVertexVoronoi::record_view_state()
   view_box[7] = domain->xz;
   view_box[8] = domain->yz;
   view_hash = position_hash();
+  view_nall = atom->nlocal + atom->nghost;
 }
 
 /* Whether the box and, on every rank, the owned positions are those the
@@ -102,14 +103,44 @@ bool PairVertexVoronoi::view_matches_state()
   return all != 0;
 }
 
+/* The cells can be computed again for the current state when this step's
+   are there and the atoms are those they were computed for, ghost atoms
+   included: a command between runs that redistributes the atoms
+   (create_atoms, delete_atoms, displace_atoms) drops the ghost atoms,
+   which only the next run acquires again. */
+
 bool PairVertexVoronoi::cells_current()
 {
-  int ok = unit && tess_step == update->ntimestep && cells().n_owned() == atom->nlocal;
+  int ok = unit && tess_step == update->ntimestep && cells().n_owned() == atom->nlocal &&
+      atom->nlocal + atom->nghost == view_nall;
   int all = 0;
   MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, world);
   if (!all) return false;
   if (!view_matches_state()) refresh_view();
   return true;
+}
+
+/* The one check of every consumer of the cells, and its one message.  The
+   reason is the same on every rank: unit and tess_step are, so when both
+   are right some rank's atoms changed. */
+
+void PairVertexVoronoi::require_current_cells(const std::string &who)
+{
+  if (cells_current()) return;
+  std::string why;
+  if (!unit || tess_step < 0)
+    why = "the pair style has computed no cells yet";
+  else if (tess_step != update->ntimestep)
+    why = fmt::format("its cells are those of step {}", tess_step);
+  else
+    why = "the atoms changed since it computed them (between runs: atoms created, deleted or "
+          "redistributed, e.g. by create_atoms, delete_atoms or displace_atoms)";
+  error->all(FLERR,
+             "{} reads the cells of pair_style vertex/voronoi at step {}, but {}; invoke it on a "
+             "timestep when the pair style computed forces: during a run (thermo, dumps, fix "
+             "ave/*, other fixes) or right after 'run 0', with no command that changes the "
+             "atoms or the timestep in between",
+             who, update->ntimestep, why);
 }
 
 /* The cells of the current state: ghost atoms brought to the owners'

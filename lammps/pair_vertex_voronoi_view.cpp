@@ -137,9 +137,10 @@ void PairVertexVoronoi::require_current_cells(const std::string &who)
           "redistributed, e.g. by create_atoms, delete_atoms or displace_atoms)";
   error->all(FLERR,
              "{} reads the cells of pair_style vertex/voronoi at step {}, but {}; invoke it on a "
-             "timestep when the pair style computed forces: during a run (thermo, dumps, fix "
-             "ave/*, other fixes) or right after 'run 0', with no command that changes the "
-             "atoms or the timestep in between",
+             "timestep when pair vertex/voronoi computed forces, after them: at the end of a "
+             "step of a run (thermo, dumps, fix ave/*) or right after 'run 0' with no command "
+             "in between that changes the atoms or the timestep, not from a fix that evaluates "
+             "it before the forces of a step (e.g. through fix move's variables)",
              who, update->ntimestep, why);
 }
 

@@ -195,7 +195,7 @@ print("EXTRACTED")
 lmp.close()
 """
 READS = "reads the cells of pair_style vertex/voronoi at step"
-INVOKE = "invoke it on a timestep when the pair style computed forces"
+INVOKE = "invoke it on a timestep when pair vertex/voronoi computed forces"
 FINITE = (lmptest.tissue(6, 3).replace("boundary p p p", "boundary f f p") +
           "pair_style vertex/voronoi 1.5 radius 0.7\n"
           "pair_coeff * * quadratic 1 1 0.1 3.8 free 0.2\n")

@@ -185,13 +185,7 @@ void ComputeCellNeighborMean::owned_values(Input &in, double *out)
 void ComputeCellNeighborMean::compute_peratom()
 {
   invoked_peratom = update->ntimestep;
-  int stale = pair->cells_current() ? 0 : 1, any;
-  MPI_Allreduce(&stale, &any, 1, MPI_INT, MPI_MAX, world);
-  if (any)
-    error->all(FLERR,
-               "compute cell/neighbor/mean {} must be invoked on a step when pair vertex/voronoi "
-               "computed forces (during a run, or after 'run 0'); step {} has no current cells",
-               id, update->ntimestep);
+  pair->require_current_cells(fmt::format("compute cell/neighbor/mean {}", id));
   if (atom->nmax > nmax) {
     memory->destroy(vout);
     memory->destroy(aout);

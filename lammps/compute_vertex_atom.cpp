@@ -86,14 +86,7 @@ void ComputeVertexAtom::init()
 
 void ComputeVertexAtom::check_cells()
 {
-  int stale = pair->cells_current() ? 0 : 1, any;
-  MPI_Allreduce(&stale, &any, 1, MPI_INT, MPI_MAX, world);
-  if (any)
-    error->all(FLERR,
-               "compute vertex/atom {} must be invoked on a timestep when pair vertex/voronoi "
-               "computed forces (e.g. by thermo, dump or fix ave/* during a run, not between "
-               "runs); step {} has no current tessellation",
-               id, update->ntimestep);
+  pair->require_current_cells(fmt::format("compute vertex/atom {}", id));
 }
 
 /* LAMMPS does not send velocities to ghost atoms unless 'comm_modify vel

@@ -77,14 +77,7 @@ void ComputeVertexLocal::compute_local()
 {
   invoked_local = update->ntimestep;
 
-  int stale = pair->cells_current() ? 0 : 1, any;
-  MPI_Allreduce(&stale, &any, 1, MPI_INT, MPI_MAX, world);
-  if (any)
-    error->all(FLERR,
-               "compute vertex/local {} must be invoked on a timestep when pair vertex/voronoi "
-               "computed forces (e.g. by a dump during a run, or after 'run 0'); step {} has no "
-               "current tessellation",
-               id, update->ntimestep);
+  pair->require_current_cells(fmt::format("compute vertex/local {}", id));
 
   const tessera::CellView &v = pair->cells();
   // Cells on a sphere: edges (2d cells) with corners in space: 3d rows.

@@ -133,14 +133,7 @@ void ComputeVertexLoops::sphere_error()
 
 void ComputeVertexLoops::find_loops()
 {
-  int stale = pair->cells_current() ? 0 : 1, any;
-  MPI_Allreduce(&stale, &any, 1, MPI_INT, MPI_MAX, world);
-  if (any)
-    error->all(FLERR,
-               "compute vertex/loops {} must be invoked on a timestep when pair vertex/voronoi "
-               "computed forces (e.g. by thermo or a dump during a run, or after 'run 0'); step "
-               "{} has no current cells",
-               id, update->ntimestep);
+  pair->require_current_cells(fmt::format("compute vertex/loops {}", id));
   if (pair->compute_count() == loops_of) return;
   loops_of = pair->compute_count();
 

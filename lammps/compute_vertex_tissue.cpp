@@ -138,14 +138,7 @@ void ComputeVertexTissue::set_arrays(int i)
 
 void ComputeVertexTissue::check_cells()
 {
-  int stale = pair->cells_current() ? 0 : 1, any;
-  MPI_Allreduce(&stale, &any, 1, MPI_INT, MPI_MAX, world);
-  if (any)
-    error->all(FLERR,
-               "compute vertex/tissue {} must be invoked on a timestep when pair vertex/voronoi "
-               "computed forces (e.g. by thermo or fix ave/time during a run, not between "
-               "runs); step {} has no current tessellation",
-               id, update->ntimestep);
+  pair->require_current_cells(fmt::format("compute vertex/tissue {}", id));
 }
 
 /* flag[0..nlocal) to the ghost atoms (one value each). */

@@ -166,27 +166,29 @@ void FixBrownianTessera::initial_integrate(int /*vflag*/)
                "Fix {} (ID {}): the timestep must be > 0 to take a step (the velocity is the "
                "displacement over dt), got {}; set it with 'timestep'",
                style, id, dt);
-  chatter.begin(groupbit);
   const bool three_d = domain->dimension == 3;
+  double watch[IntegratorChatter::NSUMS] = {0.0, 0.0, 0.0, 0.0};
   switch (noise) {
     case NOISE_UNIFORM:
-      three_d ? move<NOISE_UNIFORM, 1>() : move<NOISE_UNIFORM, 0>();
+      three_d ? move<NOISE_UNIFORM, 1>(watch) : move<NOISE_UNIFORM, 0>(watch);
       break;
     case NOISE_GAUSSIAN:
-      three_d ? move<NOISE_GAUSSIAN, 1>() : move<NOISE_GAUSSIAN, 0>();
+      three_d ? move<NOISE_GAUSSIAN, 1>(watch) : move<NOISE_GAUSSIAN, 0>(watch);
       break;
     default:
-      three_d ? move<NOISE_NONE, 1>() : move<NOISE_NONE, 0>();
+      three_d ? move<NOISE_NONE, 1>(watch) : move<NOISE_NONE, 0>(watch);
   }
-  chatter.end(style, id, groupbit, dt);
+  chatter.observe(style, id, watch, dt);
 }
 
 /* ----------------------------------------------------------------------
    One Euler-Maruyama step with the forces of the previous step; v = dr/dt.
-   Random numbers are drawn per atom in the order x, y (, z).
+   Random numbers are drawn per atom in the order x, y (, z).  The same
+   pass adds the chatter watch's sums of the step (v before and after it)
+   to watch.
 ------------------------------------------------------------------------- */
 
-template <int NOISE, int THREE_D> void FixBrownianTessera::move()
+template <int NOISE, int THREE_D> void FixBrownianTessera::move(double *watch)
 {
   double **x = atom->x;
   double **v = atom->v;
@@ -204,12 +206,13 @@ template <int NOISE, int THREE_D> void FixBrownianTessera::move()
   if (NOISE == NOISE_NONE && !THREE_D && nlocal > 0 && x[nlocal - 1] == x[0] + last &&
       v[nlocal - 1] == v[0] + last && f[nlocal - 1] == f[0] + last) {
     tessera::overdamped_step_2d(nlocal, x[0], v[0], f[0], drift, dt, igroup == 0 ? nullptr : mask,
-                                groupbit);
+                                groupbit, watch);
     return;
   }
 
   for (int i = 0; i < nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
+    const double before[3] = {v[i][0], v[i][1], v[i][2]};
     for (int d = 0; d < ndim; d++) {
       double dr = drift * f[i][d];
       if (NOISE == NOISE_UNIFORM)
@@ -220,6 +223,7 @@ template <int NOISE, int THREE_D> void FixBrownianTessera::move()
       v[i][d] = dr / dt;
     }
     if (!THREE_D) v[i][2] = 0.0;
+    IntegratorChatter::add(watch, before, v[i], ndim);
   }
 }
 

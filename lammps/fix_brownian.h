@@ -43,7 +43,7 @@ class FixBrownianTessera : public Fix {
 
   double parse_number(const char *what, const char *text);
   void set_step();
-  template <int NOISE, int THREE_D> void move();
+  template <int NOISE, int THREE_D> void move(double *watch);
 };
 
 }    // namespace LAMMPS_NS

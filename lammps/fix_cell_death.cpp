@@ -160,10 +160,8 @@ void FixCellDeath::decide()
   const tagint *tag = atom->tag;
   double **x = atom->x;
   const uint64_t step = update->ntimestep;
-  if (trigger == AREA && !pair->cells_current())
-    error->all(FLERR,
-               "fix cell/death: the tessellation of this step is not available (pair_style "
-               "vertex/voronoi must compute forces every step)");
+  if (trigger == AREA)
+    pair->require_current_cells(fmt::format("fix cell/death {} (trigger area)", id));
   if (region) region->prematch();
 
   std::vector<std::pair<double, tagint>> mine;

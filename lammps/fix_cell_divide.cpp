@@ -490,10 +490,7 @@ void FixCellDivide::decide()
   const uint64_t step = update->ntimestep;
 
   const bool need_tess = trigger == AREA || axis == LONG || axis == SHORT;
-  if (need_tess && !pair->cells_current())
-    error->all(FLERR,
-               "fix cell/divide: the tessellation of this step is not available (pair_style "
-               "vertex/voronoi must compute forces every step)");
+  if (need_tess) pair->require_current_cells(fmt::format("fix cell/divide {}", id));
   if (region) region->prematch();
 
   std::vector<std::pair<double, tagint>> mine;

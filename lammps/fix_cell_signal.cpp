@@ -244,11 +244,7 @@ void FixCellSignal::init()
 
 void FixCellSignal::check_cells(const char *when)
 {
-  int stale = pair->cells_current() ? 0 : 1, any;
-  MPI_Allreduce(&stale, &any, 1, MPI_INT, MPI_MAX, world);
-  if (any)
-    error->all(FLERR, "fix cell/signal {}: no current cells at step {} ({})", id, update->ntimestep,
-               when);
+  pair->require_current_cells(fmt::format("fix cell/signal {} ({})", id, when));
 }
 
 /* Every field of every group cell must be finite and >= 0. */

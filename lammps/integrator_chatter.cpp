@@ -50,26 +50,25 @@ void IntegratorChatter::end(const char *style, const char *id, int groupbit, dou
   MPI_Allreduce(&same, &all_same, 1, MPI_INT, MPI_MIN, world);
   nbefore = -1;
   if (!all_same) return;
-  double local[4] = {0.0, 0.0, 0.0, 0.0}, all[4];
-  for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
-    local[3] += 1.0;
-    const double *b = &before[3 * static_cast<size_t>(i)];
-    for (int d = 0; d < ndim; d++) {
-      local[0] += b[d] * v[i][d];
-      local[1] += b[d] * b[d];
-      local[2] += v[i][d] * v[i][d];
-    }
-  }
-  MPI_Allreduce(local, all, 4, MPI_DOUBLE, MPI_SUM, world);
-  const double norm = std::sqrt(all[1] * all[2]);
-  corr = norm > 0.0 && std::isfinite(norm) ? all[0] / norm : 0.0;
-  const double size = dt * dt * all[2];
+  double sums[NSUMS] = {0.0, 0.0, 0.0, 0.0};
+  for (int i = 0; i < nlocal; i++)
+    if (mask[i] & groupbit) add(sums, &before[3 * static_cast<size_t>(i)], v[i], ndim);
+  observe(style, id, sums, dt);
+}
+
+void IntegratorChatter::observe(const char *style, const char *id, const double *sums, double dt)
+{
+  const int ndim = domain->dimension;
+  double all[NSUMS];
+  MPI_Allreduce(sums, all, NSUMS, MPI_DOUBLE, MPI_SUM, world);
+  const double norm = std::sqrt(all[OLD2] * all[NEW2]);
+  corr = norm > 0.0 && std::isfinite(norm) ? all[DOT] / norm : 0.0;
+  const double size = dt * dt * all[NEW2];
   // Moves at the round-off of the positions (a converged state) may flip
   // from step to step: they are no chatter.
   double length = std::max(domain->xprd, domain->yprd);
   if (ndim == 3) length = std::max(length, domain->zprd);
-  const bool resolved = all[3] > 0.0 && std::sqrt(size / all[3]) > FLOOR * length;
+  const bool resolved = all[COUNT] > 0.0 && std::sqrt(size / all[COUNT]) > FLOOR * length;
   if (!resolved) {
     corrs.clear();
     sizes.clear();

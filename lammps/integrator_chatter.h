@@ -34,14 +34,33 @@ class IntegratorChatter : protected Pointers {
   static constexpr double FLOOR = 1e-10;
 
   explicit IntegratorChatter(class LAMMPS *lmp) : Pointers(lmp) {}
-  // At the start of a step, before v is overwritten: v holds the previous
-  // step's displacement over dt (fix brownian and brownian/heun store it
-  // so); it is kept.
-  void begin(int groupbit);
-  // At the end of the step, when v holds this step's displacement over dt.
+
+  // What one step adds up over the group's atoms, in the integrator's own
+  // loop over them (the components up to the dimension): v_old . v_new,
+  // |v_old|^2, |v_new|^2 and the number of atoms, v_old being v before the
+  // step (the previous step's displacement over dt, which fix brownian and
+  // brownian/heun store there) and v_new this step's.
+  enum { DOT, OLD2, NEW2, COUNT, NSUMS };
+  static void add(double *sums, const double *v_old, const double *v_new, int ndim)
+  {
+    for (int d = 0; d < ndim; d++) {
+      sums[DOT] += v_old[d] * v_new[d];
+      sums[OLD2] += v_old[d] * v_old[d];
+      sums[NEW2] += v_new[d] * v_new[d];
+    }
+    sums[COUNT] += 1.0;
+  }
+  // At the end of the step, with this rank's sums (NSUMS values).
   // Collective (one MPI_Allreduce).  Warns once per fix (style, id) when
   // over the last STEPS steps the two displacement fields were on average
   // anti-parallel (weighted by their lengths) without dying out.
+  void observe(const char *style, const char *id, const double *sums, double dt);
+
+  // For an integrator that overwrites v within the step before the end of
+  // it (fix brownian/heun's drift velocity for the coupled fixes): begin()
+  // keeps v at the start of the step, end() makes the sums from it and v at
+  // the end of the step and observes them (collective).
+  void begin(int groupbit);
   void end(const char *style, const char *id, int groupbit, double dt);
   // The correlation sum(v_old.v_new) / sqrt(sum v_old^2 sum v_new^2) of
   // the last step observed (0 when either is zero).

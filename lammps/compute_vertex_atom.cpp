@@ -86,6 +86,12 @@ void ComputeVertexAtom::init()
 
 void ComputeVertexAtom::check_cells()
 {
+  // (read before any run, e.g. through the library interface: no pair style yet)
+  if (!pair)
+    error->all(FLERR,
+               "compute vertex/atom {}: no cells yet: it reads the cells of pair_style "
+               "vertex/voronoi, which exist after a run (e.g. 'run 0')",
+               id);
   pair->require_current_cells(fmt::format("compute vertex/atom {}", id));
 }
 

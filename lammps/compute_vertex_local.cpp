@@ -77,6 +77,12 @@ void ComputeVertexLocal::compute_local()
 {
   invoked_local = update->ntimestep;
 
+  // (read before any run, e.g. through the library interface: no pair style yet)
+  if (!pair)
+    error->all(FLERR,
+               "compute vertex/local {}: no cells yet: it reads the cells of pair_style "
+               "vertex/voronoi, which exist after a run (e.g. 'run 0')",
+               id);
   pair->require_current_cells(fmt::format("compute vertex/local {}", id));
 
   const tessera::CellView &v = pair->cells();

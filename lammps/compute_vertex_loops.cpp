@@ -133,6 +133,12 @@ void ComputeVertexLoops::sphere_error()
 
 void ComputeVertexLoops::find_loops()
 {
+  // (read before any run, e.g. through the library interface: no pair style yet)
+  if (!pair)
+    error->all(FLERR,
+               "compute vertex/loops {}: no cells yet: it reads the cells of pair_style "
+               "vertex/voronoi, which exist after a run (e.g. 'run 0')",
+               id);
   pair->require_current_cells(fmt::format("compute vertex/loops {}", id));
   if (pair->compute_count() == loops_of) return;
   loops_of = pair->compute_count();

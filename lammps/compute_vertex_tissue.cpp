@@ -138,6 +138,12 @@ void ComputeVertexTissue::set_arrays(int i)
 
 void ComputeVertexTissue::check_cells()
 {
+  // (read before any run, e.g. through the library interface: no pair style yet)
+  if (!pair)
+    error->all(FLERR,
+               "compute vertex/tissue {}: no cells yet: it reads the cells of pair_style "
+               "vertex/voronoi, which exist after a run (e.g. 'run 0')",
+               id);
   pair->require_current_cells(fmt::format("compute vertex/tissue {}", id));
 }
 

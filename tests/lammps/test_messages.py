@@ -223,6 +223,11 @@ FINITE = (lmptest.tissue(6, 3).replace("boundary p p p", "boundary f f p") +
           "pair_style vertex/voronoi 1.5 radius 0.7\n"
           "pair_coeff * * quadratic 1 1 0.1 3.8 free 0.2\n")
 STALE_CASES = [
+    # read before any run: no pair style has been set up (once a segmentation fault)
+    ("vertex_atom_before_any_run", BASE + COEFF + "compute c all vertex/atom\n", "", 1, 2, 1,
+     ["compute vertex/atom c", "no cells yet", "'run 0'"]),
+    ("vertex_tissue_before_any_run", BASE + COEFF + "compute c all vertex/tissue\n", "", 0, 1, 1,
+     ["compute vertex/tissue c", "no cells yet", "'run 0'"]),
     ("vertex_atom_reset_timestep", BASE + COEFF + "compute c all vertex/atom\n", "reset_timestep 5",
      1, 2, 1, ["compute vertex/atom c " + READS + " 5", "its cells are those of step 0", INVOKE]),
     ("vertex_local_reset_timestep", BASE + COEFF + "compute c all vertex/local\n",
@@ -256,7 +261,8 @@ class StaleCells(LammpsTestCase):
             with self.subTest(name):
                 case = os.path.join(self.new_dir(), "case.txt")
                 with open(case, "w") as f:
-                    f.write("@@".join([setup + "run 0\n", between, str(style), str(kind)]))
+                    first = "" if name.endswith("before_any_run") else "run 0\n"
+                    f.write("@@".join([setup + first, between, str(style), str(kind)]))
                 run = self.run_python(STALE_PY, nprocs=ranks, ok=False, args=(case,))
                 self.assertNotIn("EXTRACTED", run.stdout, name)
                 lines = [l for l in run.output.splitlines()

@@ -34,18 +34,24 @@ struct EventCount {
     if (n == 0) return last_step == step ? last : 0.0;
     return (double) total;
   }
-  void write_restart(FILE *fp) const
+  // The global restart record, with the fix's clock (its time, kept across
+  // runs): a marker -1 (older files start with the event count, which is
+  // >= 0), the event count, the step of the last event, the clock.
+  void write_restart(FILE *fp, double clock) const
   {
-    double list[2] = {(double) total, (double) last_step};
+    double list[4] = {-1.0, (double) total, (double) last_step, clock};
     const int size = sizeof(list);
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(list, sizeof(double), 2, fp);
+    fwrite(list, sizeof(double), 4, fp);
   }
-  void restart(const char *buf)
+  // An older file (count and step, no clock) leaves the clock as it is.
+  void restart(const char *buf, double &clock)
   {
     const double *list = reinterpret_cast<const double *>(buf);
-    total = static_cast<bigint>(list[0]);
-    last_step = static_cast<bigint>(list[1]);
+    const int k = list[0] >= 0.0 ? 0 : 1;
+    total = static_cast<bigint>(list[k]);
+    last_step = static_cast<bigint>(list[k + 1]);
+    if (k) clock = list[3];
   }
 };
 

@@ -251,27 +251,15 @@ double FixCellDeath::compute_vector(int n)
   return events.vector(n, update->ntimestep);
 }
 
-/* The global record: a marker -1 (older files start with the event count,
-   which is >= 0), the event count, the step of the last event, the clock. */
+/* The global record: the event count and clock (cell_events::EventCount). */
 
 void FixCellDeath::write_restart(FILE *fp)
 {
-  if (comm->me != 0) return;
-  double list[4] = {-1.0, (double) events.total, (double) events.last_step, clock};
-  const int size = sizeof(list);
-  fwrite(&size, sizeof(int), 1, fp);
-  fwrite(list, sizeof(double), 4, fp);
+  if (comm->me == 0) events.write_restart(fp, clock);
 }
 
 void FixCellDeath::restart(char *buf)
 {
   log.continuing();
-  const double *list = reinterpret_cast<const double *>(buf);
-  if (list[0] >= 0.0) {    // an older file: no clock, keep LAMMPS's time
-    events.restart(buf);
-    return;
-  }
-  events.total = static_cast<bigint>(list[1]);
-  events.last_step = static_cast<bigint>(list[2]);
-  clock = list[3];
+  events.restart(buf, clock);
 }

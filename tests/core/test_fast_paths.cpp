@@ -228,17 +228,33 @@ TEST(FastPaths, GaussianEqualsReferenceBitwise) {
   EXPECT_NEAR(sum4 / count, 3.0, 5 * std::sqrt(96.0 / count));
 }
 
+// Random positions, velocities and forces of n atoms (3 per atom) and a mask
+// in which about three in four atoms are in the moved group (bit 4); with
+// signed_zeros some forces are -0.0.
+namespace {
+struct StepInput {
+  std::vector<double> x, v, f;
+  std::vector<int> mask;
+};
+StepInput random_step_input(testutil::Rng &rng, int n, bool signed_zeros) {
+  StepInput in{std::vector<double>(3 * n), std::vector<double>(3 * n), std::vector<double>(3 * n),
+               std::vector<int>(n)};
+  for (int k = 0; k < 3 * n; ++k) {
+    in.x[k] = rng.uniform(-50.0, 50.0);
+    in.v[k] = rng.uniform(-1.0, 1.0);
+    in.f[k] = signed_zeros && k % 29 == 4 ? -0.0 : rng.uniform(-30.0, 30.0);
+  }
+  for (int i = 0; i < n; ++i) in.mask[i] = rng.below(4) ? 1 | 4 : 1;
+  return in;
+}
+}  // namespace
+
 TEST(FastPaths, OverdampedStepEqualsReferenceBitwise) {
   testutil::Rng rng(404);
   for (int n : {0, 1, 5, 500}) {
-    std::vector<double> x(3 * n), v(3 * n), f(3 * n);
-    std::vector<int> mask(n);
-    for (int k = 0; k < 3 * n; ++k) {
-      x[k] = rng.uniform(-50.0, 50.0);
-      v[k] = rng.uniform(-1.0, 1.0);
-      f[k] = k % 29 == 4 ? -0.0 : rng.uniform(-30.0, 30.0);
-    }
-    for (int i = 0; i < n; ++i) mask[i] = rng.below(4) ? 1 | 4 : 1;
+    const StepInput in = random_step_input(rng, n, true);
+    const std::vector<double> &x = in.x, &v = in.v, &f = in.f;
+    const std::vector<int> &mask = in.mask;
     for (int with_mask = 0; with_mask < 2; ++with_mask) {
       std::vector<double> xf = x, vf = v, xr = x, vr = v;
       const int *m = with_mask ? mask.data() : nullptr;
@@ -269,14 +285,9 @@ TEST(FastPaths, OverdampedStepEqualsReferenceBitwise) {
 TEST(FastPaths, OverdampedStepWatchSums) {
   testutil::Rng rng(405);
   for (int n : {0, 1, 5, 500}) {
-    std::vector<double> x(3 * n), v(3 * n), f(3 * n);
-    std::vector<int> mask(n);
-    for (int k = 0; k < 3 * n; ++k) {
-      x[k] = rng.uniform(-50.0, 50.0);
-      v[k] = rng.uniform(-1.0, 1.0);
-      f[k] = rng.uniform(-30.0, 30.0);
-    }
-    for (int i = 0; i < n; ++i) mask[i] = rng.below(4) ? 1 | 4 : 1;
+    const StepInput in = random_step_input(rng, n, false);
+    const std::vector<double> &x = in.x, &v = in.v, &f = in.f;
+    const std::vector<int> &mask = in.mask;
     for (int with_mask = 0; with_mask < 2; ++with_mask) {
       const int *m = with_mask ? mask.data() : nullptr;
       double want[4] = {0.0, 0.0, 0.0, 0.0};

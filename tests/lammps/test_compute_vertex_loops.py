@@ -30,9 +30,11 @@ A = math.sqrt(2.0 / math.sqrt(3.0))    # hexagonal spacing of unit area per site
 H = A * math.sqrt(3.0) / 2.0           # row spacing
 
 
-def hex_sites(nx, ny):
-    """Sites (i + j/2 mod 1) A, j H of an nx x ny hexagonal patch."""
-    return np.array([((i + 0.5 * (j % 2)) * A, j * H) for j in range(ny) for i in range(nx)])
+def hex_sites(nx, ny, a=A):
+    """Sites (i + j/2 mod 1) a, j a sqrt(3)/2 of an nx x ny hexagonal patch of
+    spacing a (default A: unit area per site, rows H apart)."""
+    h = H if a == A else a * math.sqrt(3.0) / 2.0
+    return np.array([((i + 0.5 * (j % 2)) * a, j * h) for j in range(ny) for i in range(nx)])
 
 
 def data_file(xy, box, types=None, tilt=None):
@@ -572,7 +574,7 @@ class HoleAroundAParticle(LammpsTestCase):
         """The global values of compute vertex/loops and the sum of the cell
         areas, and the site's position."""
         h = a * math.sqrt(3.0) / 2.0
-        sites = np.array([((i + 0.5 * (j % 2)) * a, j * h) for j in range(self.NY) for i in range(self.NX)])
+        sites = hex_sites(self.NX, self.NY, a)
         sites += np.array([0.05, 0.1]) * a
         k = self.SITE[1] * self.NX + self.SITE[0]
         xy = sites.copy()

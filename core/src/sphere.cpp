@@ -390,12 +390,8 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
   // cluster is one vertex there, sphere_forces.cpp).
   std::vector<char> zero(total, 0);
   {
-    std::vector<int> parent(nt);
-    std::iota(parent.begin(), parent.end(), 0);
-    auto root = [&](int x) {
-      while (parent[x] != x) x = parent[x] = parent[parent[x]];
-      return x;
-    };
+    PoleSets poles(nt);
+    auto root = [&](int x) { return poles.root(x); };
     bool any = false;
     for (int i = 0; i < n; ++i) {
       const int k0 = count[i], k1 = count[i + 1];
@@ -405,8 +401,7 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
         const double r = std::min(rho[ta], rho[tb]);
         if (th < 1e-10 * r + 8.0 * DBL_EPSILON / r) {
           zero[k] = 1;
-          const int a = root(ta), b = root(tb);
-          if (a != b) parent[a] = b;
+          poles.join(ta, tb);
           any = true;
         }
       }

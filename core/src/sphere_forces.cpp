@@ -97,19 +97,14 @@ struct Multifold {
 Multifold find_multifold(const SphereTessellation &t) {
   Multifold mf;
   const int nt = static_cast<int>(t.triangles.size());
-  std::vector<int> parent(nt);
-  std::iota(parent.begin(), parent.end(), 0);
-  auto root = [&](int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  PoleSets poles(nt);
+  auto root = [&](int x) { return poles.root(x); };
   bool any = false;
   for (int c = 0; c < t.n_points; ++c)
     for (int k = t.cell_offset[c]; k < t.cell_offset[c + 1]; ++k)
       if (t.edge_length[k] == 0.0) {
         const int kn = k + 1 == t.cell_offset[c + 1] ? t.cell_offset[c] : k + 1;
-        const int a = root(t.cell_vertex[k]), b = root(t.cell_vertex[kn]);
-        if (a != b) parent[a] = b;
+        poles.join(t.cell_vertex[k], t.cell_vertex[kn]);
         any = true;
       }
   mf.group.assign(nt, -1);

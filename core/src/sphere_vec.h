@@ -9,6 +9,8 @@
 #include "vec3_detail.h"
 
 #include <cmath>
+#include <numeric>
+#include <vector>
 
 namespace tessera {
 namespace sphere_detail {
@@ -37,6 +39,22 @@ inline double solid_angle(V a, V b, V c) {
 inline bool finite3(const double *p) {
   return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
 }
+
+// Poles (triangles) joined into one vertex where the edge between two of
+// them has no length: disjoint sets with path halving.
+struct PoleSets {
+  std::vector<int> parent;
+  explicit PoleSets(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int root(int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void join(int a, int b) {
+    a = root(a);
+    b = root(b);
+    if (a != b) parent[a] = b;
+  }
+};
 
 }  // namespace sphere_detail
 }  // namespace tessera

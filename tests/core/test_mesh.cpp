@@ -27,18 +27,12 @@ using testutil::triangle_set;
 
 // Points in a periodic box plus their images within a margin; move() keeps
 // images rigidly attached to their owners.
-struct Patch {
-  double L;
-  int n;
-  std::vector<double> own;
-  std::vector<int> origin;
-  std::vector<double> shift;
-  std::vector<double> xy;
-
+struct Patch : testutil::PeriodicPatch {
   // n_ = side^2 points on a square grid jittered by +-jitter (jitter >= 0.5:
   // uniformly random).
-  Patch(int n_, double margin, std::mt19937 &rng, double jitter = 1.0)
-      : L(std::sqrt(double(n_))), n(n_) {
+  Patch(int n_, double margin, std::mt19937 &rng, double jitter = 1.0) {
+    L = std::sqrt(double(n_));
+    n = n_;
     std::uniform_real_distribution<double> u(0.0, L), d(-jitter, jitter);
     const int side = static_cast<int>(std::lround(L));
     for (int i = 0; i < n; ++i) {
@@ -50,26 +44,9 @@ struct Patch {
         own.push_back(i / side + 0.5 + d(rng));
       }
     }
-    for (int i = -1; i <= 1; ++i)
-      for (int j = -1; j <= 1; ++j)
-        for (int p = 0; p < n; ++p) {
-          if (i == 0 && j == 0) continue;
-          const double x = own[2 * p] + i * L, y = own[2 * p + 1] + j * L;
-          if (x < -margin || x > L + margin || y < -margin || y > L + margin) continue;
-          origin.push_back(p);
-          shift.push_back(i * L);
-          shift.push_back(j * L);
-        }
+    images(margin);
     fill();
   }
-  void fill() {
-    xy.assign(own.begin(), own.end());
-    for (size_t k = 0; k < origin.size(); ++k) {
-      xy.push_back(own[2 * origin[k]] + shift[2 * k]);
-      xy.push_back(own[2 * origin[k] + 1] + shift[2 * k + 1]);
-    }
-  }
-  Points points() const { return Points{xy.data(), static_cast<int>(xy.size() / 2), 2}; }
   void move(double step, std::mt19937 &rng) {
     std::normal_distribution<double> g(0.0, step);
     for (double &c : own) c += g(rng);

@@ -183,34 +183,14 @@ TEST(MeshRepair, OffAsksForARebuild) {
 // Owned points of a periodic box and their images within 4.5 (the region
 // of interest, 3, stops 1.5 short of the images' hull: the voids of a
 // disordered start make large circumdisks).
-struct Periodic {
-  double L;
-  int n;
-  std::vector<double> own;
-  std::vector<int> origin;
-  std::vector<double> shift;
-  std::vector<double> xy;
-  Periodic(std::vector<double> own_, double L_) : L(L_), n(own_.size() / 2), own(std::move(own_)) {
-    for (int i = -1; i <= 1; ++i)
-      for (int j = -1; j <= 1; ++j)
-        for (int p = 0; p < n; ++p) {
-          if (i == 0 && j == 0) continue;
-          const double x = own[2 * p] + i * L, y = own[2 * p + 1] + j * L;
-          if (x < -6 || x > L + 6 || y < -6 || y > L + 6) continue;
-          origin.push_back(p);
-          shift.push_back(i * L);
-          shift.push_back(j * L);
-        }
+struct Periodic : testutil::PeriodicPatch {
+  Periodic(std::vector<double> own_, double L_) {
+    L = L_;
+    n = static_cast<int>(own_.size() / 2);
+    own = std::move(own_);
+    images(6.0);
     fill();
   }
-  void fill() {
-    xy.assign(own.begin(), own.end());
-    for (size_t k = 0; k < origin.size(); ++k) {
-      xy.push_back(own[2 * origin[k]] + shift[2 * k]);
-      xy.push_back(own[2 * origin[k] + 1] + shift[2 * k + 1]);
-    }
-  }
-  Points points() const { return Points{xy.data(), static_cast<int>(xy.size() / 2), 2}; }
 };
 
 template <class T>

@@ -20,6 +20,37 @@
 
 namespace testutil {
 
+// Points in a periodic square box of side L (own: x y of the n points) and
+// their images within a margin outside it (origin: whose image; shift: by how
+// much); xy is the owned points then the images, as the core takes them.
+struct PeriodicPatch {
+  double L = 0.0;
+  int n = 0;
+  std::vector<double> own, shift, xy;
+  std::vector<int> origin;
+  void images(double margin) {
+    for (int i = -1; i <= 1; ++i)
+      for (int j = -1; j <= 1; ++j)
+        for (int p = 0; p < n; ++p) {
+          if (i == 0 && j == 0) continue;
+          const double x = own[2 * p] + i * L, y = own[2 * p + 1] + j * L;
+          if (x < -margin || x > L + margin || y < -margin || y > L + margin) continue;
+          origin.push_back(p);
+          shift.push_back(i * L);
+          shift.push_back(j * L);
+        }
+  }
+  // xy from own, the images rigidly attached to their owners.
+  void fill() {
+    xy.assign(own.begin(), own.end());
+    for (size_t k = 0; k < origin.size(); ++k) {
+      xy.push_back(own[2 * origin[k]] + shift[2 * k]);
+      xy.push_back(own[2 * origin[k] + 1] + shift[2 * k + 1]);
+    }
+  }
+  tessera::Points points() const { return {xy.data(), static_cast<int>(xy.size() / 2), 2}; }
+};
+
 // Small, fully specified generator (splitmix64) so that configurations do not
 // depend on the standard library's distributions.
 class Rng {

@@ -10,6 +10,8 @@ hemisphere facing the viewer is drawn.
 """
 
 import argparse
+import os
+import sys
 
 import matplotlib
 matplotlib.use("Agg")
@@ -18,23 +20,13 @@ import numpy as np
 from matplotlib.colors import ListedColormap
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from tessera_tools.dump import iter_dump  # noqa: E402
 
-def frames(path, local=False):
-    """Frames of a dump file: (step, {column: array})."""
-    with open(path) as f:
-        lines = f.read().split("\n")
-    out, i = [], 0
-    while i < len(lines):
-        if not lines[i].startswith("ITEM: TIMESTEP"):
-            i += 1
-            continue
-        step = int(lines[i + 1])
-        n = int(lines[i + 3])
-        cols = lines[i + 8].split()[2:]
-        rows = np.array([[float(w) for w in lines[i + 9 + k].split()] for k in range(n)]).reshape(n, len(cols))
-        out.append((step, {c: rows[:, k] for k, c in enumerate(cols)}))
-        i += 9 + n
-    return out
+
+def frames(path):
+    """Frames of a dump file (atoms or local): (step, {column: array})."""
+    return [(f.timestep, f.columns) for f in iter_dump(path)]
 
 
 def draw(ax, cells, edges, view):

@@ -21,14 +21,15 @@ import numpy as np
 from .dump import iter_dump
 
 
-def demix_series(atoms_path, local_path, compute=None, column="type"):
+def demix_series(atoms_path, local_path, compute=None, column="type", cell_types=None):
     """For each timestep both dumps hold: (timesteps, times or None, heterotypic fraction,
     heterotypic length, total length).  The fraction is the junction length between cells of
-    different ``column`` values over the total junction length (each junction counted once)."""
+    different ``column`` values over the total junction length (each junction counted once).
+    ``cell_types``: as for :func:`tessera_tools.junctions.paired_frames`."""
     from .junctions import contact_lengths, paired_frames
 
     steps, times, frac, het, tot = [], [], [], [], []
-    for atoms, local in paired_frames(atoms_path, local_path):
+    for atoms, local in paired_frames(atoms_path, local_path, cell_types=cell_types):
         if column not in atoms:
             raise KeyError(f"{atoms_path} has no '{column}' column: dump the cell type, e.g. "
                            "'dump ... custom N cells.dump id type x y'")
@@ -104,11 +105,14 @@ def frame_time(frame, dt):
     return frame.timestep * dt if dt else float(frame.timestep)
 
 
-def frame_series(path, value, dt=None, radius=None):
+def frame_series(path, value, dt=None, radius=None, cell_types=None):
     """(timesteps, times, values) of a per-frame value of a dump.
 
     value: 'count' (cells in the frame), 'open' (box area minus the area of the finite Voronoi
-    cells of radius ``radius``: holes and wounds), 'sum:COL' or 'mean:COL' (a per-atom column)."""
+    cells of radius ``radius``: holes and wounds), 'sum:COL' or 'mean:COL' (a per-atom column
+    over the cells).  ``cell_types`` (see :func:`tessera_tools.dump.iter_dump`): the atoms of
+    other types are no cells: they cover no area (as for compute vertex/loops, whose total
+    hole area is the open area of a periodic box) and are not counted."""
     steps, times, vals = [], [], []
     kind, _, col = value.partition(":")
     if kind not in ("count", "open", "sum", "mean") or (kind in ("sum", "mean") and not col):
@@ -117,7 +121,7 @@ def frame_series(path, value, dt=None, radius=None):
     if kind == "open" and not radius:
         raise ValueError("per-frame value 'open' (box area minus the cells' area) needs --radius R, the "
                          "radius of pair_style vertex/voronoi ... radius R")
-    for frame in iter_dump(path):
+    for frame in iter_dump(path, cell_types):
         steps.append(frame.timestep)
         times.append(frame_time(frame, dt))
         if kind == "count":

@@ -49,6 +49,9 @@ def run(argv):
             code = main(argv)
         except SystemExit as stop:
             code = stop.code
+    if isinstance(code, str):       # SystemExit("message"): Python prints it and exits with 1
+        err.write(code + "\n")
+        code = 1
     return code, out.getvalue(), err.getvalue()
 
 

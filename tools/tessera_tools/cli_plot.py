@@ -52,7 +52,8 @@ def cmd_plot_wound(args):
                              "minus the finite cells' area) or --value sum:COLUMN / mean:COLUMN / count")
         steps, t, y = frame_series(args.input, value, dt=args.dt, radius=args.radius, cell_types=args.cell_types)
         known = _dump_time_label(args.input, args.dt)
-        what = "open area (box minus cells)" if value == "open" else value
+        what = {"open": "open area (box minus cells)", "holes": "total hole area",
+                "largest": "largest hole area"}.get(value, value)
     else:
         if not args.column:
             raise SystemExit("tessera-tools plot wound: for a log name the thermo column with -c, e.g. -c v_wound "
@@ -60,8 +61,8 @@ def cmd_plot_wound(args):
         t, y, known = _log_series(args.input, args.column, args.x)
         what = args.column
     half = half_time(t, y, args.fraction)
-    ylabel = args.ylabel or (r"wound area ($A_0$)" if not args.column and (args.value or "open") == "open"
-                             else what)
+    ylabel = args.ylabel or (r"wound area ($A_0$)" if not args.column and (args.value or "open") in
+                             ("open", "holes", "largest") else what)
     plot_wound(t, y, args.output, ylabel, xlabel=TIME if known else STEP, half=half if args.fraction == 0.5
                else None, dpi=args.dpi, vector=args.vector, title=args.title)
     unit = "time" if known else "timesteps"
@@ -181,7 +182,8 @@ def add_commands(sub):
     pw.add_argument("input", help="log.lammps or a dump custom file")
     pw.add_argument("-c", "--column", help="thermo column of a log (e.g. v_wound)")
     pw.add_argument("--radius", type=float, help="dump: radius of the finite cells (pair_style ... radius R)")
-    pw.add_argument("--value", help="dump: per-frame value: open (default with --radius), sum:COL, mean:COL, count")
+    pw.add_argument("--value", help="dump: per-frame value: open (default with --radius: box minus cells), holes "
+                                    "(total hole area), largest (largest hole), sum:COL, mean:COL, count")
     pw.add_argument("--dt", type=float, help="dump: timestep size (time = timestep x dt; else the dump's TIME)")
     pw.add_argument("--x", choices=("auto", "step"), default="auto", help="log: time (default) or step")
     pw.add_argument("--fraction", type=float, default=0.5,

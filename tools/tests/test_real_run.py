@@ -5,11 +5,12 @@ hybrid/overlay), all moving under fix brownian, with compute vertex/loops dumped
 against what LAMMPS wrote, never against the tools' own earlier output:
 
 * plot wound --cell-types: the open area of every frame is compute vertex/loops' total hole
-  area of that step (periodic box), to round-off;
+  area of that step (periodic box), to round-off, and so are --value holes and largest (its
+  largest hole);
 * holes: the hole found around each particle from the dumped centres is compute
   vertex/loops' row (index, area, length, cells) of the same step;
 * divisions: one row per line of the log; each division's position is the midpoint of the
-  two daughters in the dump of its step, and the number of divisions is the growth in cells;
+  two daughters in a dump of its step, and the number of divisions is the growth in cells;
 * flux: the net crossings of the particles through x = xlo are the change of their image
   flags ix;
 * lineage --start --cell-types: the roots are the cells of the first frame (no particle), the
@@ -54,8 +55,10 @@ fix div cells cell/divide rate 0.3 seed 7 max 120 file divisions.log
 compute loops all vertex/loops
 timestep 0.01
 thermo 10
-dump a all custom 1 all.dump id type x y ix iy
+dump a all custom 5 all.dump id type x y ix iy
 dump_modify a sort id format float %.17g
+dump s all custom 1 steps.dump id type x y
+dump_modify s sort id format float %.17g
 dump l all local 5 loops.dump c_loops[*]
 dump_modify l format float %.17g
 run 40
@@ -87,13 +90,18 @@ class RealRun(unittest.TestCase):
         return os.path.join(self.dir, name)
 
     def test_open_area_is_the_computes_hole_area(self):
-        steps, _, area = frame_series(self.dump, "open", radius=R, cell_types=parse_types("1"))
+        ct = parse_types("1")
+        steps, _, area = frame_series(self.dump, "open", radius=R, cell_types=ct)
+        _, _, total = frame_series(self.dump, "holes", radius=R, cell_types=ct)
+        _, _, largest = frame_series(self.dump, "largest", radius=R, cell_types=ct)
         checked = 0
-        for s, a in zip(steps, area):
+        for s, a, t, big in zip(steps, area, total, largest):
             if s in self.loops:
                 rows = self.loops[s]
-                holes = rows[rows[:, 6] == 0, 1].sum()
-                self.assertAlmostEqual(a, holes, delta=1e-9 * holes, msg=f"step {s}")
+                holes = rows[rows[:, 6] == 0, 1]
+                self.assertAlmostEqual(a, holes.sum(), delta=1e-9 * holes.sum(), msg=f"step {s}")
+                self.assertAlmostEqual(t, holes.sum(), delta=1e-9 * holes.sum(), msg=f"step {s}")
+                self.assertAlmostEqual(big, holes.max(), delta=1e-9 * holes.max(), msg=f"step {s}")
                 checked += 1
         self.assertEqual(checked, 9)
         code, out, err = run(["plot", "wound", self.dump, "--radius", str(R), "--cell-types", "1",
@@ -107,7 +115,7 @@ class RealRun(unittest.TestCase):
         self.assertIn("--cell-types", err)
 
     def test_holes_are_the_computes_rows(self):
-        code, out, err = run(["holes", self.dump, "--cell-types", "1", "--radius", str(R), "--frames", "::5",
+        code, out, err = run(["holes", self.dump, "--cell-types", "1", "--radius", str(R),
                               "--csv", self.path("holes.csv"), "-o", self.path("holes.png"), "--dpi", "40"])
         self.assertEqual(code, 0, err)
         rows = read_csv(self.path("holes.csv"))
@@ -141,7 +149,7 @@ class RealRun(unittest.TestCase):
         self.assertGreater(len(rows), 3)
         cells = [int(np.sum(f["type"] == 1)) for f in self.frames]
         self.assertEqual(cells[-1] - cells[0], len(rows))
-        by_step = {f.timestep: f for f in self.frames}
+        by_step = {f.timestep: f for f in read_dump(self.path("steps.dump"))}
         for r in rows:
             f = by_step[int(r["step"])]
             pos = f.positions()

@@ -104,19 +104,20 @@ def _invoke_local(lmp, compute_id, ncols):
     """Run the local compute at the current step (if nothing did) through the library, so that
     write_dump finds it current, and check its column count.  Collective: compute
     vertex/loops gathers to rank 0 inside."""
+    why = "there is no compute of that ID with local data"
     try:
         rows = lmp.extract_compute(compute_id, _LOCAL, _ROWS)
         cols = lmp.extract_compute(compute_id, _LOCAL, _COLS)
-    except ValueError as err:     # older python modules read the NULL of a missing compute
-        if "NULL" not in str(err):
-            raise
+    except Exception as err:
+        # a LAMMPS built with exceptions raises its own message; older python modules read the
+        # NULL of a missing compute (ValueError "NULL pointer access")
         rows = None
-    except Exception as err:      # a LAMMPS built with exceptions: its message, and what to do
-        raise RuntimeError(f"gather_local: compute '{compute_id}': {err} (define the compute before gathering, "
-                           "and gather after a run: 'run 0' is enough)") from None
+        if "NULL" not in str(err):
+            why = str(err).strip()
     if rows is None:
-        raise ValueError(f"gather_local: there is no compute '{compute_id}' with local data (e.g. 'compute "
-                         f"{compute_id} all vertex/local' or vertex/loops); define it before gathering")
+        raise ValueError(f"gather_local: compute '{compute_id}': {why}. Define a local compute before gathering "
+                         f"(e.g. 'compute {compute_id} all vertex/local' or vertex/loops) and gather after a run "
+                         "('run 0' is enough)")
     have = max(int(cols), 1)      # 0 columns: a local vector
     if have != ncols:
         raise ValueError(f"gather_local: compute '{compute_id}' has {have} local column(s), not ncols={ncols}; "

@@ -108,7 +108,8 @@ class GatherWithoutDump(unittest.TestCase):
         box = out["box"]
         self.assertGreater(holes, 0.0)
         self.assertAlmostEqual(holes + sum(out["area"]), box, delta=1e-9 * box)
-        self.assertIn("no compute 'nothere'", out["nothere7"])
+        self.assertIn("compute 'nothere'", out["nothere7"])
+        self.assertIn("Define a local compute", out["nothere7"])
         self.assertIn("has 7 local column(s), not ncols=9", out["loc9"])
 
 

@@ -11,7 +11,6 @@ The centre is given, or read from a comment line of the log that names it (``sph
 cz``, see :func:`sphere_centre`).
 """
 
-import math
 import re
 
 import numpy as np

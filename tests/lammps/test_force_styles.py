@@ -190,6 +190,38 @@ for _model in MODELS:
     _add("test_%s_extract" % _model, lambda self, m=_model: self.check_extract(m))
 
 
+class NoFdotr(LammpsTestCase):
+    """`pair_modify nofdotr`: the style sums its cells' own virials instead of LAMMPS's
+    f dot r, the same virial (the stages check it in serial): on two ranks, where
+    each rank sums its own cells; and inside pair_style hybrid/overlay, which then
+    asks every sub-style for its virial (before the style honoured nofdotr, its
+    share was missing there)."""
+
+    def check(self, model, hybrid=False, nprocs=1):
+        cfg, dim, eps = ForceStyle.config(self, model)
+        if hybrid:
+            cfg["pair_style"] = "hybrid/overlay %s zero 1.0" % cfg["pair_style"]
+            cfg["pair_coeff"] = "\n".join(
+                ["%s %s vertex/voronoi %s" % tuple(l.split(None, 2)) for l in
+                 fs.lines(cfg["pair_coeff"])] + ["* * zero"])
+        run = self.run_lmp(fs.setup_commands(cfg) + "pair_modify nofdotr\n" + fs.thermo() +
+                           "run 0 post no\n" + fs.probe("nofdotr"), nprocs=nprocs)
+        got = fs.read_probes(run)["nofdotr"]
+        _, forces = fs.parse_forces(cfg["init_forces"])
+        check_values(self, "nofdotr stress", got["stress"], fs.parse_stress(cfg["init_stress"]), eps)
+        # (on two ranks the ghost cells' forces are summed in another order: small
+        # components differ by more than epsilon relative to themselves)
+        np.testing.assert_allclose(got["forces"], forces, rtol=eps, atol=1e-14)
+        check_values(self, "nofdotr vdwl", got["vdwl"], float(cfg["init_vdwl"]), eps)
+
+
+for _model in MODELS:
+    setattr(NoFdotr, "test_%s_two_ranks" % _model,
+            lmptest.nprocs(2)(lambda self, m=_model: self.check(m, nprocs=2)))
+    setattr(NoFdotr, "test_%s_hybrid_overlay" % _model,
+            lambda self, m=_model: self.check(m, hybrid=True))
+
+
 class InTree(LammpsTestCase):
     """The same stages on an lmp with the TESSERA package compiled in."""
 

@@ -18,8 +18,10 @@
 #include "pair_vertex_voronoi_confluent.h"
 #include "pair_vertex_voronoi_finite.h"
 #include "pair_vertex_voronoi_sphere.h"
+#include "tessera_citations.h"
 
 #include "atom.h"
+#include "citeme.h"
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
@@ -43,6 +45,7 @@ using namespace LAMMPS_NS;
 
 PairVertexVoronoi::PairVertexVoronoi(LAMMPS *lmp) : Pair(lmp)
 {
+  if (lmp->citeme) lmp->citeme->add(tessera_cite::thesis);
   single_enable = 0;
   restartinfo = 1;
   one_coeff = 0;
@@ -151,6 +154,11 @@ void PairVertexVoronoi::init_style()
     want = std::make_unique<VertexConfluent>(lmp, this);
   if (!unit || strcmp(unit->name(), want->name()) != 0) unit = std::move(want);
   unit->init();
+  // The publication of the model in use.
+  if (lmp->citeme)
+    lmp->citeme->add(domain->dimension == 3 && !sphere_on ? tessera_cite::voronoi_3d
+                         : radius > 0.0                   ? tessera_cite::voronoi_finite
+                                                          : tessera_cite::voronoi_2d);
   if (radius == 0.0 && free_set && comm->me == 0)
     error->warning(FLERR,
                    "pair_style vertex/voronoi: 'free' tensions are ignored without 'radius r' "

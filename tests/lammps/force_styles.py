@@ -220,6 +220,7 @@ def stage_script(cfg, input_dir=FORCE_DIR, base="tess"):
           "variable pair_style index '%s'\nvariable data_file index %s.data\n"
           % (cfg["pair_style"], base) +
           "include %s\n" % os.path.join(input_dir, cfg["input_file"]) + coeffs + post +
+          "print \"TESS_DATA_FILE ${data_file}\"\n" +
           thermo() + "run 0 post no\n" + probe("data"))
     # the same style given again (settings() and coeff() on the existing style)
     s += ("pair_style %s\n" % cfg["pair_style"] + coeffs + "run 0 post no\n" +
@@ -228,8 +229,9 @@ def stage_script(cfg, input_dir=FORCE_DIR, base="tess"):
 
 
 def read_probes(run):
-    """{stage: {'vdwl', 'coul', 'stress' (6), 'ids', 'forces' (n x 3), 'x' (n x 3)}}."""
-    out = {}
+    """{stage: {'vdwl', 'coul', 'stress' (6), 'ids', 'forces' (n x 3), 'x' (n x 3)}};
+    the data stage's also 'file', the data file it read."""
+    out, data_file = {}, None
     for line in run.stdout.splitlines():
         if line.startswith("TESS_PROBE "):
             w = line.split()
@@ -238,9 +240,13 @@ def read_probes(run):
         elif line.startswith("TESS_SUM "):
             w = line.split()
             out[w[1]]["sum"] = float(w[2])
+        elif line.startswith("TESS_DATA_FILE "):
+            data_file = line.split()[1]
     for stage, values in out.items():
         frame = read_dump(run.path("tess_%s.dump" % stage))
         values.update(frame)
+    if "data" in out:
+        out["data"]["file"] = data_file
     return out
 
 
@@ -552,6 +558,8 @@ def generate(model, path, lmp, new_data=False):
             err = float(np.max(fp_error(stages[stage][key], init[key])))
             if err > eps:
                 bad.append("%s %s differ from init's by %.3g (epsilon %g)" % (stage, key, err, eps))
+    if os.path.basename(stages["data"]["file"]) != "tess.data":
+        bad.append("the data stage read %s, not the file write_data wrote" % stages["data"]["file"])
     if abs(stages["run"]["sum"] - stages["run"]["vdwl"]) > eps * abs(stages["run"]["vdwl"]):
         bad.append("the sum of compute pe/atom is not the pair energy")
     if bad:

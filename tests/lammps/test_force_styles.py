@@ -68,6 +68,9 @@ class ForceStyle(LammpsTestCase):
                              init["stress"], eps)
                 check_values(self, "%s %s_vdwl" % (host, stage), got["vdwl"], init["vdwl"], eps)
                 check_values(self, "%s %s_coul" % (host, stage), got["coul"], init["coul"], eps)
+        # the data stage reads the data file that write_data wrote (a YAML file whose
+        # pre_commands set data_file would keep the original)
+        self.assertEqual(os.path.basename(stages["data"]["file"]), "tess.data")
         got = stages["run"]
         with self.subTest(host=host, stage="run"):
             check_values(self, host + " run_forces", got["forces"], run_f, 5 * eps)
@@ -250,8 +253,10 @@ class Files(unittest.TestCase):
                 self.assertEqual(tuple(keys), fs.KEYS)
                 cfg = fs.read_yaml(path)
                 self.assertTrue(os.path.exists(os.path.join(fs.FORCE_DIR, cfg["input_file"])))
-                data = re.search(r"data_file index \$\{input_dir\}/(\S+)", cfg["pre_commands"])
-                self.assertTrue(data and os.path.exists(os.path.join(fs.FORCE_DIR, data.group(1))))
+                self.assertNotIn("data_file", cfg["pre_commands"])
+                data = re.search(r"vertex_model index (\w+)", cfg["pre_commands"])
+                self.assertTrue(data and os.path.exists(
+                    os.path.join(fs.FORCE_DIR, "data.vertex_" + data.group(1))))
                 n = int(cfg["natoms"])
                 for key in ("init_forces", "run_forces"):
                     ids, f = fs.parse_forces(cfg[key])

@@ -520,7 +520,8 @@ def run_lmp(lmp, script, workdir):
                           capture_output=True, text=True, timeout=600)
     run = Run(workdir, proc)
     if proc.returncode != 0:
-        sys.exit("lmp failed (exit %d):\n%s" % (proc.returncode, (proc.stdout + proc.stderr)[-4000:]))
+        sys.exit("lmp failed (exit %d):\n%s"
+                 % (proc.returncode, (proc.stdout + proc.stderr)[-4000:]))
     return run
 
 

@@ -211,7 +211,8 @@ class NoFdotr(LammpsTestCase):
                            "run 0 post no\n" + fs.probe("nofdotr"), nprocs=nprocs)
         got = fs.read_probes(run)["nofdotr"]
         _, forces = fs.parse_forces(cfg["init_forces"])
-        check_values(self, "nofdotr stress", got["stress"], fs.parse_stress(cfg["init_stress"]), eps)
+        check_values(self, "nofdotr stress", got["stress"], fs.parse_stress(cfg["init_stress"]),
+                     eps)
         # (on two ranks the ghost cells' forces are summed in another order: small
         # components differ by more than epsilon relative to themselves)
         np.testing.assert_allclose(got["forces"], forces, rtol=eps, atol=1e-14)

@@ -3,9 +3,10 @@
 """The package TESSERA in the form LAMMPS asks of a package (scripts/lammps-package
 writes its layout: src/TESSERA, lib/tessera, the CMake module, doc pages, examples,
 and the edits of LAMMPS's own files), complete; and the in-tree package
-(scripts/install-lammps-package) sees the same styles as tessera-lmp and the plugin: LAMMPS's CMake registers a style by the
-PairStyle/FixStyle/ComputeStyle line of its header, while tessera-lmp and the
-plugin use the table in lammps/tessera_styles.cpp.  Every table entry that
+(scripts/install-lammps-package) sees the same styles as tessera-lmp and the
+plugin: LAMMPS's CMake registers a style by the PairStyle/FixStyle/ComputeStyle
+line of its header, while tessera-lmp and the plugin use the table in
+lammps/tessera_styles.cpp.  Every table entry that
 Tessera always serves must have that header line, naming the same class; and
 the script must produce a tree in which CMake finds them (checked on a copy of
 a LAMMPS tree's cmake/ and src/ skeleton, without building LAMMPS), and a real
@@ -302,7 +303,8 @@ class Layout(LammpsTestCase):
             with self.subTest(page=name):
                 # LAMMPS's doc pages are ASCII
                 self.assertTrue(all(ord(c) < 128 for c in text))
-                for m in re.finditer(r"^\.\. index:: (pair_style|fix|compute)?\s*(\S+)$", text, re.M):
+                for m in re.finditer(r"^\.\. index:: (pair_style|fix|compute)?\s*(\S+)$", text,
+                                     re.M):
                     pages[(m.group(1) or "command", m.group(2))] = name
                 self.assertRegex(text, r"Restrictions\n\"+\n\nThis [a-z ]+ is part of the "
                                  r"TESSERA package\.  It is only enabled if LAMMPS")
@@ -362,7 +364,8 @@ class Layout(LammpsTestCase):
         for name in inputs:
             # LAMMPS's rules for example inputs: no log, echo, package, processors or
             # suffix commands, output commands commented out, thermo without CPU time
-            lines = [l.split("#", 1)[0].split() for l in read_text(os.path.join(ex, name)).split("\n")]
+            text = read_text(os.path.join(ex, name))
+            lines = [l.split("#", 1)[0].split() for l in text.split("\n")]
             commands = [l[0] for l in lines if l]
             for forbidden in ("log", "echo", "package", "processors", "suffix", "dump",
                               "write_dump", "write_restart", "write_data", "plugin"):
@@ -376,8 +379,9 @@ class Layout(LammpsTestCase):
         # the examples run on 1 and 4 ranks with the host's lmp (or the in-tree one),
         # and their logs are named as LAMMPS names them
         lmp = Config.intree_lmp or Config.lmp
-        env = dict(os.environ, OMPI_MCA_orte_tmpdir_base=lmptest.mpiexec_command(1)[1].split("=")[1],
-                   OMPI_MCA_ess_singleton_isolated="1")
+        # (the 1-rank runs as lmptest starts them: Open MPI's session directories apart)
+        env = dict(os.environ, OMPI_MCA_ess_singleton_isolated="1",
+                   OMPI_MCA_orte_tmpdir_base=lmptest.mpiexec_command(1)[1].split("=")[1])
         out = self.layout("--logs", lmp, "--mpiexec", shlex.join(lmptest.mpiexec_command(4)[:-2]),
                           env=env)
         ex = os.path.join(out, "examples", "PACKAGES", "tessera")
@@ -386,8 +390,8 @@ class Layout(LammpsTestCase):
         self.assertEqual(len(logs), 2 * len(inputs), logs)
         for name in inputs:
             for n in (1, 4):
-                match = [l for l in logs if re.fullmatch(r"log\.\d{1,2}[A-Z][a-z]{2}\d\d\.%s\.g\+\+\.%d"
-                                                         % (re.escape(name), n), l)]
+                form = r"log\.\d{1,2}[A-Z][a-z]{2}\d\d\.%s\.g\+\+\.%d" % (re.escape(name), n)
+                match = [l for l in logs if re.fullmatch(form, l)]
                 self.assertEqual(len(match), 1, (name, n, logs))
                 text = read_text(os.path.join(ex, match[0]))
                 self.assertIn("Total wall time", text)
@@ -456,25 +460,29 @@ class Layout(LammpsTestCase):
             self.assertEqual(pos, sorted(pos), words)
             for w in words:
                 self.assertEqual(text.count(w), 1, w)
-        ordered(doc("Commands_pair.rst"), ":doc:`tersoff", ":doc:`vertex/voronoi <pair_vertex_voronoi>`",
-                ":doc:`yukawa")
+        ordered(doc("Commands_pair.rst"), ":doc:`tersoff",
+                ":doc:`vertex/voronoi <pair_vertex_voronoi>`", ":doc:`yukawa")
         ordered(doc("Commands_fix.rst"), ":doc:`adapt", ":doc:`brownian/heun <",
-                ":doc:`cell/adapt <", ":doc:`polarity <", ":doc:`property/atom", ":doc:`wall/reflect")
+                ":doc:`cell/adapt <", ":doc:`polarity <", ":doc:`property/atom",
+                ":doc:`wall/reflect")
         ordered(doc("Commands_compute.rst"), ":doc:`ackland", ":doc:`cell/neighbor/mean <",
                 ":doc:`vertex/atom <", ":doc:`vertex/tissue <", ":doc:`voronoi/atom")
-        ordered(doc("pair_style.rst"), ":doc:`tersoff", "* :doc:`vertex/voronoi <pair_vertex_voronoi>` - ",
-                ":doc:`yukawa")
-        ordered(doc("fix.rst"), ":doc:`adapt <", "* :doc:`polarity <fix_polarity>` - ", ":doc:`wall/reflect")
-        ordered(doc("compute.rst"), ":doc:`ackland", "* :doc:`vertex/local <compute_vertex_local>` - ",
-                ":doc:`voronoi/atom")
-        ordered(doc("Packages_list.rst"), ":ref:`BROWNIAN <", ":ref:`TESSERA <PKG-TESSERA>`", ":ref:`VORONOI <")
+        ordered(doc("pair_style.rst"), ":doc:`tersoff",
+                "* :doc:`vertex/voronoi <pair_vertex_voronoi>` - ", ":doc:`yukawa")
+        ordered(doc("fix.rst"), ":doc:`adapt <", "* :doc:`polarity <fix_polarity>` - ",
+                ":doc:`wall/reflect")
+        ordered(doc("compute.rst"), ":doc:`ackland",
+                "* :doc:`vertex/local <compute_vertex_local>` - ", ":doc:`voronoi/atom")
+        ordered(doc("Packages_list.rst"), ":ref:`BROWNIAN <", ":ref:`TESSERA <PKG-TESSERA>`",
+                ":ref:`VORONOI <")
         details = doc("Packages_details.rst")
         ordered(details, "* :ref:`BROWNIAN", "* :ref:`TESSERA <PKG-TESSERA>`", "* :ref:`VORONOI",
                 ".. _PKG-BROWNIAN:", ".. _PKG-TESSERA:", ".. _PKG-VORONOI:")
         self.assertIn(":doc:`fix polarity <fix_polarity>`", details)
         ordered(doc("Build_extras.rst"), "* :ref:`COLVARS", "* :ref:`TESSERA <tessera>`",
                 "* :ref:`VTK", ".. _colvar:", ".. _tessera:", ".. _vtk:")
-        ordered(doc("Build_package.rst"), "* :ref:`COLVARS", "* :ref:`TESSERA <tessera>`", "* :ref:`VTK")
+        ordered(doc("Build_package.rst"), "* :ref:`COLVARS", "* :ref:`TESSERA <tessera>`",
+                "* :ref:`VTK")
         # the pages themselves, and the examples
         self.assertTrue(os.path.exists(os.path.join(root, "doc", "src", "pair_vertex_voronoi.rst")))
         self.assertTrue(os.path.exists(os.path.join(root, "examples", "PACKAGES", "tessera",
@@ -494,7 +502,8 @@ class Layout(LammpsTestCase):
             self.assertEqual(sorted(os.listdir(a)), sorted(os.listdir(b)), sub)
             for name in os.listdir(a):
                 if name != "README":
-                    self.assertEqual(read_text(os.path.join(a, name)), read_text(os.path.join(b, name)),
+                    self.assertEqual(read_text(os.path.join(a, name)),
+                                     read_text(os.path.join(b, name)),
                                      "%s/%s: the in-tree build is not today's layout" % (sub, name))
         proc = subprocess.run([Config.intree_lmp, "-h"], capture_output=True, text=True)
         for kind, name in user_styles_of_headers():

@@ -108,16 +108,16 @@ class FixCellSignal : public Fix {
   double *comm_vector2 = nullptr;    // and this one after it, if given
   std::vector<double> rate;          // implicit: productions, nfields x nlocal
   // The solution x1 + xd, a correction, the solver's vectors, the
-  // right-hand side, the inverse diagonal and the residual.
-  std::vector<double> cg_x, cg_xd, cg_d, cg_r, cg_p, cg_q, cg_z, cg_b, cg_dinv, cg_res;
+  // right-hand side and the residual.
+  std::vector<double> cg_x, cg_xd, cg_d, cg_r, cg_p, cg_q, cg_b, cg_res;
   std::vector<double> cg_keep;    // x1 and xd before a correction
   std::vector<char> warned_implicit;    // per field: the accuracy warning was given
   void implicit_step(double dt);
   void forward_vectors(double *x, double *x2);
-  void apply_matrix(const Field &f, double dt, double *x, double *out);
+  double apply_matrix(const Field &f, double dt, double *x, double *out);
   double exchange_of(int i, const double *x1, const double *xd) const;
   double residual(const Field &f, double dt, const double *b, double *x1, double *xd, double *r);
-  int pcg(const Field &f, double dt, const double *rhs, double *x, double &reached);
+  int cg(const Field &f, double dt, const double *rhs, double *x, double scale, double &reached);
   void inaccurate(const Field &f, double dt, double rel);
   double dot(const double *a, const double *b);
 };

@@ -7,9 +7,8 @@
    of the step.  For each species the symmetric positive definite system
      (1 + dt d_i) x_i + dt P sum_j s_ij (x_i - x_j) = b_i,
      d_i = k + Pb F_i,  b_i = u_i + dt (R_i + Pb F_i cb)
-   is solved by conjugate gradients with the diagonal as preconditioner
-   (ghost values by forward communication, dot products over the owned
-   cells).
+   is solved by conjugate gradients (ghost values by forward
+   communication, dot products over the owned cells).
 
    Stiff exchange (dt P s_ij far above 1) makes the solution nearly uniform
    over each connected patch of cells, and the fluxes dt P s_ij (x_j - x_i)
@@ -49,11 +48,15 @@ constexpr int CG_MAX = 2000;
 // when a correction no longer halves the residual (the better solution is
 // kept) ...
 constexpr int REFINE_MAX = 12;
-constexpr double ROUND_OFF = 1e-15;
+constexpr double ROUND_OFF = 1e-13;
 // The new amounts are the solution plus the residual: above this fraction
 // of the right-hand side the step warns, above the next it stops.
 constexpr double REFINED_TOL = 1e-12;
 constexpr double FAILED_TOL = 1e-6;
+// Above this dt P W_i / (1 + dt d_i) (largest over the cells) the solves
+// start from a uniform value: from the old values they would carry the
+// uniform part through iterations whose round-off grows with dt P.
+constexpr double STIFF = 1e6;
 }    // namespace
 
 double FixCellSignal::dot(const double *a, const double *b)
@@ -75,21 +78,25 @@ void FixCellSignal::forward_vectors(double *x, double *x2)
 }
 
 /* out = M x on the owned cells (x: owned values; its ghost values are sent
-   here).  Cells outside the group, and particles, have identity rows. */
+   here).  Cells outside the group, and particles, have identity rows.
+   Returns this rank's sum of x_i out_i. */
 
-void FixCellSignal::apply_matrix(const Field &f, double dt, double *x, double *out)
+double FixCellSignal::apply_matrix(const Field &f, double dt, double *x, double *out)
 {
   forward_vectors(x, nullptr);
+  double xout = 0.0;
   for (int i = 0; i < atom->nlocal; i++) {
     if (!taken[i]) {
       out[i] = x[i];
-      continue;
+    } else {
+      double ex = 0.0;
+      for (int k = row_offset[i]; k < row_offset[i + 1]; k++)
+        ex += row_size[k] * (x[i] - x[row_index[k]]);
+      out[i] = x[i] + dt * ((f.k + f.Pb * freelen[i]) * x[i] + f.P * ex);
     }
-    double ex = 0.0;
-    for (int k = row_offset[i]; k < row_offset[i + 1]; k++)
-      ex += row_size[k] * (x[i] - x[row_index[k]]);
-    out[i] = x[i] + dt * ((f.k + f.Pb * freelen[i]) * x[i] + f.P * ex);
+    xout += x[i] * out[i];
   }
+  return xout;
 }
 
 /* The exchange of owned cell i for the solution x1 + xd (ghost values
@@ -123,38 +130,39 @@ double FixCellSignal::residual(const Field &f, double dt, const double *b, doubl
   return std::sqrt(dot(r, r));
 }
 
-/* Preconditioned conjugate gradients for M x = rhs from the x given (owned
-   values), the diagonal of M as preconditioner, until the recurrence's
-   residual is CG_TOL |rhs|.  Returns the iterations, or -1 if CG_MAX did
-   not reach it; `reached` gets the recurrence's relative residual. */
+/* Conjugate gradients for M x = rhs from x = 0 (owned values), until the
+   recurrence's residual is CG_TOL scale.  Returns the iterations, or -1
+   if CG_MAX did not reach it; `reached` gets the recurrence's residual over
+   scale.  (The diagonal as preconditioner took more iterations on
+   disordered tissues, by up to a half.) */
 
-int FixCellSignal::pcg(const Field &f, double dt, const double *rhs, double *x, double &reached)
+int FixCellSignal::cg(const Field &f, double dt, const double *rhs, double *x, double scale,
+                      double &reached)
 {
   const int nlocal = atom->nlocal;
-  double *r = cg_r.data(), *p = cg_p.data(), *q = cg_q.data(), *z = cg_z.data();
-  const double *dinv = cg_dinv.data();
-  apply_matrix(f, dt, x, q);
+  double *r = cg_r.data(), *p = cg_p.data(), *q = cg_q.data();
   for (int i = 0; i < nlocal; i++) {
-    r[i] = rhs[i] - q[i];
-    p[i] = z[i] = dinv[i] * r[i];
+    x[i] = 0.0;
+    p[i] = r[i] = rhs[i];
   }
-  const double bb = dot(rhs, rhs);
-  double rr = dot(r, r), rz = dot(r, z);
+  const double bb = scale * scale;
+  double rr = dot(r, r);
   int it = 0;
   while (rr > CG_TOL * CG_TOL * bb && it < CG_MAX) {
-    apply_matrix(f, dt, p, q);
-    const double pq = dot(p, q);
+    double local = apply_matrix(f, dt, p, q), pq = 0.0;
+    MPI_Allreduce(&local, &pq, 1, MPI_DOUBLE, MPI_SUM, world);
     if (!(pq > 0.0)) break;    // exactly solved (p = 0), or lost to round-off
-    const double alpha = rz / pq;
+    const double alpha = rr / pq;
+    local = 0.0;
     for (int i = 0; i < nlocal; i++) {
       x[i] += alpha * p[i];
       r[i] -= alpha * q[i];
-      z[i] = dinv[i] * r[i];
+      local += r[i] * r[i];
     }
-    const double rz_new = dot(r, z);
-    rr = dot(r, r);
-    for (int i = 0; i < nlocal; i++) p[i] = z[i] + (rz_new / rz) * p[i];
-    rz = rz_new;
+    double rr_new = 0.0;
+    MPI_Allreduce(&local, &rr_new, 1, MPI_DOUBLE, MPI_SUM, world);
+    for (int i = 0; i < nlocal; i++) p[i] = r[i] + (rr_new / rr) * p[i];
+    rr = rr_new;
     it++;
   }
   reached = bb > 0.0 ? std::sqrt(rr / bb) : 0.0;
@@ -168,8 +176,7 @@ void FixCellSignal::implicit_step(double dt)
   productions();    // from the values at the start of the step
   const int nlocal = atom->nlocal;
   const size_t nall = std::max(atom->nmax, 1);
-  for (std::vector<double> *v :
-       {&cg_x, &cg_xd, &cg_d, &cg_r, &cg_p, &cg_q, &cg_z, &cg_b, &cg_dinv, &cg_res})
+  for (std::vector<double> *v : {&cg_x, &cg_xd, &cg_d, &cg_r, &cg_p, &cg_q, &cg_b, &cg_res})
     v->assign(nall, 0.0);
   // Every species' new values are computed (into next) before any changes,
   // so that all read the same start.
@@ -179,37 +186,43 @@ void FixCellSignal::implicit_step(double dt)
     if (!fd.species) continue;
     const double *u = atom->dvector[fd.index];
     const double *prod = &rate[f * nlocal];
-    double sums[2] = {0.0, 0.0}, all[2] = {0.0, 0.0};
+    // sums over the cells taken: b, 1 + dt d, b^2; and the largest
+    // dt P W_i / (1 + dt d_i)
+    double sums[3] = {0.0, 0.0, 0.0}, all[3] = {0.0, 0.0, 0.0}, most = 0.0, most_all = 0.0;
     for (int i = 0; i < nlocal; i++) {
       cg_xd[i] = 0.0;
       if (!taken[i]) {
         cg_b[i] = cg_x[i] = u[i];
-        cg_dinv[i] = 1.0;
         continue;
       }
       double w = 0.0;
       for (int k = row_offset[i]; k < row_offset[i + 1]; k++) w += row_size[k];
       const double own = 1.0 + dt * (fd.k + fd.Pb * freelen[i]);
       cg_b[i] = u[i] + dt * (prod[i] + fd.Pb * freelen[i] * fd.cb);
-      cg_dinv[i] = 1.0 / (own + dt * fd.P * w);
       sums[0] += cg_b[i];
       sums[1] += own;
+      sums[2] += cg_b[i] * cg_b[i];
+      most = std::max(most, dt * fd.P * w / own);
     }
-    MPI_Allreduce(sums, all, 2, MPI_DOUBLE, MPI_SUM, world);
-    // The start: the uniform value that balances the sources of all cells
-    // taken (the solution where exchange is fast, on one patch), so that
-    // the solves do not carry the uniform part of the solution, which
-    // their round-off would spread over the differences.
+    MPI_Allreduce(sums, all, 3, MPI_DOUBLE, MPI_SUM, world);
+    MPI_Allreduce(&most, &most_all, 1, MPI_DOUBLE, MPI_MAX, world);
+    // The start: the old values, or where exchange is so fast that the
+    // solution is nearly uniform, the uniform value that balances the
+    // sources of all cells taken (the solution on one patch), so that the
+    // solves do not carry the uniform part of the solution, which their
+    // round-off would spread over the differences.
+    const bool stiff = most_all > STIFF;
     const double start = all[1] > 0.0 ? all[0] / all[1] : 0.0;
     for (int i = 0; i < nlocal; i++)
-      if (taken[i]) cg_x[i] = start;
-    const double bnorm = std::sqrt(dot(cg_b.data(), cg_b.data()));
+      if (taken[i]) cg_x[i] = stiff ? start : u[i];
+    const double bnorm = std::sqrt(all[2]);
     double *x1 = cg_x.data();
     double reached = 0.0;
     double res = residual(fd, dt, cg_b.data(), cg_x.data(), cg_xd.data(), cg_res.data());
     for (int pass = 0; pass < REFINE_MAX && res > ROUND_OFF * bnorm; pass++) {
-      for (int i = 0; i < nlocal; i++) cg_d[i] = 0.0;
-      const int it = pcg(fd, dt, cg_res.data(), cg_d.data(), reached);
+      // (each solve to CG_TOL of the right-hand side b: the corrections
+      // need no more than the solution itself)
+      const int it = cg(fd, dt, cg_res.data(), cg_d.data(), bnorm, reached);
       if (it < 0) {
         if (pass == 0)
           error->all(FLERR,

@@ -768,14 +768,22 @@ class Bath(LammpsTestCase):
         across their free arcs; the steady state against the linear system
         (L + diag(Pb F + k)) u = Pb F cb solved by numpy, with L built from
         compute vertex/local's contact edges and F from its free arcs."""
+        self.steady_state("", 0.05, 1200)
+
+    def test_finite_cells_steady_state_implicit(self):
+        """The same with implicit steps 40 times the exchange time (the
+        steady state of backward Euler is that of the laws)."""
+        self.steady_state(" implicit yes", 40.0, 60)
+
+    def steady_state(self, extra, dt, steps):
         from feature_models import local_rows, model_script
         P, Pb, cb, k = 1.0, 2.0, 1.5, 0.5
         run = self.run_lmp(model_script("finite_open") + f"""
 fix sp all property/atom d_u
 set group all d_u 0.0
-fix s all cell/signal exchange d_u {P} bath d_u {Pb} {cb} degrade d_u {k}
-timestep 0.05
-run 1200
+fix s all cell/signal exchange d_u {P} bath d_u {Pb} {cb} degrade d_u {k}{extra}
+timestep {dt}
+run {steps}
 compute pu all property/atom d_u
 compute l all vertex/local
 dump d all custom 1 u.txt id c_pu

@@ -37,6 +37,7 @@
 #include "variable.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -247,21 +248,34 @@ void FixCellAdapt::apply(bool only_new)
    atoms between ranks and into restart files; the step of that setting in
    the global record ---- */
 
+/* The properties' names, as one number (FNV-1a, 32 bits: exact in a
+   double), to tell a restart file of this fix with other properties. */
+
+double FixCellAdapt::names_key() const
+{
+  uint32_t h = 2166136261u;
+  for (const Target &t : targets)
+    for (const char c : t.name + '\n') h = (h ^ static_cast<unsigned char>(c)) * 16777619u;
+  return (double) h;
+}
+
 void FixCellAdapt::write_restart(FILE *fp)
 {
   if (comm->me != 0) return;
-  const double list[2] = {(double) applied_step, (double) targets.size()};
+  const double list[3] = {(double) applied_step, (double) targets.size(), names_key()};
   const int size = sizeof(list);
   fwrite(&size, sizeof(int), 1, fp);
-  fwrite(list, sizeof(double), 2, fp);
+  fwrite(list, sizeof(double), 3, fp);
 }
+
+/* The values kept for other properties are of no use: the run then starts
+   as a first one (unpack_restart, called after this, drops them). */
 
 void FixCellAdapt::restart(char *buf)
 {
   const double *list = reinterpret_cast<const double *>(buf);
-  // Values of another list of properties are of no use: the run starts as a
-  // first one.
-  applied_step = list[1] == (double) targets.size() ? (bigint) list[0] : -1;
+  foreign = !(list[1] == (double) targets.size() && list[2] == names_key());
+  applied_step = foreign ? -1 : (bigint) list[0];
 }
 
 double FixCellAdapt::memory_usage()
@@ -316,7 +330,7 @@ void FixCellAdapt::unpack_restart(int nlocal, int nth)
   int m = 0;
   for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
   const int nt = static_cast<int>(targets.size());
-  const bool same = static_cast<int>(extra[nlocal][m]) == nt + 1;
+  const bool same = !foreign && static_cast<int>(extra[nlocal][m]) == nt + 1;
   m++;
   for (int k = 0; k < nt; k++) before[nlocal][k] = same ? extra[nlocal][m + k] : NONE;
 }

@@ -59,6 +59,8 @@ class FixCellAdapt : public Fix {
   double **before = nullptr;
   // The step at whose end this fix last set the properties (-1: never).
   bigint applied_step = -1;
+  bool foreign = false;    // the restart file's state is for other properties
+  double names_key() const;
   // setup_pre_force -> setup: the properties as the last step left them,
   // per owned atom and target, while the setup's forces use `before`.
   std::vector<double> held;

@@ -13,7 +13,7 @@ import numpy as np
 
 import lmptest
 from feature_models import model_script
-from lmptest import LammpsTestCase, nprocs
+from lmptest import LammpsTestCase
 
 DYN = """fix p all polarity 0.3 1.0 neighbor 0.5
 fix b all brownian 1.0 1 gamma_t 1.0 rng none
@@ -79,14 +79,17 @@ ADAPT_END = ("write_dump all custom end.dump id xu yu d_area0 d_u modify format 
 class SplitRunsAdapt(LammpsTestCase):
     """run 10 = run n; run 10-n = run n, write_restart, read_restart, run
     10-n, with fix cell/adapt every N steps (split at a step where it set
-    the parameters and at one where it did not), on 1 and 2 ranks."""
+    the parameters and at one where it did not), on 1 and 2 ranks, and with
+    divisions (the daughters keep what the fix kept for their mother)."""
 
-    CASES = [(1, 5, 1), (1, 5, 2), (3, 5, 1), (3, 6, 1)]    # N, split step, ranks
+    DIVIDE = "fix div all cell/divide rate 3.0 seed 4821 separation 0.1\n"
+    CASES = [(1, 5, 1, ""), (1, 5, 2, ""), (3, 5, 1, ""), (3, 6, 1, ""),
+             (1, 5, 1, DIVIDE)]    # N, split step, ranks, divisions
 
-    def ends(self, every, n, ranks, data):
+    def ends(self, every, n, ranks, data, divide):
         files = {"cfg.data": data}
         head = model_script("confluent", data="cfg.data") + ADAPT_SPECIES
-        law = ADAPT.format(every=every)
+        law = ADAPT.format(every=every) + divide
         runs = [self.run_lmp(head + law + "run 10\n" + ADAPT_END, nprocs=ranks, files=files),
                 self.run_lmp(head + law + f"run {n}\nrun {10 - n}\n" + ADAPT_END, nprocs=ranks,
                              files=files)]
@@ -102,15 +105,28 @@ class SplitRunsAdapt(LammpsTestCase):
             out.append(np.column_stack([f[c] for c in ("xu", "yu", "d_area0", "d_u")]))
         return out
 
-    @nprocs(2)
-    def test_split_and_restart_are_the_uninterrupted_run(self):
+    def check(self, every, n, ranks, divide):
         data = self.run_lmp(model_script("confluent") + "write_data cfg.data\n").text("cfg.data")
-        for every, n, ranks in self.CASES:
-            with self.subTest(every=every, split=n, ranks=ranks):
-                whole, split, restarted = self.ends(every, n, ranks, data)
-                self.assertGreater(np.ptp(whole[:, 2]), 0.01)    # d_area0 differs among cells
-                np.testing.assert_allclose(split, whole, rtol=0, atol=1e-12)
-                np.testing.assert_allclose(restarted, whole, rtol=0, atol=1e-12)
+        whole, split, restarted = self.ends(every, n, ranks, data, divide)
+        if divide:
+            self.assertGreater(len(whole), 42 + 5)
+        self.assertGreater(np.ptp(whole[:, 2]), 0.01)    # d_area0 differs among cells
+        np.testing.assert_allclose(split, whole, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(restarted, whole, rtol=0, atol=1e-12)
+
+
+def _adapt_case(every, n, ranks, divide):
+    def test(self):
+        self.check(every, n, ranks, divide)
+    test.nprocs = ranks
+    test.__doc__ = f"fix cell/adapt every {every}, split at {n}, {ranks} rank(s)" + (
+        ", divisions" if divide else "")
+    return test
+
+
+for _every, _n, _ranks, _divide in SplitRunsAdapt.CASES:
+    setattr(SplitRunsAdapt, f"test_every_{_every}_split_{_n}_ranks_{_ranks}"
+            + ("_divisions" if _divide else ""), _adapt_case(_every, _n, _ranks, _divide))
 
 
 if __name__ == "__main__":

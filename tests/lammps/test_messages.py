@@ -104,6 +104,17 @@ CASES = [
     ("death_default_floor_on_sphere", sphere() + BROWNIAN +
      "fix d all cell/death rate 5.0 seed 7\ntimestep 0.1\nrun 50\n",
      False, ["fix cell/death d:", "the floor 'min 4' (the default)", "at least 4 cells"], []),
+    # a bath of fix cell/signal on cells without free arcs would never act
+    ("bath_on_confluent_cells", BASE + COEFF + "fix sp all property/atom d_u\n"
+     "fix s all cell/signal exchange d_u 1.0 bath d_u 2.0 1.0\nrun 1\n",
+     True, ["fix cell/signal s: bath d_u", "these cells have none", "without 'radius r'",
+            "remove 'bath d_u ...'"], []),
+    # fix cell/divide growth linear overwrites the d_area0 fix cell/adapt sets
+    ("adapt_area0_with_growth_linear", BASE + COEFF + "fix sp all property/atom d_area0\n"
+     "set group all d_area0 1.0\nvariable a atom 1.1\nfix ad all cell/adapt 1 d_area0 v_a\n"
+     "fix div all cell/divide rate 0.1 seed 5 growth linear\nrun 1\n",
+     False, ["fix ad cell/adapt sets d_area0", "fix div cell/divide 'growth linear'",
+             "leave out one of the two"], []),
     # pair_style hybrid (not overlay) giving a pair of cell types to another style alone:
     # their cells would still share junctions
     # an atom that is no cell jumps by the force of another sub-style: the

@@ -55,6 +55,7 @@ class PairVertexVoronoi : public Pair {
   void write_restart_settings(FILE *) override;
   void read_restart_settings(FILE *) override;
   void *extract(const char *, int &) override;
+  void modify_params(int, char **) override;
   void reinit() override;
   double memory_usage() override;
 
@@ -127,6 +128,7 @@ class PairVertexVoronoi : public Pair {
 
  protected:
   void keyword_defaults();    // the pair_style keywords' defaults
+  int nofdotr_given = 0;      // 'pair_modify nofdotr' given (init_style sets LAMMPS's flag)
   double cut_global;
   bigint ncompute = 0;
   tessera::Tension tension;

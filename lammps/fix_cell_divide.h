@@ -49,6 +49,8 @@ class FixCellDivide : public Fix {
   void unpack_restart(int, int) override;
   int size_restart(int) override;
   int maxsize_restart() override;
+  // The division area of 'area Ac' (-1: another trigger), for messages.
+  double division_area() const { return trigger == AREA ? area_max : -1.0; }
 
   // 'growth linear': the fix sets d_area0 before every step's forces.
   bool grows_area0() const { return growth != 0; }

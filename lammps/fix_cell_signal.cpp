@@ -142,10 +142,20 @@ FixCellSignal::FixCellSignal(LAMMPS *lmp, int narg, char **arg) :
       if (strcmp(arg[iarg + 1], "auto") == 0)
         nsub_fixed = 0;
       else {
-        nsub_fixed = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
-        if (nsub_fixed < 1)
+        const bigint n = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
+        if (n < 1)
           error->all(FLERR, "fix cell/signal: substeps must be auto or an integer >= 1, got {}",
                      arg[iarg + 1]);
+        // The most 'substeps auto' takes: each substep passes over every
+        // cell and junction, so more would make a step take minutes.
+        if (n >= 10000000)
+          error->all(FLERR,
+                     "fix cell/signal: substeps {} is not below 10000000, the most 'substeps "
+                     "auto' takes (each substep passes over every cell and junction, so a step "
+                     "would take that many times as long); give the count the rates need, or "
+                     "'substeps auto', which finds it every step",
+                     arg[iarg + 1]);
+        nsub_fixed = static_cast<int>(n);
       }
       iarg += 2;
     } else {

@@ -89,11 +89,8 @@ class PairVertexVoronoi : public Pair {
   bigint compute_count() const { return ncompute; }
   // Finite Voronoi radius r, or 0 (confluent or 3D cells).
   double finite_radius() const { return radius; }
-  // For the step guard: sqrt(A0) of a type (cbrt(V0) in 3D), and owned atom
-  // i's closest neighbour (ID, distance) at the last force computation, with
-  // owned atoms at owned_x (dimension values per atom, recorded then).
+  // For the step guard: sqrt(A0) of a type (cbrt(V0) in 3D).
   double cell_size(int type) const;
-  bool closest_neighbour(int i, const double *owned_x, tagint &j, double &d) const;
   // What limits the step of an integrator that moved cells too far: a
   // smaller timestep, 'fix dt/reset', and fix brownian/heun unless in use.
   std::string step_advice() const;
@@ -129,6 +126,7 @@ class PairVertexVoronoi : public Pair {
  protected:
   void keyword_defaults();    // the pair_style keywords' defaults
   int nofdotr_given = 0;      // 'pair_modify nofdotr' given (init_style sets LAMMPS's flag)
+  void check_single_instance() const;    // one vertex/voronoi under pair_style hybrid
   double cut_global;
   bigint ncompute = 0;
   tessera::Tension tension;

@@ -20,6 +20,7 @@
 #include "compute_vertex_loops.h"
 #include "compute_vertex_tissue.h"
 #include "fix_cell_adapt.h"
+#include "fix_clock.h"
 #include "fix_cell_death.h"
 #include "fix_cell_divide.h"
 #include "fix_cell_signal.h"
@@ -104,6 +105,7 @@ const std::vector<Entry> &style_table()
       fix_style<FixCellSignal>("cell/signal"),
       fix_style<FixCellAdapt>("cell/adapt"),
       compute_style<ComputeCellNeighborMean>("cell/neighbor/mean"),
+      fix_style<FixClock>("clock"),
   };
   return table;
 }

@@ -94,23 +94,23 @@ struct LoopBox {
 // finds a point's candidate loops, and each loop bins its arcs in bands of
 // y, so that a query reads the few arcs near the point.
 class LoopLocator {
- public:
+public:
   explicit LoopLocator(const LoopBox &box) : box_(box) {}
   void add(const FreeArc *arcs, int n, double area, bool wrapping);
-  void finish();    // after the last add, before the first query
+  void finish();  // after the last add, before the first query
   int innermost(const double *p) const;
   int size() const { return static_cast<int>(loops_.size()); }
   // The winding number of loop l (1-based) about p itself (no image).
   int winding(int l, const double *p) const;
 
- private:
+private:
   struct Loop {
     std::vector<FreeArc> arcs;
     double area = 0.0;
     bool wrapping = false;
-    double lo[2] = {0.0, 0.0}, hi[2] = {0.0, 0.0};    // bounding box
+    double lo[2] = {0.0, 0.0}, hi[2] = {0.0, 0.0};  // bounding box
     int nband = 1;
-    std::vector<int> band_start, band_arcs;    // arcs touching each band of y
+    std::vector<int> band_start, band_arcs;  // arcs touching each band of y
   };
   LoopBox box_;
   std::vector<Loop> loops_;

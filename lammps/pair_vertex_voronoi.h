@@ -113,9 +113,6 @@ class PairVertexVoronoi : public Pair {
   // ('pair_coeff I I ...').  Under pair_style hybrid/overlay the atoms of
   // other types are not cells: never tessellated, an empty cell in cells().
   bool is_cell_type(int type) const { return type_set && type_set[type]; }
-  // For cell-only commands: an error naming the first atom of the group
-  // that is not a cell.
-  void require_cells(int igroup, const char *command) const;
   // The values a new cell of this type takes in the per-cell properties
   // d_area0, d_ka, d_kp, d_perim0 (the quadratic form of its type's
   // parameters in use; 0 for a type that is no cell, and d_perim0 0 for a

@@ -18,6 +18,7 @@
 #include "compute_vertex_atom.h"
 #include "compute_vertex_local.h"
 #include "compute_vertex_loops.h"
+#include "compute_vertex_loops_atom.h"
 #include "compute_vertex_tissue.h"
 #include "fix_cell_adapt.h"
 #include "fix_clock.h"
@@ -99,6 +100,7 @@ const std::vector<Entry> &style_table()
       compute_style<ComputeVertexAtom>("vertex/atom"),
       compute_style<ComputeVertexLocal>("vertex/local"),
       compute_style<ComputeVertexLoops>("vertex/loops"),
+      compute_style<ComputeVertexLoopsAtom>("vertex/loops/atom"),
       compute_style<ComputeVertexTissue>("vertex/tissue"),
       fix_style<FixCellDivide>("cell/divide"),
       fix_style<FixCellDeath>("cell/death"),

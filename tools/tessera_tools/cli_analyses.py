@@ -172,12 +172,15 @@ def cmd_msd(args):
 def cmd_holes(args):
     _need_output(args, "holes")
     from .dump import iter_dump, selects
-    from .holes import particle_holes, read_loops
+    from .holes import loop_column, particle_holes, particle_holes_indexed, read_loops
     from .measure import frame_time
 
     if not selects(args.cell_types):
         raise SystemExit("tessera-tools holes: give --cell-types (the cell types; the other atoms are the "
                          "particles whose holes are measured)")
+    if args.loop_column and not args.loops:
+        raise SystemExit("tessera-tools holes: --loop-column needs --loops (the dump local of compute "
+                         "vertex/loops of the same steps: the loops' area, length and cells by index)")
     loops = read_loops(args.loops) if args.loops else None
     rows, frames, unmatched, known = [], 0, 0, bool(args.dt)
     sl = args.frames or slice(None)
@@ -192,7 +195,15 @@ def cmd_holes(args):
         frames += 1
         known = known or frame.time is not None
         t = frame_time(frame, args.dt)
-        for r in particle_holes(frame, args.radius, args.particle_types, lrows):
+        if args.loop_column:
+            try:
+                loop_column(frame, args.loop_column)
+                found = particle_holes_indexed(frame, args.radius, args.loop_column, lrows, args.particle_types)
+            except (KeyError, ValueError) as e:
+                raise SystemExit(f"tessera-tools holes: {args.dump}: {e.args[0]}")
+        else:
+            found = particle_holes(frame, args.radius, args.particle_types, lrows)
+        for r in found:
             r.update(timestep=frame.timestep, time=t)
             if loops is not None and r["index"] and not r["matched"]:
                 unmatched += 1
@@ -203,7 +214,9 @@ def cmd_holes(args):
     if not rows:
         raise SystemExit(f"tessera-tools holes: {args.dump}: no particles (atoms of types other than the cells'"
                          + (" and of --particle-types" if args.particle_types else "") + ")")
-    source = (f"compute vertex/loops rows of {args.loops}" if loops is not None else
+    source = (f"the loop index {args.loop_column} of compute vertex/loops/atom and the rows of {args.loops}"
+              if args.loop_column else
+              f"compute vertex/loops rows of {args.loops}" if loops is not None else
               f"the loops of the finite cells (radius {args.radius:g}) of the dumped centres")
     print(f"{args.dump}: {frames} frame(s), {len({r['id'] for r in rows})} particle(s); holes from {source}")
     last = {}
@@ -315,10 +328,12 @@ def add_commands(sub):
 
     ho = sub.add_parser("holes", help="area and length of the hole of compute vertex/loops around each particle",
                         description="For each particle (atom that is no cell), the hole of the finite cells "
-                                    "that surrounds it, against time: the loops of free boundary of the dumped "
-                                    "centres, matched (nearest centroid, equal area) to the rows of a dump "
-                                    "local of compute vertex/loops when given with --loops, whose index, area, "
-                                    "length and cell count are then reported.")
+                                    "that surrounds it, against time.  With --loop-column (compute "
+                                    "vertex/loops/atom's column 1 in the dump: the loop each atom is in) and "
+                                    "--loops, the hole is the row of that index; otherwise the loops of free "
+                                    "boundary of the dumped centres, matched (nearest centroid, equal area) to "
+                                    "the rows of a dump local of compute vertex/loops when given with --loops, "
+                                    "whose index, area, length and cell count are then reported.")
     ho.add_argument("dump", help="dump custom file with id, type, x y of the cells and the particles")
     from .cli_frames import _types, add_cell_types
 
@@ -326,6 +341,9 @@ def add_commands(sub):
     ho.add_argument("--radius", type=float, required=True, help="radius of the finite cells (pair_style ... radius R)")
     ho.add_argument("--loops", metavar="DUMP",
                     help="dump local of compute vertex/loops (c_ID[1] .. c_ID[7]) at the same timesteps")
+    ho.add_argument("--loop-column", metavar="COLUMN",
+                    help="the dump's column of compute vertex/loops/atom's loop index (e.g. c_inloop[1], or "
+                         "the compute ID inloop); needs --loops")
     ho.add_argument("--particle-types", type=_types, metavar="TYPES", help="only the particles of these types")
     ho.add_argument("--frames", type=_slice, help="slice of frames start:stop:step (non-negative)")
     ho.add_argument("--dt", type=float, help="timestep size (else the dump's TIME, else timesteps)")

@@ -17,6 +17,12 @@ periodic images), none when a cell's disc covers it.  The values are those of th
 the dumped centres; with the rows of a dump local of compute vertex/loops of the same step
 (:func:`read_loops`) each hole is matched to the compute's row (nearest centroid, areas
 agreeing) and the compute's index, area, length and cell count are taken.
+
+:func:`particle_holes_indexed` needs no loops of its own: LAMMPS's compute vertex/loops/atom
+dumped with the atoms (its column 1: the innermost loop that encloses each atom, numbered as
+compute vertex/loops' rows) names each particle's loop, and the rows of the same step give
+its values.  It is what the ``holes`` command uses when the dump has that column
+(``--loop-column``); :func:`particle_holes` is the way for dumps without it.
 """
 
 import math
@@ -209,6 +215,72 @@ def match_loop(loop, rows, box, r):
     if dist[k] > 0.25 * r or abs(holes[k, 1] - loop.area) > 1e-3 * scale + 1e-9:
         return None
     return holes[k]
+
+
+def loop_column(frame, name):
+    """The dump column of compute vertex/loops/atom's loop index named ``name``: the column
+    itself, or ``c_NAME[1]`` for a compute ID.  KeyError naming the columns if neither."""
+    for col in (name, f"c_{name}[1]"):
+        if col in frame:
+            return col
+    raise KeyError(f"the dump has no column '{name}' (nor c_{name}[1]) for the loop index of compute "
+                   f"vertex/loops/atom (its columns: {' '.join(frame.names)})")
+
+
+def covered_by_cells(points, cells, box, radius):
+    """For each point (N, 2): whether a cell centre (minimum image) lies within ``radius``:
+    the point is on the union of the finite cells, so in no hole."""
+    points = np.asarray(points, dtype=float).reshape(-1, 2)
+    cells = np.asarray(cells, dtype=float).reshape(-1, 2)
+    out = np.zeros(len(points), dtype=bool)
+    if len(cells) == 0:
+        return out
+    for k, p in enumerate(points):
+        d = box.minimum_image(cells - p[None, :])
+        out[k] = bool(np.min(np.hypot(d[:, 0], d[:, 1])) < radius)
+    return out
+
+
+def particle_holes_indexed(frame, radius, column, loops_rows, particle_types=None):
+    """As :func:`particle_holes`, with each particle's loop read from the dump column
+    ``column`` of compute vertex/loops/atom (the innermost loop enclosing the atom, 0 for
+    none) and its values from ``loops_rows`` (compute vertex/loops' rows of the same step, by
+    index).  A particle whose loop is no hole (the outer loop of a colony whose cells cover
+    it, or none) has index, area and length 0.  ``covered``: a cell centre lies within
+    ``radius`` of it.  No loop is rebuilt from the centres."""
+    from .dump import cell_mask
+
+    particles = frame.particles
+    if particles is None:
+        raise ValueError("the frame holds no particles: read it with cell_types")
+    if particle_types is not None and len(particles):
+        particles = particles.subset(cell_mask(particles["type"], particle_types))
+    col = loop_column(frame, column)
+    rows = np.asarray(loops_rows, dtype=float).reshape(-1, 7)
+    by_index = {int(r[0]): r for r in rows}
+    ppos = particles.positions() if len(particles) else np.zeros((0, 2))
+    cov = covered_by_cells(ppos, frame.positions(), frame.box, radius)
+    out = []
+    for k in range(len(particles)):
+        pid = int(particles.ids[k])
+        index = float(particles[col][k])
+        if index != int(index) or index < 0:
+            raise ValueError(f"column {col} of particle {pid} at timestep {frame.timestep} is {index:g}, not a "
+                             "loop index: is it compute vertex/loops/atom's column 1?")
+        row = dict(id=pid, type=int(particles["type"][k]) if "type" in particles else 0,
+                   x=float(ppos[k][0]), y=float(ppos[k][1]), covered=bool(cov[k]), area=0.0, length=0.0,
+                   cells=0, index=0, matched=False)
+        if index:
+            hit = by_index.get(int(index))
+            if hit is None:
+                raise ValueError(f"particle {pid} at timestep {frame.timestep} is in loop {int(index)}, which "
+                                 f"has no row in the loops of that step ({len(rows)} rows): are the two dumps "
+                                 "of the same run and steps?")
+            if hit[6] == 0:
+                row.update(area=float(hit[1]), length=float(hit[2]), cells=int(hit[3]), index=int(index),
+                           matched=True)
+        out.append(row)
+    return out
 
 
 def particle_holes(frame, radius, particle_types=None, loops_rows=None):

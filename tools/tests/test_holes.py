@@ -147,5 +147,71 @@ class Holes(unittest.TestCase):
             self.assertEqual(len(big.cells), 6)
 
 
+def write_loops(path, steps_rows):
+    """A dump local of compute vertex/loops with the given {timestep: rows}."""
+    with open(path, "w") as f:
+        for step, rows in steps_rows.items():
+            f.write(f"ITEM: TIMESTEP\n{step}\nITEM: NUMBER OF ENTRIES\n{len(rows)}\n"
+                    "ITEM: BOX BOUNDS pp pp pp\n0 8\n0 7\n-0.5 0.5\n"
+                    "ITEM: ENTRIES c_l[1] c_l[2] c_l[3] c_l[4] c_l[5] c_l[6] c_l[7]\n")
+            for r in rows:
+                f.write(" ".join(repr(float(v)) for v in r) + "\n")
+
+
+class LoopColumn(unittest.TestCase):
+    """--loop-column: each particle's loop is the dump's index (compute vertex/loops/atom),
+    its values the row of that index: a hole's row is taken as it is, a loop that is no hole
+    (a colony the cells of which cover the particle) or index 0 is no hole, an index with no
+    row is an error, and so are a missing column and --loop-column without --loops."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.addCleanup(self.tmp.cleanup)
+        frame, self.cells, self.particles, self.box = tissue()
+        n = len(frame["id"])
+        index = np.zeros(n)
+        index[-3:] = [2, 0, 1]        # particle 1 in hole 2; particle 2 nowhere; 3 on colony 1
+        frame.columns["c_la[1]"] = index
+        frame.names.append("c_la[1]")
+        self.dump = os.path.join(self.tmp.name, "all.dump")
+        write_dump(self.dump, [frame])
+        self.loops = os.path.join(self.tmp.name, "loops.dump")
+        write_loops(self.loops, {0: [[1, 40.0, 25.0, 30, 4.0, 3.0, 1], [2, 0.125, 1.5, 6, 1.0, 2.0, 0]]})
+        self.n = n
+
+    def holes(self, *extra):
+        out = os.path.join(self.tmp.name, "h.csv")
+        code, text, err = run(["holes", self.dump, "--cell-types", "1", "--radius", str(R), "--csv", out,
+                               *extra])
+        if code:
+            return code, err, None
+        with open(out) as f:
+            return code, text, {int(r["id"]): r for r in csv.DictReader(f)}
+
+    def test_rows_by_index(self):
+        for column in ("c_la[1]", "la"):
+            code, text, rows = self.holes("--loops", self.loops, "--loop-column", column)
+            self.assertEqual(code, 0, text)
+            p1, p2, p3 = (rows[self.n - 2], rows[self.n - 1], rows[self.n])
+            self.assertEqual((p1["loop"], float(p1["area"]), float(p1["length"]), p1["cells"], p1["from_compute"]),
+                             ("2", 0.125, 1.5, "6", "1"))
+            for p in (p2, p3):
+                self.assertEqual((p["loop"], float(p["area"]), p["from_compute"]), ("0", 0.0, "0"))
+            self.assertEqual(p3["covered"], "1")          # on a cell: the distance to its centre
+            self.assertEqual(p1["covered"], "0")
+
+    def test_errors(self):
+        code, err, _ = self.holes("--loop-column", "c_la[1]")
+        self.assertNotEqual(code, 0)
+        self.assertIn("--loop-column needs --loops", err)
+        code, err, _ = self.holes("--loops", self.loops, "--loop-column", "c_other[1]")
+        self.assertNotEqual(code, 0)
+        self.assertIn("no column 'c_other[1]'", err)
+        write_loops(self.loops, {0: [[1, 40.0, 25.0, 30, 4.0, 3.0, 1]]})
+        code, err, _ = self.holes("--loops", self.loops, "--loop-column", "la")
+        self.assertNotEqual(code, 0)
+        self.assertIn("is in loop 2, which has no row", err)
+
+
 if __name__ == "__main__":
     unittest.main()

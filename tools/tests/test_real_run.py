@@ -8,7 +8,9 @@ against what LAMMPS wrote, never against the tools' own earlier output:
   area of that step (periodic box), to round-off, and so are --value holes and largest (its
   largest hole);
 * holes: the hole found around each particle from the dumped centres is compute
-  vertex/loops' row (index, area, length, cells) of the same step;
+  vertex/loops' row (index, area, length, cells) of the same step, and so is the row that
+  compute vertex/loops/atom's index of the particle names (--loop-column): the two ways agree
+  on every particle and frame;
 * divisions: one row per line of the log; each division's position is the midpoint of the
   two daughters in a dump of its step, and the number of divisions is the growth in cells;
 * flux: the net crossings of the particles through x = xlo are the change of their image
@@ -53,9 +55,10 @@ pair_coeff * 2 soft 1.0 0.6
 fix move all brownian 0.05 17 gamma_t 1.0
 fix div cells cell/divide rate 0.3 seed 7 max 120 file divisions.log
 compute loops all vertex/loops
+compute inloop all vertex/loops/atom
 timestep 0.01
 thermo 10
-dump a all custom 5 all.dump id type x y ix iy
+dump a all custom 5 all.dump id type x y ix iy c_inloop[1]
 dump_modify a sort id format float %.17g
 dump s all custom 1 steps.dump id type x y
 dump_modify s sort id format float %.17g
@@ -137,6 +140,27 @@ class RealRun(unittest.TestCase):
         again = read_csv(self.path("holes2.csv"))
         self.assertTrue(all(r["from_compute"] == "1" for r in again if r["loop"] != "0"))
         self.assertEqual([r["area"] for r in again], [r["area"] for r in rows])
+        # compute vertex/loops/atom's index: the same holes, no loop rebuilt
+        for column in ("c_inloop[1]", "inloop"):
+            code, out, err = run(["holes", self.dump, "--cell-types", "1", "--radius", str(R), "--loops",
+                                  self.path("loops.dump"), "--loop-column", column, "--csv", self.path("holes3.csv")])
+            self.assertEqual(code, 0, err)
+            self.assertIn("compute vertex/loops/atom", out)
+            indexed = read_csv(self.path("holes3.csv"))
+            self.assertEqual(len(indexed), len(again))
+            for a, b in zip(indexed, again):
+                for key in ("timestep", "id", "covered", "loop", "cells", "from_compute"):
+                    self.assertEqual(a[key], b[key], (key, a, b))
+                for key in ("area", "length"):
+                    self.assertAlmostEqual(float(a[key]), float(b[key]), delta=1e-12, msg=(key, a, b))
+        # the particles' index in the dump itself: the hole's row the centres give, or 0 for one
+        # the cells cover (a tissue filling a periodic box has no outer loop)
+        for f in self.frames:
+            part = f["type"] == 2
+            for pid, index in zip(f["id"][part], f["c_inloop[1]"][part]):
+                r = [r for r in again if r["timestep"] == str(f.timestep) and r["id"] == str(pid)][0]
+                self.assertEqual(int(index), int(r["loop"]), r)
+                self.assertEqual(r["covered"] == "1", index == 0, r)
 
     def test_divisions_at_the_daughters_midpoint(self):
         code, out, err = run(["divisions", self.path("divisions.log"), "--csv", self.path("div.csv"),

@@ -44,10 +44,11 @@ namespace {
 // Bounds below this may have lost terms to underflow: the exact predicate
 // decides.
 constexpr double kTiny = 1e-250;
-} // namespace
 
-int orient3d_filtered(const double *a, const double *b, const double *c, const double *d,
-                      long &exact_calls) {
+// The filters, inlined into the builder's loops (the exported functions
+// below wrap them).
+[[gnu::always_inline]] inline int orient_impl(const double *a, const double *b, const double *c,
+                                              const double *d, long &exact_calls) {
   const double bx = b[0] - a[0], by = b[1] - a[1], bz = b[2] - a[2];
   const double cx = c[0] - a[0], cy = c[1] - a[1], cz = c[2] - a[2];
   const double dx = d[0] - a[0], dy = d[1] - a[1], dz = d[2] - a[2];
@@ -82,8 +83,9 @@ int orient3d_filtered(const double *a, const double *b, const double *c, const d
   return exact::orient3d(a, b, c, d);
 }
 
-int insphere_filtered(const double *p0, const double *p1, const double *p2, const double *p3,
-                      const double *e, long &exact_calls) {
+[[gnu::always_inline]] inline int insphere_impl(const double *p0, const double *p1,
+                                                const double *p2, const double *p3,
+                                                const double *e, long &exact_calls) {
   const double ax = p0[0] - e[0], ay = p0[1] - e[1], az = p0[2] - e[2];
   const double bx = p1[0] - e[0], by = p1[1] - e[1], bz = p1[2] - e[2];
   const double cx = p2[0] - e[0], cy = p2[1] - e[1], cz = p2[2] - e[2];
@@ -135,10 +137,22 @@ int insphere_filtered(const double *p0, const double *p1, const double *p2, cons
   return exact::insphere(p0, p1, p2, p3, e);
 }
 
-int insphere_perturbed(const double *const t[4], const double *e, long &exact_calls) {
-  const int s = insphere_filtered(t[0], t[1], t[2], t[3], e, exact_calls);
-  if (s != 0)
-    return s;
+} // namespace
+
+int orient3d_filtered(const double *a, const double *b, const double *c, const double *d,
+                      long &exact_calls) {
+  return orient_impl(a, b, c, d, exact_calls);
+}
+
+int insphere_filtered(const double *p0, const double *p1, const double *p2, const double *p3,
+                      const double *e, long &exact_calls) {
+  return insphere_impl(p0, p1, p2, p3, e, exact_calls);
+}
+
+namespace {
+
+// The perturbation of an exact tie (see the header).
+[[gnu::noinline]] int perturbed_tie(const double *const t[4], const double *e, long &exact_calls) {
   // Rank the five points (slot 4 is e); the two highest ranked decide.
   int slot[5] = {0, 1, 2, 3, 4};
   auto point = [&](int k) { return k == 4 ? e : t[k]; };
@@ -154,6 +168,18 @@ int insphere_perturbed(const double *const t[4], const double *e, long &exact_ca
       return o;
   }
   return -1; // (not reached for a non-flat tetrahedron)
+}
+
+[[gnu::always_inline]] inline int insphere_perturbed_impl(const double *const t[4], const double *e,
+                                                          long &exact_calls) {
+  const int s = insphere_impl(t[0], t[1], t[2], t[3], e, exact_calls);
+  return s != 0 ? s : perturbed_tie(t, e, exact_calls);
+}
+
+} // namespace
+
+int insphere_perturbed(const double *const t[4], const double *e, long &exact_calls) {
+  return insphere_perturbed_impl(t, e, exact_calls);
 }
 
 bool collinear3(const double *a, const double *b, const double *c) {
@@ -319,6 +345,13 @@ void insertion_order(const Points3 &pts, std::vector<int> &order) {
     order[i] = rec[i].i;
 }
 
+// Size at least n (the scratch arrays of an insertion never shrink).
+template <class Vec>
+inline void grow(Vec &v, size_t n) {
+  if (v.size() < n)
+    v.resize(n + n / 2);
+}
+
 class Builder {
 public:
   Builder(const Points3 &pts, const double (*extra)[3], int n_extra) {
@@ -354,6 +387,7 @@ private:
   // Per tetrahedron: 4 corners, then the neighbours across the triangle
   // opposite each (one cache line holds two tetrahedra).
   std::vector<int> tet_;
+  int n_tet_ = 0;
   std::vector<int> free_;
   uint32_t stamp_ = 0;
   long exact_ = 0;
@@ -370,18 +404,20 @@ private:
   std::vector<int> new_tn_;  // per new tetrahedron: neighbours (boundary indices)
   std::vector<int> corners_; // per new tetrahedron: corners
   // Local numbers of the boundary's corners (stamp << 7 | number), the
-  // edge table of one insertion (entries valid when stamped with it), each
-  // (triangle, slot) code's cell, and the sorted edges of a large region.
+  // edge table (zero between insertions), each (triangle, slot) code's cell
+  // and the corners' local numbers, and the sorted edges of a large region.
   static constexpr int kLocal = 64;
   std::vector<uint32_t> vmark_;
   std::vector<uint32_t> edge_sum_ = std::vector<uint32_t>(kLocal * kLocal, 0);
-  std::vector<uint32_t> edge_stamp_ = std::vector<uint32_t>(kLocal * kLocal, 0);
-  std::vector<int> edge_code_;
+  std::vector<int> edge_code_, local_;
   std::vector<std::array<int, 3>> edges_;
 
   const double *pt(int v) const { return &xyz_[3 * static_cast<size_t>(v)]; }
   int orient(int a, int b, int c, int d) {
-    return orient3d_filtered(pt(a), pt(b), pt(c), pt(d), exact_);
+    return orient_impl(pt(a), pt(b), pt(c), pt(d), exact_);
+  }
+  bool has_inf(const int *q) const {
+    return std::max(std::max(q[0], q[1]), std::max(q[2], q[3])) == inf_;
   }
   int inf_slot(int t) const {
     const int *q = &tet_[8 * static_cast<size_t>(t)];
@@ -400,11 +436,11 @@ private:
 
 bool Builder::in_conflict(int t, int p) {
   const int *q = &tet_[8 * static_cast<size_t>(t)];
-  const int s = inf_slot(t);
-  if (s < 0) {
+  if (!has_inf(q)) {
     const double *c[4] = {pt(q[0]), pt(q[1]), pt(q[2]), pt(q[3])};
-    return insphere_perturbed(c, pt(p), exact_) > 0;
+    return insphere_perturbed_impl(c, pt(p), exact_) > 0;
   }
+  const int s = inf_slot(t);
   int r[4] = {q[0], q[1], q[2], q[3]};
   r[s] = p;
   const int o = orient(r[0], r[1], r[2], r[3]);
@@ -420,10 +456,10 @@ int Builder::new_tet() {
     free_.pop_back();
     return t;
   }
-  const int t = static_cast<int>(tet_.size() / 8);
-  for (int s = 0; s < 8; ++s)
-    tet_.push_back(-1);
-  return t;
+  // tet_ is kept at its capacity; n_tet_ of its records are in use.
+  if (8 * static_cast<size_t>(n_tet_) == tet_.size())
+    tet_.resize(2 * tet_.size(), -1);
+  return n_tet_++;
 }
 
 // The first tetrahedron: four non-coplanar points (the first in insertion
@@ -454,8 +490,8 @@ bool Builder::init(int &first) {
   // replaced by the point at infinity and two other corners swapped (a
   // point beyond the triangle is then on the positive side).
   // Room for about 6.5 tetrahedra per point.
-  tet_.reserve(8 * (7 * static_cast<size_t>(m_) + 64));
-  tet_.assign(40, -1);
+  tet_.assign(8 * (7 * static_cast<size_t>(m_) + 64), -1);
+  n_tet_ = 5;
   for (int s = 0; s < 4; ++s)
     tet_[s] = q[s];
   for (int k = 0; k < 4; ++k) {
@@ -566,7 +602,8 @@ void Builder::insert(int p, int start) {
         }
         flip(u, 2);
       }
-      boundary_.push_back({t, k, u, -1});
+      const int *un = &tet_[8 * static_cast<size_t>(u) + 4];
+      boundary_.push_back({t, k, u, un[0] == t ? 0 : un[1] == t ? 1 : un[2] == t ? 2 : 3});
     }
   }
   const int nb = static_cast<int>(boundary_.size());
@@ -576,15 +613,13 @@ void Builder::insert(int p, int start) {
     flip(t, 3);
   // Each boundary triangle becomes a tetrahedron with p: its corners, and
   // the outside neighbour's slot towards the region.
-  corners_.resize(4 * static_cast<size_t>(nb));
+  grow(corners_, 4 * static_cast<size_t>(nb));
   for (int b = 0; b < nb; ++b) {
-    Facet &f = boundary_[b];
+    const Facet &f = boundary_[b];
     const int *q = &tet_[8 * static_cast<size_t>(f.t)];
     for (int s = 0; s < 4; ++s)
       corners_[4 * b + s] = q[s];
     corners_[4 * b + f.k] = p;
-    const int *un = &tet_[8 * static_cast<size_t>(f.u) + 4];
-    f.j = un[0] == f.t ? 0 : un[1] == f.t ? 1 : un[2] == f.t ? 2 : 3;
   }
   for (int b = 0; b < nb; ++b) {
     const int u = boundary_[b].u;
@@ -598,15 +633,15 @@ void Builder::insert(int p, int start) {
   // boundary's corners get local numbers, an edge a cell of a small table
   // that sums the two (triangle, slot) codes meeting there; each code's
   // partner is the sum less itself (no branch on whether an edge was met).
-  new_tn_.resize(4 * static_cast<size_t>(nb));
+  grow(new_tn_, 4 * static_cast<size_t>(nb));
   if (++stamp_ >= (1u << 25)) {
     std::fill(vmark_.begin(), vmark_.end(), 0u);
-    std::fill(edge_stamp_.begin(), edge_stamp_.end(), 0u);
     stamp_ = 1;
   }
   const uint32_t st = stamp_ << 7;
   int n_local = 0;
-  edge_code_.resize(4 * static_cast<size_t>(nb));
+  grow(edge_code_, 4 * static_cast<size_t>(nb));
+  grow(local_, 4 * static_cast<size_t>(nb));
   for (int b = 0; b < nb && n_local <= kLocal; ++b) {
     const int k = boundary_[b].k;
     for (int s = 0; s < 4; ++s) {
@@ -615,21 +650,20 @@ void Builder::insert(int p, int start) {
       uint32_t &mk = vmark_[corners_[4 * b + s]];
       if ((mk & ~127u) != st)
         mk = st | static_cast<uint32_t>(n_local++ & 127);
+      local_[4 * b + s] = static_cast<int>(mk & 127);
     }
   }
   if (n_local <= kLocal) {
     for (int b = 0; b < nb; ++b) {
       const int k = boundary_[b].k;
-      const int *q = &corners_[4 * b];
+      const int *q = &local_[4 * b];
       for (int j = 0; j < 4; ++j) {
         if (j == k)
           continue;
-        const int l0 = vmark_[q[kOther[j][k][0]]] & 127, l1 = vmark_[q[kOther[j][k][1]]] & 127;
+        const int l0 = q[kOther[j][k][0]], l1 = q[kOther[j][k][1]];
         const int cell = std::min(l0, l1) * kLocal + std::max(l0, l1);
         edge_code_[4 * b + j] = cell;
-        const uint32_t old = edge_stamp_[cell] == stamp_ ? edge_sum_[cell] : 0;
-        edge_sum_[cell] = old + static_cast<uint32_t>(4 * b + j + 1);
-        edge_stamp_[cell] = stamp_;
+        edge_sum_[cell] += static_cast<uint32_t>(4 * b + j + 1);
       }
     }
     for (int b = 0; b < nb; ++b) {
@@ -640,6 +674,12 @@ void Builder::insert(int p, int start) {
         const int code = 4 * b + j;
         new_tn_[code] = static_cast<int>(edge_sum_[edge_code_[code]] - (code + 1) - 1) >> 2;
       }
+    }
+    for (int b = 0; b < nb; ++b) {
+      const int k = boundary_[b].k;
+      for (int j = 0; j < 4; ++j)
+        if (j != k)
+          edge_sum_[edge_code_[4 * b + j]] = 0;
     }
   } else {
     // A large region (a hull point, or a far one): the edges sorted.
@@ -661,7 +701,7 @@ void Builder::insert(int p, int start) {
     }
   }
   // Ids: the region's tetrahedra first, then free slots or new ones.
-  new_id_.resize(nb);
+  grow(new_id_, static_cast<size_t>(nb));
   for (int b = 0; b < nb; ++b)
     new_id_[b] = b < nc ? conflict_[b] : new_tet();
   for (int c = nb; c < nc; ++c) {
@@ -724,7 +764,7 @@ Delaunay3 Builder::run(Tetrahedra &out, double slack, bool sorted) {
 // The finite tetrahedra in the caller's numbering, sorted (see the header).
 // Read in memory order; written where their number puts them.
 void Builder::export_to(Tetrahedra &out, double slack, bool sorted) {
-  const int n_all = static_cast<int>(tet_.size() / 8);
+  const int n_all = n_tet_;
   // Even permutations of the slots: the smallest corner first (pairs of
   // swaps), then the smallest of the other three (a rotation of three).
   static constexpr int kEven[4][4] = {{0, 1, 2, 3}, {1, 0, 3, 2}, {2, 3, 0, 1}, {3, 2, 1, 0}};

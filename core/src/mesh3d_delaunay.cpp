@@ -30,11 +30,13 @@
 #include "mesh3d_delaunay.h"
 
 #include "exact_predicates.h"
+#include "mesh3d_detail.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 
 namespace tessera {
@@ -386,8 +388,23 @@ private:
   std::vector<int> orig_;   // insertion order -> caller's index
   // Per tetrahedron: 4 corners, then the neighbours across the triangle
   // opposite each (one cache line holds two tetrahedra).
-  std::vector<int> tet_;
+  // Per tetrahedron, one cache line: 4 corners, the neighbours across the
+  // triangle opposite each, and the circumsphere (centre relative to
+  // corner 0, squared radius; NaN where the filter is not claimed: flat
+  // tetrahedra and those with the point at infinity).
+  struct alignas(64) Tet {
+    int v[4];
+    int n[4];
+    double c[3];
+    double r2;
+  };
+  std::vector<Tet> tet_;
   int n_tet_ = 0;
+  void sphere(int t) {
+    Tet &x = tet_[t];
+    if (has_inf(x.v) || !circumsphere(pt(x.v[0]), pt(x.v[1]), pt(x.v[2]), pt(x.v[3]), x.c, x.r2))
+      x.r2 = std::numeric_limits<double>::quiet_NaN();
+  }
   std::vector<int> free_;
   uint32_t stamp_ = 0;
   long exact_ = 0;
@@ -420,7 +437,7 @@ private:
     return std::max(std::max(q[0], q[1]), std::max(q[2], q[3])) == inf_;
   }
   int inf_slot(int t) const {
-    const int *q = &tet_[8 * static_cast<size_t>(t)];
+    const int *q = tet_[t].v;
     for (int s = 0; s < 4; ++s)
       if (q[s] == inf_)
         return s;
@@ -435,9 +452,20 @@ private:
 };
 
 bool Builder::in_conflict(int t, int p) {
-  const int *q = &tet_[8 * static_cast<size_t>(t)];
+  const Tet &x = tet_[t];
+  const int *q = x.v;
   if (!has_inf(q)) {
-    const double *c[4] = {pt(q[0]), pt(q[1]), pt(q[2]), pt(q[3])};
+    // The kept circumsphere decides unless p is within 1e-8 of it
+    // (relative; the centre's error is far below, see circumsphere()).
+    const double *e = pt(p), *p0 = pt(q[0]);
+    const double w[3] = {e[0] - p0[0] - x.c[0], e[1] - p0[1] - x.c[1], e[2] - p0[2] - x.c[2]};
+    const double d2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+    const double margin = 1e-8 * (x.r2 + d2);
+    if (d2 - x.r2 > margin)
+      return false;
+    if (x.r2 - d2 > margin)
+      return true;
+    const double *c[4] = {p0, pt(q[1]), pt(q[2]), pt(q[3])};
     return insphere_perturbed_impl(c, pt(p), exact_) > 0;
   }
   const int s = inf_slot(t);
@@ -457,8 +485,8 @@ int Builder::new_tet() {
     return t;
   }
   // tet_ is kept at its capacity; n_tet_ of its records are in use.
-  if (8 * static_cast<size_t>(n_tet_) == tet_.size())
-    tet_.resize(2 * tet_.size(), -1);
+  if (static_cast<size_t>(n_tet_) == tet_.size())
+    tet_.resize(2 * tet_.size());
   return n_tet_++;
 }
 
@@ -490,12 +518,15 @@ bool Builder::init(int &first) {
   // replaced by the point at infinity and two other corners swapped (a
   // point beyond the triangle is then on the positive side).
   // Room for about 6.5 tetrahedra per point.
-  tet_.assign(8 * (7 * static_cast<size_t>(m_) + 64), -1);
+  tet_.resize(7 * static_cast<size_t>(m_) + 64);
+  for (int t = 0; t < 5; ++t)
+    for (int s = 0; s < 4; ++s)
+      tet_[t].v[s] = tet_[t].n[s] = -1;
   n_tet_ = 5;
   for (int s = 0; s < 4; ++s)
-    tet_[s] = q[s];
+    tet_[0].v[s] = q[s];
   for (int k = 0; k < 4; ++k) {
-    int *h = &tet_[8 * (k + 1)];
+    int *h = tet_[k + 1].v;
     for (int s = 0; s < 4; ++s)
       h[s] = q[s];
     h[k] = inf_;
@@ -505,7 +536,7 @@ bool Builder::init(int &first) {
   // slot s's.
   for (int t = 0; t < 5; ++t)
     for (int s = 0; s < 4; ++s) {
-      for (int u = 0; u < 5 && tet_[8 * t + 4 + s] < 0; ++u) {
+      for (int u = 0; u < 5 && tet_[t].n[s] < 0; ++u) {
         if (u == t)
           continue;
         int shared = 0;
@@ -513,12 +544,14 @@ bool Builder::init(int &first) {
           if (a == s)
             continue;
           for (int b = 0; b < 4; ++b)
-            shared += tet_[8 * t + a] == tet_[8 * u + b];
+            shared += tet_[t].v[a] == tet_[u].v[b];
         }
         if (shared == 3)
-          tet_[8 * t + 4 + s] = u;
+          tet_[t].n[s] = u;
       }
     }
+  for (int t = 0; t < 5; ++t)
+    sphere(t);
   last_ = 0;
   return true;
 }
@@ -528,23 +561,23 @@ bool Builder::init(int &first) {
 int Builder::locate(int p, int &dup) {
   dup = -1;
   int t = last_;
-  if (t < 0 || tet_[8 * static_cast<size_t>(t)] < 0)
+  if (t < 0 || tet_[t].v[0] < 0)
     t = 0;
-  while (tet_[8 * static_cast<size_t>(t)] < 0)
+  while (tet_[t].v[0] < 0)
     ++t;
   {
     const int s = inf_slot(t);
     if (s >= 0)
-      t = tet_[8 * static_cast<size_t>(t) + 4 + s];
+      t = tet_[t].n[s];
   }
   int prev = -1;
   for (;;) {
-    const int *q = &tet_[8 * static_cast<size_t>(t)];
+    const int *q = tet_[t].v;
     const int start = static_cast<int>(splitmix64(rng_) & 3);
     int next = -1;
     for (int i = 0; i < 4; ++i) {
       const int k = (start + i) & 3;
-      const int u = tet_[8 * static_cast<size_t>(t) + 4 + k];
+      const int u = tet_[t].n[k];
       if (u == prev)
         continue;
       int r[4] = {q[0], q[1], q[2], q[3]};
@@ -575,10 +608,10 @@ void Builder::insert(int p, int start) {
   // Marks live in the tetrahedra themselves (one cache line with the
   // corners the test reads): corner 3 complemented for the conflict region,
   // corner 2 for a tetrahedron found outside it (restored below).
-  auto in_region = [&](int t) { return tet_[8 * static_cast<size_t>(t) + 3] < 0; };
-  auto outside = [&](int t) { return tet_[8 * static_cast<size_t>(t) + 2] < 0; };
+  auto in_region = [&](int t) { return tet_[t].v[3] < 0; };
+  auto outside = [&](int t) { return tet_[t].v[2] < 0; };
   auto flip = [&](int t, int s) {
-    int &v = tet_[8 * static_cast<size_t>(t) + s];
+    int &v = tet_[t].v[s];
     v = ~v;
   };
   conflict_.clear();
@@ -587,11 +620,11 @@ void Builder::insert(int p, int start) {
   flip(start, 3);
   for (size_t h = 0; h < conflict_.size(); ++h) {
     const int t = conflict_[h];
-    const int *tn = &tet_[8 * static_cast<size_t>(t) + 4];
+    const int *tn = tet_[t].n;
     for (int k = 0; k < 4; ++k)
-      __builtin_prefetch(&tet_[8 * static_cast<size_t>(tn[k])]);
+      __builtin_prefetch(tet_[tn[k]].v);
     for (int k = 0; k < 4; ++k) {
-      const int u = tet_[8 * static_cast<size_t>(t) + 4 + k];
+      const int u = tet_[t].n[k];
       if (in_region(u))
         continue;
       if (!outside(u)) {
@@ -602,7 +635,7 @@ void Builder::insert(int p, int start) {
         }
         flip(u, 2);
       }
-      const int *un = &tet_[8 * static_cast<size_t>(u) + 4];
+      const int *un = tet_[u].n;
       boundary_.push_back({t, k, u, un[0] == t ? 0 : un[1] == t ? 1 : un[2] == t ? 2 : 3});
     }
   }
@@ -616,7 +649,7 @@ void Builder::insert(int p, int start) {
   grow(corners_, 4 * static_cast<size_t>(nb));
   for (int b = 0; b < nb; ++b) {
     const Facet &f = boundary_[b];
-    const int *q = &tet_[8 * static_cast<size_t>(f.t)];
+    const int *q = tet_[f.t].v;
     for (int s = 0; s < 4; ++s)
       corners_[4 * b + s] = q[s];
     corners_[4 * b + f.k] = p;
@@ -705,20 +738,21 @@ void Builder::insert(int p, int start) {
   for (int b = 0; b < nb; ++b)
     new_id_[b] = b < nc ? conflict_[b] : new_tet();
   for (int c = nb; c < nc; ++c) {
-    tet_[8 * static_cast<size_t>(conflict_[c])] = -1;
+    tet_[conflict_[c]].v[0] = -1;
     free_.push_back(conflict_[c]);
   }
   for (int b = 0; b < nb; ++b) {
     const Facet &f = boundary_[b];
     const int t = new_id_[b];
-    int *r = &tet_[8 * static_cast<size_t>(t)];
+    Tet &r = tet_[t];
     for (int s = 0; s < 4; ++s) {
-      r[s] = corners_[4 * b + s];
+      r.v[s] = corners_[4 * b + s];
       if (s != f.k)
-        r[4 + s] = new_id_[new_tn_[4 * b + s]];
+        r.n[s] = new_id_[new_tn_[4 * b + s]];
     }
-    r[4 + f.k] = f.u;
-    tet_[8 * static_cast<size_t>(f.u) + 4 + f.j] = t;
+    r.n[f.k] = f.u;
+    tet_[f.u].n[f.j] = t;
+    sphere(t);
   }
   last_ = new_id_[0];
   for (int b = 0; b < nb; ++b)
@@ -734,7 +768,7 @@ Delaunay3 Builder::run(Tetrahedra &out, double slack, bool sorted) {
     return Delaunay3::kFlat;
   // The points before `first` that are not corners of tetrahedron 0 come
   // next, then the rest.
-  const int *q0 = &tet_[0];
+  const int *q0 = tet_[0].v;
   auto corner = [&](int v) { return v == q0[0] || v == q0[1] || v == q0[2] || v == q0[3]; };
   std::vector<int> late;
   for (int v = 0; v < first; ++v)
@@ -786,7 +820,7 @@ void Builder::export_to(Tetrahedra &out, double slack, bool sorted) {
     slot[3] = e[r == 1 ? 3 : r - 1];
   };
   auto finite = [&](int t) {
-    const int *q = &tet_[8 * static_cast<size_t>(t)];
+    const int *q = tet_[t].v;
     return q[0] >= 0 && q[0] != inf_ && q[1] != inf_ && q[2] != inf_ && q[3] != inf_;
   };
   // Counting sort by the smallest corner (or memory order).
@@ -802,7 +836,7 @@ void Builder::export_to(Tetrahedra &out, double slack, bool sorted) {
     for (int t = 0; t < n_all; ++t) {
       if (!finite(t))
         continue;
-      const int *q = &tet_[8 * static_cast<size_t>(t)];
+      const int *q = tet_[t].v;
       ++start[std::min({orig_[q[0]], orig_[q[1]], orig_[q[2]], orig_[q[3]]}) + 1];
     }
     for (int i = 0; i < m_; ++i)
@@ -810,7 +844,7 @@ void Builder::export_to(Tetrahedra &out, double slack, bool sorted) {
     for (int t = 0; t < n_all; ++t) {
       if (!finite(t))
         continue;
-      const int *q = &tet_[8 * static_cast<size_t>(t)];
+      const int *q = tet_[t].v;
       id[t] = start[std::min({orig_[q[0]], orig_[q[1]], orig_[q[2]], orig_[q[3]]})]++;
     }
     out.n_tets = 0;
@@ -830,7 +864,7 @@ void Builder::export_to(Tetrahedra &out, double slack, bool sorted) {
   for (int t = 0; t < n_all; ++t) {
     if (id[t] < 0)
       continue;
-    const int *q = &tet_[8 * static_cast<size_t>(t)];
+    const int *q = tet_[t].v;
     int slot[4];
     canonical(q, slot);
     int *c = &out.tv[4 * static_cast<size_t>(id[t])];
@@ -867,11 +901,11 @@ void Builder::export_to(Tetrahedra &out, double slack, bool sorted) {
     const int k = id[t];
     if (k < 0)
       continue;
-    const int *q = &tet_[8 * static_cast<size_t>(t)];
+    const int *q = tet_[t].v;
     int slot[4];
     canonical(q, slot);
     for (int s = 0; s < 4; ++s)
-      out.tn[4 * static_cast<size_t>(k) + s] = id[q[4 + slot[s]]];
+      out.tn[4 * static_cast<size_t>(k) + s] = id[tet_[t].n[slot[s]]];
   }
   out.vt.assign(m_, -1);
   for (int k = nt - 1; k >= 0; --k)

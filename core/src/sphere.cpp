@@ -161,7 +161,7 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
     break;
   }
   std::vector<std::array<int, 3>> &faces = hull.triangles;
-  if (static_cast<long>(faces.size()) != 2L * n - 4)
+  if (static_cast<long>(faces.size()) != 2L * n - 4 || hull.neighbors.size() != faces.size())
     throw Error("tessera: internal error: the triangulation of the points on the sphere is not a"
                 " triangulated sphere");
   // Pairs closer than the precision bound (the nearest point is always a
@@ -190,48 +190,35 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
     t.circumradius[f] = R * rho[f];
   }
 
-  // Cells: around point i, triangle (i, x, y) leads from neighbour x to y.
-  std::vector<int> count(n + 1, 0);
-  for (const auto &tri : t.triangles)
-    for (int m = 0; m < 3; ++m) ++count[tri[m] + 1];
+  // Cells: around point i, triangle (i, x, y) leads from neighbour x to y,
+  // and its neighbour across the edge y -> i is the next, (i, y, z).  Each
+  // ring starts at the first triangle that has i as a corner.
+  std::vector<int> count(n + 1, 0), first(n, -1);
+  for (int f = 0; f < nt; ++f)
+    for (int m = 0; m < 3; ++m) {
+      const int i = t.triangles[f][m];
+      ++count[i + 1];
+      if (first[i] < 0) first[i] = f;
+    }
   for (int i = 0; i < n; ++i) count[i + 1] += count[i];
   t.cell_offset = count;
   const int total = count[n];
-  std::vector<int> ex(total), ey(total), etri(total);
-  {
-    std::vector<int> fill(count.begin(), count.end() - 1);
-    for (int f = 0; f < nt; ++f)
-      for (int m = 0; m < 3; ++m) {
-        const int i = t.triangles[f][m];
-        const int k = fill[i]++;
-        ex[k] = t.triangles[f][(m + 1) % 3];
-        ey[k] = t.triangles[f][(m + 2) % 3];
-        etri[k] = f;
-      }
-  }
   t.cell_vertex.resize(total);
   t.cell_neighbor.resize(total);
   t.edge_length.resize(total);
   t.area.assign(n, 0.0);
   t.perimeter.assign(n, 0.0);
   for (int i = 0; i < n; ++i) {
-    const int k0 = count[i], k1 = count[i + 1];
-    // Chain the triangles: the next one starts where this one ends.
-    int cur = k0;
-    for (int k = k0; k < k1; ++k) {
-      t.cell_vertex[k] = etri[cur];
-      t.cell_neighbor[k] = ey[cur];
-      if (k + 1 == k1) break;
-      int next = -1;
-      for (int q = k0; q < k1; ++q)
-        if (ex[q] == ey[cur]) {
-          next = q;
-          break;
-        }
-      if (next < 0) throw Error("tessera: internal error: open ring of triangles around " +
-                                point_name(i, ids));
-      cur = next;
+    int f = first[i];
+    for (int k = count[i]; k < count[i + 1]; ++k) {
+      const auto &tri = t.triangles[f];
+      const int m = tri[0] == i ? 0 : tri[1] == i ? 1 : 2;
+      t.cell_vertex[k] = f;
+      t.cell_neighbor[k] = tri[(m + 2) % 3];
+      f = hull.neighbors[f][(m + 2) % 3];
     }
+    if (f != first[i])
+      throw Error("tessera: internal error: open ring of triangles around " + point_name(i, ids));
   }
   // Zero-length edges: the poles of nearly co-circular points (a multifold
   // vertex split by round-off or a tiny jitter), closer than 1e-10 of their
@@ -251,9 +238,13 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
       const int k0 = count[i], k1 = count[i + 1];
       for (int k = k0; k < k1; ++k) {
         const int ta = t.cell_vertex[k], tb = t.cell_vertex[k + 1 == k1 ? k0 : k + 1];
-        const double th = angle(vv(t.vertex_direction[ta]), vv(t.vertex_direction[tb]));
-        const double r = std::min(rho[ta], rho[tb]);
-        if (th < 1e-10 * r + 8.0 * DBL_EPSILON / r) {
+        const V va = vv(t.vertex_direction[ta]), vb = vv(t.vertex_direction[tb]);
+        const double r = std::min(rho[ta], rho[tb]), limit = 1e-10 * r + 8.0 * DBL_EPSILON / r;
+        // The angle is at least the chord, less round-off far below 1e-14:
+        // a chord beyond twice the limit decides without the arc tangent.
+        const V d = va - vb;
+        if (dot(d, d) > (2.0 * limit + 1e-14) * (2.0 * limit + 1e-14)) continue;
+        if (angle(va, vb) < limit) {
           zero[k] = 1;
           poles.join(ta, tb);
           any = true;
@@ -273,6 +264,9 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
       }
     }
   }
+  // Each edge's arc once, for the first of its two cells (angle(a, b) and
+  // angle(b, a) are the same double); by the triangulation's edge it crosses.
+  std::vector<double> arc(3 * static_cast<size_t>(nt), -1.0);
   for (int i = 0; i < n; ++i) {
     const int k0 = count[i], k1 = count[i + 1];
     const V u = vv(t.direction[i]);
@@ -281,7 +275,16 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
       const int kn = k + 1 == k1 ? k0 : k + 1;
       const int ta = t.cell_vertex[k], tb = t.cell_vertex[kn];
       const V va = vv(t.vertex_direction[ta]), vb = vv(t.vertex_direction[tb]);
-      const double l = zero[k] ? 0.0 : R * angle(va, vb);
+      double l = 0.0;
+      if (!zero[k]) {
+        const auto &na = hull.neighbors[ta], &nb = hull.neighbors[tb];
+        double &a = arc[3 * ta + (na[0] == tb ? 0 : na[1] == tb ? 1 : 2)];
+        if (a < 0.0) {
+          a = angle(va, vb);
+          arc[3 * tb + (nb[0] == ta ? 0 : nb[1] == ta ? 1 : 2)] = a;
+        }
+        l = R * a;
+      }
       t.edge_length[k] = l;
       perim += l;
       area += solid_angle(u, va, vb);  // (exactly 0 for a zero edge: va == vb)
@@ -294,7 +297,8 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
   // the circle's two poles, and the cells are lunes of two edges.  A cell
   // with fewer than three edges of non-zero length exists only then.
   for (int i = 0; i < n; ++i)
-    if (t.coordination_number(i, 0.0) < 3) {
+    if (std::count_if(t.edge_length.begin() + count[i], t.edge_length.begin() + count[i + 1],
+                      [](double l) { return l > 0.0; }) < 3) {
       std::ostringstream s;
       s << "tessera: all " << n
         << " points lie on one circle of the sphere (to round-off; a great circle if its plane"

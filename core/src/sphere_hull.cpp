@@ -90,7 +90,7 @@ bool collinear(const double *a, const double *b, const double *c) {
 // the quadrant's place along the curve, then the coordinates turned into the
 // quadrant's own frame (the lower quadrants are transposed, the lower right one also
 // mirrored, so that the curve enters and leaves them at the right corners).
-constexpr int kBits = 20;
+constexpr int kBits = 16;
 
 uint64_t hilbert_index(uint32_t x, uint32_t y) {
   uint64_t d = 0;
@@ -129,9 +129,9 @@ struct KeyIndex {
   int index;
 };
 
-// Stable least-significant-digit radix sort on the 2 kBits + 3 = 43 bits of the keys.
+// Stable least-significant-digit radix sort on the 2 kBits + 3 = 35 bits of the keys.
 void radix_sort(std::vector<KeyIndex> &v) {
-  constexpr int kDigit = 11;
+  constexpr int kDigit = 12;
   std::vector<KeyIndex> tmp(v.size());
   for (int shift = 0; shift < 2 * kBits + 3; shift += kDigit) {
     std::vector<size_t> start((1u << kDigit) + 1, 0);
@@ -151,7 +151,15 @@ void radix_sort(std::vector<KeyIndex> &v) {
 // fn[3f+k] is the facet across its edge fv[3f+k] -> fv[3f+(k+1)%3].
 class Hull {
 public:
-  Hull(const double *xyz, int n) : xyz_(xyz), start_of_(n, -1) {}
+  Hull(const double *xyz, int n) : xyz_(xyz), start_of_(n, -1) {
+    // A hull of n points has 2n - 4 facets; one insertion's removed facets wait
+    // one insertion before their slots are reused.
+    const size_t slots = 2 * static_cast<size_t>(n) + 64;
+    fv.reserve(3 * slots);
+    fn.reserve(3 * slots);
+    alive.reserve(slots);
+    mark_.reserve(slots);
+  }
 
   const double *p(int i) const { return xyz_ + 3 * i; }
   bool sees(int f, int q) const {
@@ -266,17 +274,19 @@ private:
     if (!free_.empty()) {
       t = free_.back();
       free_.pop_back();
+      fv[3 * t] = a, fv[3 * t + 1] = b, fv[3 * t + 2] = c;
+      alive[t] = 1;
+      mark_[t] = 0;
     } else {
       t = facets();
-      fv.resize(3 * t + 3);
-      fn.resize(3 * t + 3);
-      alive.push_back(0);
+      fv.push_back(a);
+      fv.push_back(b);
+      fv.push_back(c);
+      for (int k = 0; k < 3; ++k)
+        fn.push_back(-1);
+      alive.push_back(1);
       mark_.push_back(0);
     }
-    fv[3 * t] = a, fv[3 * t + 1] = b, fv[3 * t + 2] = c;
-    fn[3 * t] = fn[3 * t + 1] = fn[3 * t + 2] = -1;
-    alive[t] = 1;
-    mark_[t] = 0;
     ++live_;
     return t;
   }
@@ -366,11 +376,19 @@ bool first_tetrahedron(const double *P, int n, int t[4]) {
 }
 
 void collect(const Hull &h, HullResult &r) {
-  r.triangles.clear();
-  r.triangles.reserve(h.live());
+  std::vector<int> index(h.facets(), -1);
+  int m = 0;
   for (int f = 0; f < h.facets(); ++f)
     if (h.alive[f])
-      r.triangles.push_back({h.fv[3 * f], h.fv[3 * f + 1], h.fv[3 * f + 2]});
+      index[f] = m++;
+  r.triangles.resize(m);
+  r.neighbors.resize(m);
+  for (int f = 0; f < h.facets(); ++f)
+    if (h.alive[f]) {
+      const int t = index[f];
+      r.triangles[t] = {h.fv[3 * f], h.fv[3 * f + 1], h.fv[3 * f + 2]};
+      r.neighbors[t] = {index[h.fn[3 * f]], index[h.fn[3 * f + 1]], index[h.fn[3 * f + 2]]};
+    }
 }
 
 // The conflict route (sphere_hull.h), in a seeded random order.

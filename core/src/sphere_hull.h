@@ -39,6 +39,8 @@ struct HullResult {
   // coplanar points on a hull face (co-circular points) give a triangulation of that
   // face, which one depends on the order of insertion.
   std::vector<std::array<int, 3>> triangles;
+  // neighbors[t][k]: the triangle across the edge from corner k to corner k + 1.
+  std::vector<std::array<int, 3>> neighbors;
 };
 
 // The hull of the n >= 4 points xyz[3i..3i+2] (unit directions as rounded to doubles).

@@ -7,7 +7,8 @@
 // CGAL's convex_hull_3 (its fallback for points in one hemisphere), on the same
 // points; then the whole sphere step, tessellate_sphere and sphere_forces.  The
 // triangles of every route are checked to be the same (random points are in general
-// position).  Median of a few repeats, microseconds per point.
+// position).  Median of a few repeats, in microseconds of this thread's CPU time per
+// point.
 //
 //   bench_sphere [max_N]                  the table, N = 1e3 ... max_N (default 1e6)
 //   bench_sphere --only WHAT N [cap]      one run of WHAT (none, own, conflict, cgal,
@@ -18,7 +19,8 @@
 // Points: uniform random directions (seeded), projected onto the sphere of centre
 // (0.3, -0.2, 0.1) and radius 7, in random order (LAMMPS hands them over sorted by
 // atom ID); with "cap", only those of z > 0.2 (one hemisphere: the centre lies
-// outside their hull).
+// outside their hull).  Built against a core without sphere_hull.h (an older
+// checkout), only the CGAL and step columns: the step before and after.
 #include "tessera/energy.h"
 #include "tessera/sphere.h"
 
@@ -41,12 +43,12 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -55,9 +57,11 @@ namespace {
 
 using Tri = std::array<int, 3>;
 
-double now_seconds() {
-  using clock = std::chrono::steady_clock;
-  return std::chrono::duration<double>(clock::now().time_since_epoch()).count();
+// This thread's CPU time in seconds (steadier than wall time on a shared machine).
+double cpu_seconds() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 double median(std::vector<double> v) {
@@ -220,9 +224,9 @@ template <class F> double time_us_per_point(F &&f, int n) {
   std::vector<double> t;
   double total = 0.0;
   for (int rep = 0; rep < 7 && (rep < 3 || total < 1.0); ++rep) {
-    const double t0 = now_seconds();
+    const double t0 = cpu_seconds();
     f();
-    const double dt = now_seconds() - t0;
+    const double dt = cpu_seconds() - t0;
     t.push_back(dt);
     total += dt;
   }
@@ -264,7 +268,7 @@ int main(int argc, char **argv) {
   long max_n = 1000000;
   if (argc > 1)
     max_n = std::atol(argv[1]);
-  std::printf("microseconds per point, median of 3 to 7 repeats\n");
+  std::printf("CPU microseconds per point, median of 3 to 7 repeats\n");
   std::printf("%-9s %-6s %10s %10s %10s %10s %10s\n", "N", "points", "own", "conflict", "CGAL DToS",
               "CGAL hull", "step");
   for (long n = 1000; n <= max_n; n *= 10)

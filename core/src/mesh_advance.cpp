@@ -202,6 +202,8 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
       ++used;
       m = nb_[3 * m + i1];
     } while (m != start);
+    canonical_ring(spare_cv_.data() + off[c], spare_cn_.data() + off[c],
+                   static_cast<int>(used) - off[c]);
     ++c;
   }
   off[n_owned] = static_cast<int>(used);

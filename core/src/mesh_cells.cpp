@@ -134,6 +134,7 @@ void Mesh::cells(const Points &pts, int n_owned, Tessellation &t) const {
       used = o;
     }
     const int len = static_cast<int>(used - o);
+    canonical_ring(&t.cell_vertex[o], &t.cell_neighbor[o], len);
     t.cell_offset[c + 1] = static_cast<int>(used);
     cell_geometry(pts, t.triangles.data(), pts.x(c), pts.y(c), &t.cell_vertex[o], len,
                   t.vertices.data(), t.radius.data(), &t.edge_length[o], t.area[c], t.perimeter[c]);

@@ -149,6 +149,24 @@ TESSERA_ALWAYS_INLINE void circumcentre(double ax, double ay, double bx, double 
   r = root(ux * ux + uy * uy);
 }
 
+// A cell's ring (its Voronoi vertices cv and the neighbours cn across the
+// edges that follow them) rotated to start at its smallest neighbour index.
+// The walk starts wherever the triangulation's history left the point's
+// triangle, so a mesh repaired by flips and one built afresh (a restart, a
+// rebuild) would read the same polygon from different corners and sum its
+// area, lengths and exchanges in another order (a last-place difference
+// that an active tissue amplifies).  From one corner the two agree bit for bit.
+inline void canonical_ring(int *cv, int *cn, int len) {
+  int k0 = 0;
+  for (int k = 1; k < len; ++k)
+    if (cn[k] < cn[k0])
+      k0 = k;
+  if (k0 == 0)
+    return;
+  std::rotate(cv, cv + k0, cv + len);
+  std::rotate(cn, cn + k0, cn + len);
+}
+
 // Whether the triangle (a, b, c) lies entirely outside the region of
 // interest [roi_lo, roi_hi] (false without one): a fold there is frozen.
 inline bool outside_region(double ax, double ay, double bx, double by, double cx, double cy,

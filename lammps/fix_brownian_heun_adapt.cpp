@@ -464,6 +464,8 @@ void FixBrownianHeun::write_restart(FILE *fp)
                               est_last,
                               static_cast<double>(draws),
                               static_cast<double>(nwiener),
+                              update->atime + (update->ntimestep - update->atimestep) * update->dt,
+                              static_cast<double>(update->ntimestep),
                               static_cast<double>(qtau.size())};
   for (size_t k = 0; k < qtau.size(); k++) {
     list.push_back(qtau[k]);
@@ -493,12 +495,18 @@ void FixBrownianHeun::restart(char *buf)
   est_last = list[9];
   draws = static_cast<uint64_t>(list[10]);
   nwiener = static_cast<int>(list[11]);
-  const int nq = static_cast<int>(list[12]);
+  // The simulated time at the restart's step: LAMMPS 29 Sep 2021 does not
+  // keep it in restart files (it takes step times dt, wrong once dt varied).
+  if (update->ntimestep == static_cast<bigint>(list[13])) {
+    update->atime = list[12];
+    update->atimestep = update->ntimestep;
+  }
+  const int nq = static_cast<int>(list[14]);
   qtau.clear();
   qid.clear();
   for (int k = 0; k < nq; k++) {
-    qtau.push_back(list[13 + 2 * k]);
-    qid.push_back(static_cast<uint64_t>(list[14 + 2 * k]));
+    qtau.push_back(list[15 + 2 * k]);
+    qid.push_back(static_cast<uint64_t>(list[16 + 2 * k]));
   }
   memory->destroy(qbuf);
   qbuf = nullptr;

@@ -103,7 +103,7 @@ class IntegratorChatter : protected Pointers {
   double mean_corr = 0.0, probe_dt = 0.0;
   void record_state(int groupbit);
   void term_forces(std::vector<double> &forces);
-  void report();
+  bool report();    // false: no atom kept the oscillation up (collective)
 };
 
 }    // namespace LAMMPS_NS

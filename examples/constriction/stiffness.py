@@ -189,7 +189,7 @@ def main():
     heads = ["dt", "2 gamma/dt", "chattering cells", "their move / mean move",
              "cell to nearest particle", "their tension 2KP(P-p0)", "triangles changed per step",
              "their nearest centre (median)", "closest pair d", "its curvature x d^2",
-             "smallest angle of flipping triangles (deg)", "its vertices to nearest particle",
+             "smallest angle of flipping triangles (deg)", "their circumcentres to nearest particle",
              "lambda_max vertex", "lambda_max vertex (chattering cells)", "lambda_max soft",
              "lambda_max total"]
     print("| " + " | ".join(heads) + " |")

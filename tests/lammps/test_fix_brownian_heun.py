@@ -583,6 +583,51 @@ run 0
         self.assertLess(abs(c.mean() - expected), 5 * sigma, (c.mean(), expected, sigma))
 
 
+class ConstrictionExample(LammpsTestCase):
+    """examples/constriction (adaptive step, particles as walls), briefly: the
+    run stops at its end time, the particles (in no integrator's group) stay
+    where the input put them, no cell centre reaches a particle's core, and
+    the net flux through a section counted from the dump's unwrapped
+    coordinates, averaged over sections across the box, is the cells' summed
+    displacement over Lx."""
+
+    INPUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples",
+                         "constriction", "in.constriction")
+
+    def test_short_run(self):
+        with open(self.INPUT) as f:
+            script = f.read()
+        script += 'print "END $(time:%.17g) $(count(cells)) $(lx:%.17g)"\n'
+        run = self.run_lmp(script, variables={"tend": 3.0, "every": 25, "tol": 0.05})
+        t_end, n, lx = [float(w) for w in run.stdout.split("\nEND ")[1].split()[:3]]
+        self.assertGreaterEqual(t_end, 3.0)
+        self.assertLess(t_end, 3.0 + 0.01 + 1e-12)
+        frames = run.dump("dump.constriction")
+        first, last = frames[0], frames[-1]
+        wall = first["type"] == 2
+        np.testing.assert_array_equal(last["x"][wall], first["x"][wall])
+        np.testing.assert_array_equal(last["y"][wall], first["y"][wall])
+        cells = ~wall
+        walls = np.column_stack([first["x"][wall], first["y"][wall]])
+        ly = first["box"][1, 1] - first["box"][1, 0]
+        for f in frames:
+            p = np.column_stack([f["x"][cells], f["y"][cells]])
+            d = p[:, None, :] - walls[None, :, :]
+            d[..., 0] -= lx * np.round(d[..., 0] / lx)
+            d[..., 1] -= ly * np.round(d[..., 1] / ly)
+            self.assertGreater(np.hypot(d[..., 0], d[..., 1]).min(), 0.4)    # soft core: Rp/2
+        # Counted at 1000 sections across the box, the crossings average to
+        # the cells' summed displacement over Lx (each cell's count errs by
+        # less than one over the number of sections).
+        m = 1000
+        sections = np.arange(m) * lx / m
+        crossed = np.mean([np.sum(np.floor((last["xu"][cells] - x) / lx) -
+                                  np.floor((first["xu"][cells] - x) / lx)) for x in sections])
+        moved = np.sum(last["xu"][cells] - first["xu"][cells]) / lx
+        self.assertGreater(moved, 2.0)
+        self.assertLessEqual(abs(crossed - moved), n / m + 1e-9)
+
+
 class Errors(LammpsTestCase):
 
     def test_too_few_arguments(self):

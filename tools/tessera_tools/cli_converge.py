@@ -277,6 +277,9 @@ def cmd_converge(args):
     if not args.analyse_only:
         if not args.lmp:
             raise ValueError("no LAMMPS executable: give --lmp (e.g. build/lammps/tessera-lmp)")
+        # each run starts in its own directory: a path relative to here would miss
+        if os.sep in args.lmp:
+            args.lmp = os.path.abspath(args.lmp)
         pending = []
         for value, directory in runs:
             if args.reuse and finished(os.path.join(directory, "log.lammps")):

@@ -159,19 +159,27 @@ FAKE = textwrap.dedent('''\
     ''')
 
 
+def stand_in(tmp):
+    """The stand-in LAMMPS (an executable tmp/bin/lmp) and an input tmp/in.test (the
+    files beside an input are copied into the runs' directories: bin/ is not)."""
+    os.makedirs(os.path.join(tmp, "bin"))
+    fake = os.path.join(tmp, "bin", "fake_lmp.py")
+    with open(fake, "w") as f:
+        f.write(FAKE)
+    lmp = os.path.join(tmp, "bin", "lmp")
+    with open(lmp, "w") as f:
+        f.write(f"#!/bin/sh\nexec {sys.executable} {fake} \"$@\"\n")
+    os.chmod(lmp, 0o755)
+    inp = os.path.join(tmp, "in.test")
+    with open(inp, "w") as f:
+        f.write("# read by the stand-in only through -var\n")
+    return lmp, inp
+
+
 class Command(unittest.TestCase):
     def test_end_to_end(self):
         with tempfile.TemporaryDirectory() as tmp:
-            fake = os.path.join(tmp, "fake_lmp.py")
-            with open(fake, "w") as f:
-                f.write(FAKE)
-            lmp = os.path.join(tmp, "lmp")
-            with open(lmp, "w") as f:
-                f.write(f"#!/bin/sh\nexec {sys.executable} {fake} \"$@\"\n")
-            os.chmod(lmp, 0o755)
-            inp = os.path.join(tmp, "in.test")
-            with open(inp, "w") as f:
-                f.write("# read by the stand-in only through -var\n")
+            lmp, inp = stand_in(tmp)
             out = os.path.join(tmp, "runs")
             cmd = [sys.executable, TOOL, "converge", inp, "--halve", "dt=0.02", "--lmp", lmp,
                    "--out", out, "--window", "20", "90", "--flux", "1", "2.5", "--dump", "dump.test",
@@ -202,6 +210,19 @@ class Command(unittest.TestCase):
                                      capture_output=True, text=True, timeout=120)
             self.assertNotEqual(failing.returncode, 0)
             self.assertIn("failed", failing.stderr)
+
+    def test_relative_executable(self):
+        # each run starts in its own directory, so --lmp relative to the
+        # caller's directory must still name the same executable there
+        with tempfile.TemporaryDirectory() as tmp:
+            stand_in(tmp)
+            proc = subprocess.run([sys.executable, TOOL, "converge", "in.test", "--var", "dt",
+                                   "--values", "0.02", "0.01", "--lmp", "bin/lmp", "--out", "runs",
+                                   "--window", "20", "90", "--thermo", "good"],
+                                  cwd=tmp, capture_output=True, text=True, timeout=120)
+            self.assertEqual(proc.returncode, 0, proc.stdout + proc.stderr)
+            for v in ("0.02", "0.01"):
+                self.assertTrue(os.path.exists(os.path.join(tmp, "runs", f"dt_{v}", "log.lammps")))
 
     def test_bad_arguments(self):
         proc = subprocess.run([sys.executable, TOOL, "converge", "no_such_input", "--var", "dt"],

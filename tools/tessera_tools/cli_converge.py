@@ -253,6 +253,7 @@ def plot(args, results, path):
     axes[-1, 0].set_xlabel(args.var)
     fig.suptitle("values with standard errors; grey: finest run +- 2 errors", fontsize=9)
     fig.tight_layout()
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     fig.savefig(path, dpi=120)
     plt.close(fig)
 
@@ -297,6 +298,7 @@ def cmd_converge(args):
     text = table_text(args, results, window)
     sys.stdout.write(text)
     if args.table:
+        os.makedirs(os.path.dirname(os.path.abspath(args.table)), exist_ok=True)
         with open(args.table, "w") as f:
             f.write(text)
     plot(args, results, args.plot or os.path.join(args.out, "converge.png"))

@@ -211,16 +211,20 @@ class Command(unittest.TestCase):
             self.assertNotEqual(failing.returncode, 0)
             self.assertIn("failed", failing.stderr)
 
-    def test_relative_executable(self):
+    def test_relative_paths(self):
         # each run starts in its own directory, so --lmp relative to the
         # caller's directory must still name the same executable there
         with tempfile.TemporaryDirectory() as tmp:
             stand_in(tmp)
             proc = subprocess.run([sys.executable, TOOL, "converge", "in.test", "--var", "dt",
                                    "--values", "0.02", "0.01", "--lmp", "bin/lmp", "--out", "runs",
-                                   "--window", "20", "90", "--thermo", "good"],
+                                   "--window", "20", "90", "--thermo", "good",
+                                   "--plot", "figures/c.png", "--table", "tables/c.md"],
                                   cwd=tmp, capture_output=True, text=True, timeout=120)
             self.assertEqual(proc.returncode, 0, proc.stdout + proc.stderr)
+            # (directories of --plot and --table made as needed)
+            self.assertTrue(is_png(os.path.join(tmp, "figures", "c.png")))
+            self.assertTrue(os.path.exists(os.path.join(tmp, "tables", "c.md")))
             for v in ("0.02", "0.01"):
                 self.assertTrue(os.path.exists(os.path.join(tmp, "runs", f"dt_{v}", "log.lammps")))
 

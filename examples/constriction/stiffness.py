@@ -181,6 +181,8 @@ def main():
     ap.add_argument("--lmp", default=os.path.join(HERE, "..", "..", "build", "lammps", "tessera-lmp"))
     ap.add_argument("--dt", nargs="+", type=float, default=[0.01, 0.005, 0.0025, 0.00125])
     args = ap.parse_args()
+    # each run starts in its own probe_<dt>/: a path relative to here would miss
+    args.lmp = os.path.abspath(args.lmp) if os.sep in args.lmp else args.lmp
     rows = [analyse(run(args.lmp, dt, f"probe_{dt:g}"), dt) for dt in args.dt]
     cols = [("dt", "{:g}"), ("limit", "{:.0f}"), ("chattering", "{:d}"), ("move ratio", "{:.1f}"),
             ("to particle", "{:.2f}"), ("tension", "{:.2f}"), ("changed", "{:.1f}"),

@@ -359,7 +359,8 @@ print "END $(time:%.17g) $(x[1]:%.17g) $(y[1]:%.17g) $(f_b[3]) $(f_b[4])"
 def thermo_table(run):
     """The rows of the (single) thermo block as an array."""
     rows = []
-    for block in run.stdout.split("\nStep")[1:]:
+    # (LAMMPS 2026 pads the header: "   Step ...")
+    for block in re.split(r"\n\s*Step\s", run.stdout)[1:]:
         for line in block.split("\n")[1:]:
             words = line.split()
             if not words or not re.match(r"^-?\d", words[0]):

@@ -54,6 +54,31 @@ class CoupledDof {
   virtual void coupled_noise(double *w, int stride) = 0;
   // q += dq for the local atoms of the fix's group.
   virtual void coupled_advance(const double *dq, int stride) = 0;
+
+  // For an integrator that may reject a step and take it again with a
+  // smaller timestep (fix brownian/heun with 'adapt'):
+  //
+  //   coupled_state_size()             doubles per atom that hold the state
+  //   coupled_save(q) / coupled_restore(q)   a copy of that state and back,
+  //                                    bit for bit, for the local atoms
+  //   coupled_wiener_size()            independent Wiener processes per atom
+  //                                    that drive the noise (0: no noise)
+  //   coupled_wiener_increment(dW, w)  the increment w of the degrees of
+  //                                    freedom for the Wiener increments dW
+  //                                    (each of variance h for a step h)
+  //
+  // Such an integrator chooses the noise itself (a rejected step's Wiener
+  // increment is split by a Brownian bridge, not drawn anew) and calls
+  // coupled_wiener_increment instead of coupled_noise.  A fix whose state
+  // size is 0 cannot be integrated that way (the integrator says so).
+  virtual int coupled_state_size() const { return 0; }
+  virtual void coupled_save(double * /*q*/, int /*stride*/) {}
+  virtual void coupled_restore(const double * /*q*/, int /*stride*/) {}
+  virtual int coupled_wiener_size() const { return 0; }
+  virtual void coupled_wiener_increment(const double * /*dW*/, int /*wstride*/, double * /*w*/,
+                                        int /*stride*/)
+  {
+  }
 };
 
 // Marks a time integrator that advances the CoupledDof fixes itself.

@@ -166,6 +166,7 @@ void FixBrownianTessera::initial_integrate(int /*vflag*/)
                "Fix {} (ID {}): the timestep must be > 0 to take a step (the velocity is the "
                "displacement over dt), got {}; set it with 'timestep'",
                style, id, dt);
+  chatter.start(groupbit);
   const bool three_d = domain->dimension == 3;
   double watch[IntegratorChatter::NSUMS] = {0.0, 0.0, 0.0, 0.0};
   switch (noise) {

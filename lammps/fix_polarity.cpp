@@ -641,6 +641,54 @@ void FixPolarity::coupled_advance(const double *dq, int stride)
     }
 }
 
+void FixPolarity::coupled_save(double *q, int stride)
+{
+  double **mu = atom->mu;
+  for (int i = 0; i < atom->nlocal; i++)
+    for (int k = 0; k < 4; k++) q[i * stride + k] = mu[i][k];
+}
+
+void FixPolarity::coupled_restore(const double *q, int stride)
+{
+  double **mu = atom->mu;
+  for (int i = 0; i < atom->nlocal; i++)
+    for (int k = 0; k < 4; k++) mu[i][k] = q[i * stride + k];
+}
+
+int FixPolarity::coupled_wiener_size() const
+{
+  if (!(d_rot > 0.0)) return 0;
+  if (domain->dimension == 2 || (pair && pair->on_sphere())) return 1;
+  return 3;
+}
+
+/* The same increments as coupled_noise's for Wiener increments dW of
+   variance dt: 2d the angle, 3d the rotation vector (isotropic), on a
+   sphere a rotation about the cell's normal (noise_3d). */
+
+void FixPolarity::coupled_wiener_increment(const double *dW, int wstride, double *w, int stride)
+{
+  const int *mask = atom->mask;
+  const double amp = std::sqrt(2.0 * d_rot);
+  const int n = coupled_size();
+  const bool sphere = domain->dimension == 3 && pair && pair->on_sphere();
+  for (int i = 0; i < atom->nlocal; i++) {
+    double *wi = w + i * stride;
+    const double *dw = dW + i * wstride;
+    for (int k = 0; k < n; k++) wi[k] = 0.0;
+    if (!(d_rot > 0.0) || !(mask[i] & groupbit)) continue;
+    if (sphere) {
+      const double *c = pair->sphere_centre();
+      const double *x = state_position(i);
+      const double u[3] = {x[0] - c[0], x[1] - c[1], x[2] - c[2]};
+      const double l = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+      for (int d = 0; d < 3; d++) wi[d] = l > 0.0 ? amp * dw[0] * u[d] / l : 0.0;
+    } else {
+      for (int k = 0; k < n; k++) wi[k] = amp * dw[k];
+    }
+  }
+}
+
 /* mu of local atom i turned by dth, its length kept (1 if it had none). */
 
 void FixPolarity::rotate(int i, double dth)

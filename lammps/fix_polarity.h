@@ -84,6 +84,14 @@ class FixPolarity : public Fix, public CoupledDof {
   void coupled_rate(double *, int, bigint) override;
   void coupled_noise(double *, int) override;
   void coupled_advance(const double *, int) override;
+  // For an adaptive step (rejected steps): mu is the state; the noise is
+  // sqrt(2 D_r) dW (2d: one angle; 3d: a rotation vector; on a sphere: a
+  // rotation about the normal).
+  int coupled_state_size() const override { return 4; }
+  void coupled_save(double *, int) override;
+  void coupled_restore(const double *, int) override;
+  int coupled_wiener_size() const override;
+  void coupled_wiener_increment(const double *, int, double *, int) override;
 
  protected:
   int driven = 0;    // 1: a CoupledIntegrator advances the angles, not initial_integrate

@@ -44,18 +44,27 @@ def read_params(log):
     raise SystemExit(f"{log}: no PARAMS line (run in.flow first)")
 
 
-def coarse_grain(frames, nbx, nby, tau):
-    """Sums over successive pairs of frames of the cells found in each bin
-    (at the midpoint of their step) and of their velocities, the displacement
-    between the frames over the time tau between them (what a PIV of the
+def coarse_grain(frames, nbx, nby, dt):
+    """Sums over successive pairs of frames of the time the cells spent in
+    each bin (at the midpoint of their step) and of their displacements
+    between the frames, whose quotient is the velocity (what a PIV of the
     centres measures; single steps can be fast where two centres nearly
-    meet, the displacement over many steps is what the tissue does)."""
+    meet, the displacement over many steps is what the tissue does); and the
+    total time.  The time between two frames is from the dump's times
+    (dump_modify time yes: an adaptive step gives uneven times), or steps
+    times dt."""
     b = frames[0].box
     lx, ly = b.xhi - b.xlo, b.yhi - b.ylo
     count = np.zeros((nbx, nby))
     svx = np.zeros((nbx, nby))
     svy = np.zeros((nbx, nby))
+    total = 0.0
     for a, c in zip(frames[:-1], frames[1:]):
+        if a.time is not None and c.time is not None:
+            tau = c.time - a.time
+        else:
+            tau = (c.timestep - a.timestep) * dt
+        total += tau
         ddx = c["x"] - a["x"]
         ddy = c["y"] - a["y"]
         ddx -= lx * np.round(ddx / lx)
@@ -64,10 +73,10 @@ def coarse_grain(frames, nbx, nby, tau):
         y = np.mod(a["y"] + 0.5 * ddy - b.ylo, ly)
         i = np.minimum((x / lx * nbx).astype(int), nbx - 1)
         j = np.minimum((y / ly * nby).astype(int), nby - 1)
-        np.add.at(count, (i, j), 1.0)
-        np.add.at(svx, (i, j), ddx / tau)
-        np.add.at(svy, (i, j), ddy / tau)
-    return count, svx, svy
+        np.add.at(count, (i, j), tau)
+        np.add.at(svx, (i, j), ddx)
+        np.add.at(svy, (i, j), ddy)
+    return count, svx, svy, total
 
 
 def main():
@@ -87,15 +96,14 @@ def main():
 
     nbx, nby = int(round(lx / BIN)), int(round(ly / BIN))
     dx, dy = lx / nbx, ly / nby
-    tau = (frames[1].timestep - frames[0].timestep) * params["dt"]
-    count, svx, svy = coarse_grain(frames, nbx, nby, tau)
+    count, svx, svy, total = coarse_grain(frames, nbx, nby, params["dt"])
     nf = len(frames) - 1
     # bins the cell centres hardly reach (inside the pillar's range) are left out
     sparse = count < 0.2 * np.median(count)
     with np.errstate(invalid="ignore", divide="ignore"):
         vx = np.where(sparse, np.nan, svx / count)   # mean velocity of the cells in a bin
         vy = np.where(sparse, np.nan, svy / count)
-    jx = svx / (nf * dx * dy)         # number flux density (cells per length per time)
+    jx = svx / (total * dx * dy)      # number flux density (cells per length per time)
     xs = (np.arange(nbx) + 0.5) * dx
     ys = (np.arange(nby) + 0.5) * dy
 
@@ -110,7 +118,7 @@ def main():
 
     def slab_mean(i):
         s = [(i - 1) % nbx, i, (i + 1) % nbx]
-        return svx[s].sum() / count[s].sum(), count[s].sum() / (nf * 3 * dx * ly)
+        return svx[s].sum() / count[s].sum(), count[s].sum() / (total * 3 * dx * ly)
 
     v_gap, n_gap = slab_mean(ip)
     v_mid, n_mid = slab_mean(im)
@@ -137,7 +145,8 @@ def main():
                                (fr["y"] - fr.particles["y"][0] + 0.5 * ly) % ly - 0.5 * ly)) for fr in frames)
 
     flow = np.loadtxt(os.path.join(HERE, "flow.dat"))
-    fp = np.mean(flow[flow[:, 0] >= t0 * params["dt"] - 1e-9, 3])   # the pillar's drag over the same times
+    start = frames[0].time if frames[0].time is not None else t0 * params["dt"]
+    fp = np.mean(flow[flow[:, 0] >= start - 1e-9, 3])   # the pillar's drag over the same times
 
     lines = [
         f"# examples/flow_pillars: N = {ncell} cells, box {lx:.3f} x {ly:.3f}, pillar range Rp = {rp}, "

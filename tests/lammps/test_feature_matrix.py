@@ -18,6 +18,7 @@ import re
 import numpy as np
 
 import lmptest
+from feature_adaptive import AdaptiveChecks
 from feature_outputs import OutputChecks
 from feature_state import StateChecks
 from feature_models import (COEFFS_2D, COEFFS_3D, COEFFS_FINITE, PARTICLE_IDS, SPHERE_C,
@@ -29,7 +30,7 @@ from lmptest import LammpsTestCase
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-class FeatureMatrix(OutputChecks, StateChecks, LammpsTestCase):
+class FeatureMatrix(AdaptiveChecks, OutputChecks, StateChecks, LammpsTestCase):
     """One test per (model, feature); methods are added from the data file."""
 
     def run_lmp(self, script, **kw):

@@ -325,6 +325,310 @@ class Example(LammpsTestCase):
         self.assertNotEqual(rows[1, 2], rows[0, 2])
 
 
+def trap(kx, ky, tol, timestep, extra="", tend=2.0, x0=(7.0, 6.0)):
+    """One particle in the trap F = -(kx (x - 5), ky (y - 5)), gamma_t = 1, no
+    noise, integrated with adapt tol `tol` from `timestep` until time tend;
+    thermo every step: step time dt f_b[1..7]."""
+    return f"""
+units lj
+dimension 2
+atom_style atomic
+atom_modify map array
+boundary p p p
+region box block 0 10 0 10 -0.5 0.5
+create_box 1 box
+create_atoms 1 single {x0[0]} {x0[1]} 0.0 units box
+mass 1 1.0
+pair_style zero 1.0
+pair_coeff * *
+variable fx atom -{kx}*(x-5)
+variable fy atom -{ky}*(y-5)
+fix f all addforce v_fx v_fy 0.0
+fix b all brownian/heun 1.0 1 gamma_t 1.0 rng none adapt tol {tol} {extra}
+timestep {timestep}
+variable t equal time
+fix stop all halt 1 v_t >= {tend} error continue
+thermo_style custom step time dt f_b[1] f_b[2] f_b[3] f_b[4] f_b[5] f_b[6] f_b[7]
+thermo_modify format float %.17g
+thermo 1
+run 1000000
+print "END $(time:%.17g) $(x[1]:%.17g) $(y[1]:%.17g) $(f_b[3]) $(f_b[4])"
+"""
+
+
+def thermo_table(run):
+    """The rows of the (single) thermo block as an array."""
+    rows = []
+    # (LAMMPS 2026 pads the header: "   Step ...")
+    for block in re.split(r"\n\s*Step\s", run.stdout)[1:]:
+        for line in block.split("\n")[1:]:
+            words = line.split()
+            if not words or not re.match(r"^-?\d", words[0]):
+                if line.startswith("Loop time"):
+                    break
+                continue
+            rows.append([float(w) for w in words])
+    return np.array(rows)
+
+
+class Adaptive(LammpsTestCase):
+    """fix brownian/heun ... adapt tol T: the error-controlled step."""
+
+    def end_state(self, run):
+        t, x, y, acc, rej = [float(w) for w in run.stdout.split("\nEND ")[1].split()[:5]]
+        return t, x, y, acc, rej
+
+    def test_global_error_falls_with_tol(self):
+        """Overdamped harmonic trap, exact x(t) = 5 + (x0 - 5) e^-t: the error
+        at the end falls like the tolerance (local extrapolation: the Heun
+        solution is kept, its global error ~ tol), the steps like tol^-1/2;
+        'time' is the sum of the steps' dt (f_b[1] = dt of each step)."""
+        errors, steps = [], []
+        for tol in (1e-3, 1e-4, 1e-5):
+            run = self.run_lmp(trap(1.0, 1.0, tol, 0.1))
+            t, x, y, acc, rej = self.end_state(run)
+            errors.append(math.hypot(x - 5 - 2 * math.exp(-t), y - 5 - math.exp(-t)))
+            steps.append(acc)
+            rows = thermo_table(run)
+            np.testing.assert_allclose(np.diff(rows[:, 1]), rows[1:, 2], rtol=1e-9)
+            np.testing.assert_array_equal(rows[:, 3], rows[:, 2])
+            np.testing.assert_array_equal(rows[1:, 5], np.arange(1, len(rows)))
+            self.assertTrue(np.all(rows[1:, 7] <= tol * (1 + 1e-12)))    # each step's estimate
+            self.assertTrue(np.all(rows[1:, 8] <= 1.0 + 1e-12))
+        for a, b in zip(errors, errors[1:]):
+            self.assertGreater(a / b, 6.0, errors)
+            self.assertLess(a / b, 16.0, errors)
+        for a, b in zip(steps, steps[1:]):
+            self.assertGreater(b / a, 10 ** 0.5 * 0.7, steps)
+            self.assertLess(b / a, 10 ** 0.5 * 1.4, steps)
+
+    def test_stiff_mode_rejects_and_settles_at_the_limit(self):
+        """A stiff mode (ky = 1000, kx = 1) and dtmax = 0.01, five times past
+        Heun's stability limit 2 gamma_t / ky = 0.002: the first attempts are
+        rejected, and once the stiff mode has decayed the step settles at
+        the limit (an explicit error-controlled step on a stiff problem: the
+        controller holds it where the mode neither grows nor decays) while
+        the slow mode stays accurate."""
+        run = self.run_lmp(trap(1.0, 1000.0, 1e-4, 0.01, "dtmax 0.01"))
+        rows = thermo_table(run)
+        self.assertGreater(rows[1, 6], 0)    # rejected attempts on the first step
+        late = rows[rows[:, 1] > 1.0]
+        mean_dt = late[:, 2].mean()
+        self.assertGreater(mean_dt, 0.7 * 0.002)
+        self.assertLess(mean_dt, 1.1 * 0.002)
+        t, x, y, acc, rej = self.end_state(run)
+        self.assertAlmostEqual(x, 5 + 2 * math.exp(-t), delta=1e-3)
+        self.assertAlmostEqual(y, 5.0, delta=1e-3)
+
+    def test_loose_tolerance_is_the_fixed_step(self):
+        """With a tolerance no step exceeds and dtmax = the timestep, the
+        adaptive step is the fixed Heun step, bit for bit, positions and
+        polarities; no rejections."""
+        base = active_tissue("brownian/heun", "velocity 1.0")
+        fixed = self.run_lmp(base + "timestep 0.01\nrun 40\n" + DUMP.format(name="end.dump"))
+        adaptive = self.run_lmp(base.replace("rng none", "rng none adapt tol 1e9") +
+                                "timestep 0.01\nrun 40\n" + DUMP.format(name="end.dump") +
+                                'print "R $(f_b[3]) $(f_b[4]) $(dt)"\n')
+        a, b = fixed.dump("end.dump")[0], adaptive.dump("end.dump")[0]
+        for col in ("xu", "yu", "mux", "muy", "vx", "vy"):
+            np.testing.assert_array_equal(b[col], a[col], err_msg=col)
+        counts = adaptive.stdout.split("\nR ")[1].split()[:3]
+        self.assertEqual(counts[:2], ["40", "0"])
+        self.assertEqual(float(counts[2]), 0.01)
+
+    def adaptive_tissue(self, polarity, rng="none", tol="1e-4"):
+        return active_tissue("brownian/heun", polarity).replace(
+            "rng none", f"rng {rng} adapt tol {tol} dtmax 0.02")
+
+    @nprocs(4)
+    def test_ranks(self):
+        """1, 2 and 4 ranks: the same trajectory, the same accepted and
+        rejected steps (the estimate is the maximum over all ranks), without
+        position noise and also with it (the adaptive step's noise is
+        counter-based), with fix polarity's rotational noise."""
+        make = active_tissue("brownian/heun", nx=8, ny=6) + "run 0\nwrite_data cells.data\n"
+        data = self.run_lmp(make).text("cells.data")
+        for rng in ("none", "gaussian"):
+            script = f"""
+dimension 2
+units lj
+atom_style dipole
+boundary p p p
+read_data cells.data
+pair_style vertex/voronoi 3.0
+pair_coeff * * 1.0 1.0 0.1 -0.5
+fix p all polarity 0.3 1.0 neighbor 1.0 groove 1.0 30 noise 0.3 77
+fix b all brownian/heun 0.01 5 gamma_t 1.0 rng {rng} adapt tol 3e-4 dtmax 0.02
+timestep 0.02
+thermo 0
+run 60
+print "R $(f_b[3]) $(f_b[4]) $(time:%.17g)"
+""" + DUMP.format(name="end.dump")
+            results = []
+            for n in (1, 2, 4):
+                run = self.run_lmp(script, nprocs=n, files={"cells.data": data})
+                results.append((run.stdout.split("\nR ")[1].split()[:3], run.dump("end.dump")[0]))
+            counts = results[0][0]
+            self.assertGreater(float(counts[1]), 0, "no rejections: not a test of them")
+            for c, frame in results[1:]:
+                self.assertEqual(c[:2], counts[:2], rng)
+                self.assertAlmostEqual(float(c[2]), float(counts[2]), delta=1e-12)
+                for col in ("xu", "yu", "mux", "muy"):
+                    np.testing.assert_allclose(frame[col], results[0][1][col], rtol=0, atol=1e-10,
+                                               err_msg=f"{rng} {col}")
+
+    def test_restart_and_split_runs(self):
+        """`run 25; run 15` and a restart after 25 steps continue the adaptive
+        run (dt, counters, the noise queue) like one run of 40, with position
+        and rotational noise."""
+        polarity = "noise 0.3 77"
+        base = self.adaptive_tissue(polarity, "gaussian") + "timestep 0.02\n"
+        report = 'print "R $(f_b[1]:%.17g) $(f_b[3]) $(f_b[4]) $(time:%.17g)"\n'
+        whole = self.run_lmp(base + "run 40\n" + report + DUMP.format(name="end.dump"))
+        split = self.run_lmp(base + "run 25\nrun 15\n" + report + DUMP.format(name="end.dump"))
+        first = self.run_lmp(base + "run 25\nwrite_restart half.restart\n")
+        fixline = [line for line in base.split("\n") if line.startswith("fix b ")][0]
+        restart = f"""
+read_restart {first.path('half.restart')}
+pair_coeff * * 1.0 1.0 0.1 -0.5
+fix p all polarity 0.3 1.0 neighbor 1.0 groove 1.0 30 {polarity}
+{fixline}
+thermo 0
+run 15
+""" + report + DUMP.format(name="end.dump")
+        restarted = self.run_lmp(restart)
+        ref = whole.stdout.split("\nR ")[1].split()[:4]
+        self.assertGreater(float(ref[2]), 0, "no rejections: not a test of them")
+        for other in (split, restarted):
+            got = other.stdout.split("\nR ")[1].split()[:4]
+            self.assertEqual(got[1:3], ref[1:3])
+            for a, b in ((got[0], ref[0]), (got[3], ref[3])):
+                self.assertAlmostEqual(float(a), float(b), delta=1e-12 * float(b))
+            f, g = other.dump("end.dump")[0], whole.dump("end.dump")[0]
+            for col in ("xu", "yu", "mux", "muy"):
+                np.testing.assert_allclose(f[col], g[col], rtol=0, atol=1e-10, err_msg=col)
+
+    def test_noise_is_unbiased(self):
+        """An Ornstein-Uhlenbeck particle (trap k = 200, kT = 1, gamma_t = 1):
+        the stationary <r^2> / 2 per component is kT / k = 0.005.  The step's
+        error estimate (dt k / 2)|r~ - r| is mostly the noise, so the rejected
+        attempts are those with large noise (here about 45 %, with safety
+        0.99): drawn anew, their noise would make the variance come out low
+        (measured with this seed: 0.965 kT / k; over t = 0..200 the
+        statistical error is about 0.5 %).  Split by the Brownian bridge it
+        comes out 0.988 (the rest is Heun's bias at the larger steps).  The
+        average is weighted by each step's dt."""
+        script = f"""
+units lj
+dimension 2
+atom_style atomic
+boundary p p p
+region box block 0 10 0 10 -0.5 0.5
+create_box 1 box
+create_atoms 1 single 5 5 0 units box
+mass * 1.0
+pair_style zero 1.0
+pair_coeff * *
+variable fx atom -200*(x-5)
+variable fy atom -200*(y-5)
+fix f all addforce v_fx v_fy 0.0
+fix b all brownian/heun 1.0 4821 gamma_t 1.0 rng gaussian adapt tol 2e-3 dtmax 0.05 safety 0.99
+variable r2 atom 0.5*((x-5)^2+(y-5)^2)
+compute r2 all reduce ave v_r2
+variable w equal c_r2*dt
+variable dtv equal dt
+fix av all ave/time 1 1 1 v_w v_dtv ave running
+variable t equal time
+fix stop all halt 1 v_t >= 200.0 error continue
+thermo 0
+timestep 0.001
+run 100000000
+print "R $(f_av[1]/f_av[2]:%.17g) $(f_b[3]) $(f_b[4])"
+"""
+        run = self.run_lmp(script)
+        ratio, accepted, rejected = [float(w) for w in run.stdout.split("\nR ")[1].split()[:3]]
+        self.assertGreater(rejected / (accepted + rejected), 0.3)
+        self.assertGreater(ratio / 0.005, 0.975)
+        self.assertLess(ratio / 0.005, 1.02)
+
+    def test_rotational_noise(self):
+        """Free polarities (fix polarity noise D_r) with adapt: the Wiener
+        increments of the queue give <cos(theta(t) - theta(0))> = exp(-D_r t)."""
+        n_side, d_rot = 64, 0.5
+        script = f"""
+dimension 2
+units lj
+atom_style dipole
+boundary p p p
+lattice sq 1.0
+region box block 0 {n_side} 0 {n_side} -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+mass * 1.0
+pair_style zero 0.5
+pair_coeff * *
+fix p all polarity 0.0 1.0 noise {d_rot} 3301
+fix b all brownian/heun 1.0 1 gamma_t 1.0 rng none adapt tol 1e-3 dtmax 0.05
+timestep 0.05
+thermo 0
+run 0
+""" + DUMP.format(name="a.dump") + "run 20\n" + DUMP.format(name="b.dump") + \
+            'print "T $(time:%.17g)"\n'
+        run = self.run_lmp(script)
+        (a,), (b,) = run.dump("a.dump"), run.dump("b.dump")
+        elapsed = float(run.stdout.split("\nT ")[1].split()[0])
+        c = a["mux"] * b["mux"] + a["muy"] * b["muy"]
+        expected = math.exp(-d_rot * elapsed)
+        s2 = 2 * d_rot * elapsed
+        sigma = math.sqrt(0.5 * (1 - math.exp(-s2)) ** 2 / len(c))
+        self.assertLess(abs(c.mean() - expected), 5 * sigma, (c.mean(), expected, sigma))
+
+
+class ConstrictionExample(LammpsTestCase):
+    """examples/constriction (adaptive step, particles as walls), briefly: the
+    run stops at its end time, the particles (in no integrator's group) stay
+    where the input put them, no cell centre reaches a particle's core, and
+    the net flux through a section counted from the dump's unwrapped
+    coordinates, averaged over sections across the box, is the cells' summed
+    displacement over Lx."""
+
+    INPUT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples",
+                         "constriction", "in.constriction")
+
+    def test_short_run(self):
+        with open(self.INPUT) as f:
+            script = f.read()
+        script += 'print "END $(time:%.17g) $(count(cells)) $(lx:%.17g)"\n'
+        run = self.run_lmp(script, variables={"tend": 3.0, "every": 25, "tol": 0.05})
+        t_end, n, lx = [float(w) for w in run.stdout.split("\nEND ")[1].split()[:3]]
+        self.assertGreaterEqual(t_end, 3.0)
+        self.assertLess(t_end, 3.0 + 0.01 + 1e-12)
+        frames = run.dump("dump.constriction")
+        first, last = frames[0], frames[-1]
+        wall = first["type"] == 2
+        np.testing.assert_array_equal(last["x"][wall], first["x"][wall])
+        np.testing.assert_array_equal(last["y"][wall], first["y"][wall])
+        cells = ~wall
+        walls = np.column_stack([first["x"][wall], first["y"][wall]])
+        ly = first["box"][1, 1] - first["box"][1, 0]
+        for f in frames:
+            p = np.column_stack([f["x"][cells], f["y"][cells]])
+            d = p[:, None, :] - walls[None, :, :]
+            d[..., 0] -= lx * np.round(d[..., 0] / lx)
+            d[..., 1] -= ly * np.round(d[..., 1] / ly)
+            self.assertGreater(np.hypot(d[..., 0], d[..., 1]).min(), 0.4)    # soft core: Rp/2
+        # Counted at 1000 sections across the box, the crossings average to
+        # the cells' summed displacement over Lx (each cell's count errs by
+        # less than one over the number of sections).
+        m = 1000
+        sections = np.arange(m) * lx / m
+        crossed = np.mean([np.sum(np.floor((last["xu"][cells] - x) / lx) -
+                                  np.floor((first["xu"][cells] - x) / lx)) for x in sections])
+        moved = np.sum(last["xu"][cells] - first["xu"][cells]) / lx
+        self.assertGreater(moved, 2.0)
+        self.assertLessEqual(abs(crossed - moved), n / m + 1e-9)
+
+
 class Errors(LammpsTestCase):
 
     def test_too_few_arguments(self):
@@ -335,6 +639,28 @@ class Errors(LammpsTestCase):
         run = self.run_lmp(free_particles(4) + "fix 7 all brownian/heun 1.0 5 gamma_t -1\nrun 1\n",
                            ok=False)
         self.assertLammpsError(run, "Fix brownian/heun (ID 7)", "gamma_t = -1 must be > 0")
+
+    def test_adapt_settings(self):
+        cases = (("adapt", "'adapt' needs a tolerance"),
+                 ("adapt tol -1", "adapt tol = -1 must be > 0"),
+                 ("adapt tol 1e-3 dtmin 0.1 dtmax 0.01", "dtmin = 0.1 is larger than dtmax"),
+                 ("adapt tol 1e-3 speed 2", "unknown adapt keyword 'speed'"),
+                 ("adapt tol 1e-3 safety 1.5", "adapt safety = 1.5 must be < 1"))
+        for words, fragment in cases:
+            run = self.run_lmp(free_particles(4) +
+                               f"fix 7 all brownian/heun 1.0 5 gamma_t 1.0 rng none {words}\nrun 1\n",
+                               ok=False)
+            self.assertLammpsError(run, "Fix brownian/heun (ID 7)", fragment)
+
+    def test_adapt_needs_gaussian_noise_and_no_dt_reset(self):
+        run = self.run_lmp(free_particles(4) +
+                           "fix 7 all brownian/heun 1.0 5 gamma_t 1.0 adapt tol 1e-3\nrun 1\n",
+                           ok=False)
+        self.assertLammpsError(run, "Fix brownian/heun (ID 7)", "add 'rng gaussian'")
+        run = self.run_lmp(free_particles(4) +
+                           "fix 7 all brownian/heun 1.0 5 gamma_t 1.0 rng none adapt tol 1e-3\n"
+                           "fix r all dt/reset 1 NULL NULL 0.01\nrun 1\n", ok=False)
+        self.assertLammpsError(run, "Fix brownian/heun (ID 7)", "fix r (dt/reset)")
 
     def test_two_drivers(self):
         script = active_tissue("brownian/heun") + \

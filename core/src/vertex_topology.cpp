@@ -48,6 +48,24 @@ bool cell_valid(const VertexTissue &t, int c, std::vector<double> &xy, std::vect
   return polygon_defect(xy.data(), static_cast<int>(r.size()), ids.data()) == PolygonDefect::None;
 }
 
+// How close edge (a, b) of cell c comes to folding onto c's other edges at
+// its ends: the smallest of l and, for each of those edges sharper than 90
+// degrees to it, the distance from the far end to that edge's line.
+double fold_length(const VertexTissue &t, int c, int a, int b, double l) {
+  const std::vector<int> &r = t.rings[c];
+  double s = l;
+  for (int end = 0; end < 2; ++end) {
+    const int v = end ? b : a, o = end ? a : b;
+    const int k = index_in(r, v);
+    const int q = ring_next(r, k) == o ? ring_prev(r, k) : ring_next(r, k);
+    const Vec2 u = t.delta(v, o), w = t.delta(v, q);
+    const double lw = std::sqrt(w.x * w.x + w.y * w.y);
+    if (u.x * w.x + u.y * w.y > 0.0 && lw > 0.0)
+      s = std::min(s, std::fabs(u.x * w.y - u.y * w.x) / lw);
+  }
+  return s;
+}
+
 // Every cell of the event, and every cell across an edge of one of those, is
 // complete: the rule's reads (doc/model.md).
 bool decidable(const VertexTissue &t, const EdgeMap &m, const TopologyEvent &e) {
@@ -96,14 +114,20 @@ std::vector<TopologyEvent> find_events(const VertexTissue &t, const EdgeMap &m,
           std::swap(a, b);
         const Vec2 d = t.delta(a, b);
         const double l = std::sqrt(d.x * d.x + d.y * d.y);
-        if (!(l < p.t1_length))
+        const int X = m.cell(a, b), Y = m.cell(b, a);
+        // The edge's size: its length, or less if it nearly folds onto
+        // another edge at its ends (the corners of X and Y there).
+        double size = l;
+        for (int cell : {X, Y})
+          if (t.complete(cell))
+            size = fold_length(t, cell, a, b, size);
+        if (!(size < p.t1_length))
           continue;
         const std::uint64_t key =
             (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
             static_cast<std::uint32_t>(b);
         if (!seen.insert(key).second)
           continue;
-        const int X = m.cell(a, b), Y = m.cell(b, a);
         // A T1 would leave a three-sided neighbour with two sides: no candidate.
         if (X >= 0 && t.rings[X].size() < 4)
           continue;
@@ -111,7 +135,7 @@ std::vector<TopologyEvent> find_events(const VertexTissue &t, const EdgeMap &m,
           continue;
         TopologyEvent e;
         e.kind = TopologyEvent::T1;
-        e.size = l;
+        e.size = size;
         e.id0 = t.vid(a);
         e.id1 = t.vid(b);
         e.a = a;
@@ -154,24 +178,42 @@ std::vector<EventStatus> decide_events(const VertexTissue &t, const EdgeMap &m,
   return status;
 }
 
-void t1_positions(const VertexTissue &t, const TopologyEvent &e, double l_new, Vec2 &a_new,
-                  Vec2 &b_new) {
-  const Vec2 d = t.delta(e.a, e.b);
-  const double l = std::sqrt(d.x * d.x + d.y * d.y);
-  Vec2 nrm{0.0, 1.0};
-  if (l > 0.0) {
-    nrm = Vec2{-d.y / l, d.x / l};
-  } else {
-    const Vec2 cx = t.measures(e.cells[0]).centroid, cy = t.measures(e.cells[1]).centroid;
-    const Vec2 dc = t.image(cx.x - cy.x, cx.y - cy.y);
-    const double lc = std::sqrt(dc.x * dc.x + dc.y * dc.y);
-    if (lc > 0.0)
-      nrm = Vec2{dc.x / lc, dc.y / lc};
-  }
-  const double h = 0.5 * l_new;
-  a_new = Vec2{t.pos[e.a].x + 0.5 * d.x + h * nrm.x, t.pos[e.a].y + 0.5 * d.y + h * nrm.y};
-  b_new = Vec2{t.pos[e.b].x - 0.5 * d.x - h * nrm.x, t.pos[e.b].y - 0.5 * d.y - h * nrm.y};
+namespace {
+
+// Interior angle (radians, in (0, 2 pi)) of cell c at its vertex v.
+double corner_angle(const VertexTissue &t, int c, int v) {
+  const std::vector<int> &r = t.rings[c];
+  const int k = index_in(r, v);
+  const Vec2 u = t.delta(v, ring_next(r, k)), w = t.delta(v, ring_prev(r, k));
+  double a = std::atan2(u.x * w.y - u.y * w.x, u.x * w.x + u.y * w.y);
+  if (a < 0.0)
+    a += 2.0 * std::acos(-1.0);
+  return a;
 }
+
+// The directions the T1's new edge may take, in order of preference.
+std::vector<Vec2> t1_directions(const VertexTissue &t, const TopologyEvent &e) {
+  std::vector<Vec2> dirs;
+  auto add = [&](double x, double y) {
+    const double l = std::sqrt(x * x + y * y);
+    if (l > 0.0)
+      dirs.push_back(Vec2{x / l, y / l});
+  };
+  const Vec2 cx = t.measures(e.cells[0]).centroid, cy = t.measures(e.cells[1]).centroid;
+  const Vec2 cw = t.measures(e.cells[2]).centroid, cz = t.measures(e.cells[3]).centroid;
+  const Vec2 xy = t.image(cx.x - cy.x, cx.y - cy.y), wz = t.image(cz.x - cw.x, cz.y - cw.y);
+  const Vec2 d = t.delta(e.a, e.b);
+  add(xy.x, xy.y); // from Y towards X
+  add(-d.y, d.x);  // perpendicular to the old edge, into X
+  const double s = -wz.y * xy.x + wz.x * xy.y >= 0.0 ? 1.0 : -1.0;
+  add(-s * wz.y, s * wz.x); // perpendicular to the line W-Z, towards X
+  const double pi = std::acos(-1.0);
+  for (int k = 0; k < 24; ++k)
+    add(std::cos(k * pi / 12), std::sin(k * pi / 12));
+  return dirs;
+}
+
+} // namespace
 
 bool apply_event(VertexTissue &t, const TopologyEvent &e, const TopologyParams &p) {
   std::vector<double> xy;
@@ -189,25 +231,49 @@ bool apply_event(VertexTissue &t, const TopologyEvent &e, const TopologyParams &
     const int a = e.a, b = e.b;
     const std::vector<int> old[4] = {t.rings[X], t.rings[Y], t.rings[W], t.rings[Z]};
     const Vec2 old_a = t.pos[a], old_b = t.pos[b];
-    Vec2 na, nb;
-    t1_positions(t, e, p.t1_new, na, nb);
+    const Vec2 d = t.delta(a, b);
+    const std::vector<Vec2> dirs = t1_directions(t, e);
     std::vector<int> &rx = t.rings[X], &ry = t.rings[Y], &rw = t.rings[W], &rz = t.rings[Z];
     rx.erase(rx.begin() + index_in(rx, b));
     ry.erase(ry.begin() + index_in(ry, a));
     rw.insert(rw.begin() + index_in(rw, a), b);
     rz.insert(rz.begin() + index_in(rz, b), a);
-    t.pos[a] = na;
-    t.pos[b] = nb;
-    for (int c : {X, Y, W, Z})
-      if (!cell_valid(t, c, xy, ids)) {
-        t.rings[X] = old[0];
-        t.rings[Y] = old[1];
-        t.rings[W] = old[2];
-        t.rings[Z] = old[3];
-        t.pos[a] = old_a;
-        t.pos[b] = old_b;
-        return false;
+    // Of the directions that leave the four cells valid, the one whose
+    // sharpest corner at a' or b' is widest.
+    const double h = 0.5 * p.t1_new;
+    double best = -1.0;
+    Vec2 best_a, best_b;
+    for (const Vec2 &n : dirs) {
+      t.pos[a] = Vec2{old_a.x + 0.5 * d.x + h * n.x, old_a.y + 0.5 * d.y + h * n.y};
+      t.pos[b] = Vec2{old_b.x - 0.5 * d.x - h * n.x, old_b.y - 0.5 * d.y - h * n.y};
+      bool ok = true;
+      for (int c : {X, Y, W, Z})
+        if (ok)
+          ok = cell_valid(t, c, xy, ids);
+      if (!ok)
+        continue;
+      double sharpest = 1e300;
+      for (int c : {X, W, Z})
+        sharpest = std::min(sharpest, corner_angle(t, c, a));
+      for (int c : {Y, W, Z})
+        sharpest = std::min(sharpest, corner_angle(t, c, b));
+      if (sharpest > best) {
+        best = sharpest;
+        best_a = t.pos[a];
+        best_b = t.pos[b];
       }
+    }
+    if (best < 0.0) {
+      t.rings[X] = old[0];
+      t.rings[Y] = old[1];
+      t.rings[W] = old[2];
+      t.rings[Z] = old[3];
+      t.pos[a] = old_a;
+      t.pos[b] = old_b;
+      return false;
+    }
+    t.pos[a] = best_a;
+    t.pos[b] = best_b;
     return true;
   }
   // T2

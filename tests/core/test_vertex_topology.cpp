@@ -64,8 +64,8 @@ TEST(VertexTopology, T1OnAHoneycomb) {
     before[c] = t.rings[c].size();
   ASSERT_EQ(tessera::decide_events(t, m, ev)[0], EventStatus::Carry);
   const double area = total_area(t);
-  const tessera::Vec2 mid{t.pos[e.a].x + 0.5 * t.delta(e.a, e.b).x,
-                          t.pos[e.a].y + 0.5 * t.delta(e.a, e.b).y};
+  const tessera::Vec2 old_d = t.delta(e.a, e.b);
+  const tessera::Vec2 mid{t.pos[e.a].x + 0.5 * old_d.x, t.pos[e.a].y + 0.5 * old_d.y};
   ASSERT_TRUE(tessera::apply_event(t, e, p));
   EXPECT_NO_THROW(tessera::check_tissue(t));
   EXPECT_EQ(t.rings[e.cells[0]].size(), before[e.cells[0]] - 1);
@@ -76,6 +76,7 @@ TEST(VertexTopology, T1OnAHoneycomb) {
   // midpoint, shared by W and Z (W holds b -> a).
   const tessera::Vec2 d = t.delta(e.a, e.b);
   EXPECT_NEAR(std::hypot(d.x, d.y), 0.08, 1e-12);
+  EXPECT_NEAR(d.x * old_d.x + d.y * old_d.y, 0.0, 1e-12);
   const tessera::Vec2 c =
       t.image(t.pos[e.a].x + 0.5 * d.x - mid.x, t.pos[e.a].y + 0.5 * d.y - mid.y);
   EXPECT_NEAR(c.x, 0.0, 1e-12);
@@ -89,11 +90,12 @@ TEST(VertexTopology, T1OnAHoneycomb) {
 // A T1 whose new edge would not fit (cells too thin) is refused and
 // changes nothing.
 TEST(VertexTopology, T1RefusedWhenTheResultIsInvalid) {
-  VertexTissue t = vtest::honeycomb(6, 4);
+  VertexTissue t = vtest::honeycomb(12, 12);
   const int X = 7, a0 = t.rings[X][0], b0 = t.rings[X][1];
   shrink_edge(t, a0, b0, 0.01);
   const tessera::EdgeMap m(t);
-  const TopologyParams p{0.05, 3.0, 0.0}; // a new edge longer than the cells
+  // A new edge too long to fit: its ends would lie outside the four cells.
+  const TopologyParams p{0.05, 5.0, 0.0};
   const std::vector<TopologyEvent> ev = tessera::find_events(t, m, p);
   ASSERT_EQ(ev.size(), 1u);
   const VertexTissue before = t;

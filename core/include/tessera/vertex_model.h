@@ -206,7 +206,12 @@ enum class EventStatus { Carry, Wait, Undecidable };
 std::vector<EventStatus> decide_events(const VertexTissue &t, const EdgeMap &m,
                                        const std::vector<TopologyEvent> &events);
 
-// Carries out one event (T1: new positions of a and b, rings of X, Y, W, Z;
+// Carries out one event (T1: a and b moved to m +- l_new/2 n about their
+// midpoint m (a stays in X, b in Y) and the rings of X, Y, W, Z edited;
+// of the directions n tried in turn (from Y's centroid to X's, perpendicular
+// to the old edge, perpendicular to the line from W's centroid to Z's, then 24
+// evenly spaced ones) the one that leaves the four cells valid with the
+// widest sharpest corner at a and b;
 // T2: the triangle's ring emptied, its vertex of smallest ID moved to its
 // centroid and joined to the three neighbours, the other two marked
 // removed).  Returns false and changes nothing if the result would not be
@@ -218,12 +223,6 @@ bool apply_event(VertexTissue &t, const TopologyEvent &e, const TopologyParams &
 // One topology step of a whole tissue: find, decide, apply; returns the
 // number of events carried out (refused ones counted in *refused).
 int topology_step(VertexTissue &t, const TopologyParams &p, int *refused = nullptr);
-
-// The T1's new positions of a and b (a' in X, b' in Y), from the positions
-// in t: midpoint m of (a, b) -/+ l_new/2 along n = unit(rot90(b - a)) (into
-// X), or along the direction from Y's centroid to X's if a and b coincide.
-void t1_positions(const VertexTissue &t, const TopologyEvent &e, double l_new, Vec2 &a_new,
-                  Vec2 &b_new);
 
 // Division of cell c by the line through its centroid perpendicular to the
 // unit vector axis: the daughter on the side +axis is a new cell (same type,

@@ -31,17 +31,20 @@ using namespace LAMMPS_NS;
 void CreateVertices::command(int narg, char **arg)
 {
   if (narg < 2)
-    error->all(FLERR, "Illegal create_vertices command: expected 'create_vertices group-ID "
-                      "vertex-type [maxsides W]'");
+    error->all(FLERR,
+               "Illegal create_vertices command: expected 'create_vertices group-ID "
+               "vertex-type [maxsides W]'");
   if (domain->box_exist == 0)
     error->all(FLERR, "create_vertices command before the simulation box is defined");
   if (domain->dimension != 2 || !domain->xperiodic || !domain->yperiodic)
-    error->all(FLERR, "create_vertices needs a 2d box periodic in x and y ('dimension 2', "
-                      "'boundary p p p')");
+    error->all(FLERR,
+               "create_vertices needs a 2d box periodic in x and y ('dimension 2', "
+               "'boundary p p p')");
   if (atom->tag_enable == 0) error->all(FLERR, "create_vertices requires atom IDs");
   if (atom->map_style == 0)
-    error->all(FLERR, "create_vertices needs an atom map: add 'atom_modify map yes' before the "
-                      "box is created");
+    error->all(FLERR,
+               "create_vertices needs an atom map: add 'atom_modify map yes' before the "
+               "box is created");
   const int igroup = group->find(arg[0]);
   if (igroup < 0) error->all(FLERR, "create_vertices: no group '{}'", arg[0]);
   const int groupbit = group->bitmask[igroup];
@@ -66,11 +69,13 @@ void CreateVertices::command(int narg, char **arg)
     for (int i = 0; i < atom->nlocal; i++)
       for (int k = 0; k < width; k++) atom->iarray[index][i][k] = 0;
   } else if (flag != 0 || cols <= 0) {
-    error->all(FLERR, "create_vertices: 'vring' must be an integer array (fix vring all "
-                      "property/atom i2_vring W)");
+    error->all(FLERR,
+               "create_vertices: 'vring' must be an integer array (fix vring all "
+               "property/atom i2_vring W)");
   } else if (width > 0 && width != cols) {
-    error->all(FLERR, "create_vertices: maxsides {} differs from the {} columns of the existing "
-                      "i2_vring",
+    error->all(FLERR,
+               "create_vertices: maxsides {} differs from the {} columns of the existing "
+               "i2_vring",
                width, cols);
   }
   width = cols;
@@ -115,7 +120,9 @@ void CreateVertices::command(int narg, char **arg)
                  MPI_DOUBLE, world);
   std::vector<int> order(ncell);
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return alltag[a] < alltag[b]; });
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return alltag[a] < alltag[b];
+  });
   std::vector<double> xy(2 * static_cast<size_t>(ncell));
   std::vector<int> t0(ncell);
   std::vector<long> ids(ncell);
@@ -125,8 +132,8 @@ void CreateVertices::command(int narg, char **arg)
     t0[c] = alltype[order[c]] - 1;
     ids[c] = static_cast<long>(alltag[order[c]]);
   }
-  tessera::Box box = tessera::Box::rect(domain->boxlo[0], domain->boxhi[0], domain->boxlo[1],
-                                        domain->boxhi[1]);
+  tessera::Box box =
+      tessera::Box::rect(domain->boxlo[0], domain->boxhi[0], domain->boxlo[1], domain->boxhi[1]);
   box.xy = domain->triclinic ? domain->xy : 0.0;
   tessera::wrap_into_box(box, xy);
   tessera::VertexTissue tissue;
@@ -180,8 +187,9 @@ void CreateVertices::command(int narg, char **arg)
   bigint all = 0;
   MPI_Allreduce(&created, &all, 1, MPI_LMP_BIGINT, MPI_SUM, world);
   if (all != nv)
-    error->all(FLERR, "create_vertices: created {} vertex atoms of {} (some fell between "
-                      "sub-domains); please report this",
+    error->all(FLERR,
+               "create_vertices: created {} vertex atoms of {} (some fell between "
+               "sub-domains); please report this",
                all, nv);
   atom->natoms += nv;
   if (atom->natoms < 0 || atom->natoms >= MAXBIGINT)

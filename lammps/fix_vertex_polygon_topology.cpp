@@ -58,8 +58,8 @@ bigint FixVertexPolygon::run_topology()
   // The patch: the cells this rank sees, by ID, and their vertices.
   tessera::VertexTissue t;
   t.periodic = true;
-  t.box = tessera::Box::rect(domain->boxlo[0], domain->boxhi[0], domain->boxlo[1],
-                             domain->boxhi[1]);
+  t.box =
+      tessera::Box::rect(domain->boxlo[0], domain->boxhi[0], domain->boxlo[1], domain->boxhi[1]);
   t.box.xy = domain->triclinic ? domain->xy : 0.0;
   std::unordered_map<tagint, int> cell_of, vertex_of;
   for (int i = 0; i < nall; i++) {
@@ -71,7 +71,7 @@ bigint FixVertexPolygon::run_topology()
       const tagint v = ring[i][k];
       const auto ins = vertex_of.emplace(v, t.n_vertices());
       if (ins.second) {
-        const int j = atom->map(v);
+        const int j = v > 0 && v <= atom->map_tag_max ? atom->map(v) : -1;
         t.pos.push_back(j >= 0 ? tessera::Vec2{canon[2 * j], canon[2 * j + 1]} : tessera::Vec2{});
         t.vertex_known.push_back(j >= 0);
         t.vertex_id.push_back(v);
@@ -132,7 +132,8 @@ bigint FixVertexPolygon::run_topology()
     if (status[e] == tessera::EventStatus::Undecidable)
       thin(fmt::format("the neighbourhood of a {} candidate ({} {} {})", kind_name(ev),
                        ev.kind == tessera::TopologyEvent::T1 ? "edge between vertices" : "cell",
-                       ev.id0, ev.kind == tessera::TopologyEvent::T1 ? std::to_string(ev.id1) : ""));
+                       ev.id0,
+                       ev.kind == tessera::TopologyEvent::T1 ? std::to_string(ev.id1) : ""));
     if (status[e] != tessera::EventStatus::Carry) continue;
     const bool counter = ev.cells[0] >= 0 && owned(t.cid(ev.cells[0]));
     // A T1 makes W and Z one side longer: refused if a ring would not fit.

@@ -37,7 +37,7 @@ PairVertexPolygon::PairVertexPolygon(LAMMPS *lmp) : Pair(lmp)
   manybody_flag = 1;
   centroidstressflag = CENTROID_NOTAVAIL;
   nextra = 4;
-  pvector = stats;
+  pvector = pvec;
   fix_id = std::string("VERTEX_POLYGON_") + std::to_string(instance_me);
 }
 
@@ -67,8 +67,8 @@ void PairVertexPolygon::find_rings()
   int flag = -1, cols = -1;
   int index = atom->find_custom("vring", flag, cols);
   if (index < 0 && restart_ring_width > 0 && modify->find_fix(ring_fix_id()) < 0) {
-    modify->add_fix(fmt::format("{} all property/atom i2_vring {}", ring_fix_id(),
-                                restart_ring_width));
+    modify->add_fix(
+        fmt::format("{} all property/atom i2_vring {}", ring_fix_id(), restart_ring_width));
     index = atom->find_custom("vring", flag, cols);
   }
   if (index < 0)
@@ -96,13 +96,15 @@ void PairVertexPolygon::find_rings()
 void PairVertexPolygon::init_style()
 {
   if (domain->dimension != 2)
-    error->all(FLERR, "pair_style vertex/polygon: the vertex model is two-dimensional ('dimension 2')");
+    error->all(FLERR,
+               "pair_style vertex/polygon: the vertex model is two-dimensional ('dimension 2')");
   if (!domain->xperiodic || !domain->yperiodic)
     error->all(FLERR,
                "pair_style vertex/polygon: the box must be periodic in x and y ('boundary p p p'); "
                "tissues with free edges are not supported yet");
   if (force->newton_pair == 0)
-    error->all(FLERR, "pair_style vertex/polygon requires 'newton on' (forces go to ghost vertices)");
+    error->all(FLERR,
+               "pair_style vertex/polygon requires 'newton on' (forces go to ghost vertices)");
   if (atom->tag_enable == 0) error->all(FLERR, "pair_style vertex/polygon requires atom IDs");
   if (atom->map_style == 0)
     error->all(FLERR,
@@ -128,20 +130,22 @@ void PairVertexPolygon::init_style()
   build_model();
   // Lengths against the cells' size: a T1 moves two vertices by about
   // l_new / 2, which must stay small against a cell.
-  double a0min = 0.0;
+  // (The largest preferred area: a type of cells meant to shrink away may
+  // have a tiny one.)
+  double a0max = 0.0;
   for (int t = 1; t <= atom->ntypes; t++)
-    if (role(t) == CELL) a0min = a0min > 0.0 ? MIN(a0min, area0[t]) : area0[t];
-  const double size = std::sqrt(a0min);
+    if (role(t) == CELL) a0max = MAX(a0max, area0[t]);
+  const double size = std::sqrt(a0max);
   if (topo.t1_length > 0.0 && topo.t1_new > 0.5 * size)
     error->all(FLERR,
                "pair_style vertex/polygon: t1 new-edge length {} is comparable to the cells' size "
                "sqrt(A0) = {:.4g}; use lengths well below it (e.g. t1 {:.3g} {:.3g})",
                topo.t1_new, size, 0.02 * size, 0.03 * size);
-  if (topo.t2_area > 0.0 && topo.t2_area > 0.25 * a0min)
+  if (topo.t2_area > 0.0 && topo.t2_area > 0.25 * a0max)
     error->all(FLERR,
                "pair_style vertex/polygon: t2 area {} is comparable to the cells' preferred area "
                "{:.4g}; use an area well below it (e.g. t2 {:.3g})",
-               topo.t2_area, a0min, 0.01 * a0min);
+               topo.t2_area, a0max, 0.01 * a0max);
   if (cut_global < 2.0 * size && comm->me == 0)
     error->warning(FLERR,
                    "pair_style vertex/polygon: cutoff {} is less than two cell diameters ({:.3g}); "
@@ -315,18 +319,35 @@ void PairVertexPolygon::refresh()
                  "(i_vring); a cell needs at least three (a cell atom without a polygon?)",
                  tag[i], type[i], n);
     for (int k = 0; k < n; k++) {
-      int j = atom->map(ring[i][k]);
-      if (j < 0) missing_atom(i, ring[i][k], "vertex");
+      // (atom->map reads past its array for IDs beyond the largest)
+      const tagint id = ring[i][k];
+      int j = id > 0 && id <= atom->map_tag_max ? atom->map(id) : -1;
+      if (j < 0) missing_atom(i, id, "vertex");
       if (role(type[j]) != VERTEX)
         error->one(FLERR,
                    "pair_style vertex/polygon: cell {} lists atom {} in its ring, which is not a "
                    "vertex (its type {} is {}; vertex and cell types mixed up?)",
-                   tag[i], ring[i][k], type[j], role(type[j]) == CELL ? "a cell type" : "no vertex type");
+                   tag[i], ring[i][k], type[j],
+                   role(type[j]) == CELL ? "a cell type" : "no vertex type");
       j = domain->closest_image(i, j);
       ring_local.push_back(j);
       const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1];
-      reach_local = MAX(reach_local, std::sqrt(dx * dx + dy * dy));
+      const double dist = std::sqrt(dx * dx + dy * dy);
+      // Only copies within the ghost shell are sure to be the right image.
+      if (dist > cut_global)
+        error->one(FLERR,
+                   "pair_style vertex/polygon: vertex {} of cell {} is {:.4g} from the cell atom, "
+                   "beyond the cutoff {}: use a cutoff of at least 3.5 cell diameters (a cell "
+                   "atom far from its polygon, or cells larger than the cutoff)",
+                   ring[i][k], tag[i], dist, cut_global);
+      reach_local = MAX(reach_local, dist);
     }
+  }
+  off[nlocal] = static_cast<int>(ring_local.size());
+  // Then, with every ring's vertices known to exist, the cells across edges.
+  nbr_local.resize(ring_local.size());
+  for (int i = 0; i < nlocal; i++) {
+    const int n = off[i + 1] - off[i];
     for (int k = 0; k < n; k++) {
       const tagint a = ring[i][k], b = ring[i][k + 1 == n ? 0 : k + 1];
       const auto it = edge.find(std::make_pair(b, a));
@@ -344,10 +365,9 @@ void PairVertexPolygon::refresh()
                    "close, or the cutoff {} is too small (use about 3.5 cell diameters)",
                    a, b, tag[i], cut_global);
       }
-      nbr_local.push_back(it->second);
+      nbr_local[off[i] + k] = it->second;
     }
   }
-  off[nlocal] = static_cast<int>(ring_local.size());
   MPI_Allreduce(&reach_local, &reach, 1, MPI_DOUBLE, MPI_MAX, world);
 
   // Every vertex in exactly three cells: each owned cell counts itself at
@@ -448,6 +468,12 @@ void PairVertexPolygon::compute(int eflag, int vflag)
   }
   if (eflag_global) eng_vdwl += energy;
   if (vflag_fdotr) virial_fdotr_compute();
+  publish_stats();
+}
+
+void PairVertexPolygon::publish_stats()
+{
+  for (int k = 0; k < 4; k++) pvec[k] = comm->me == 0 ? stats[k] : 0.0;
 }
 
 double PairVertexPolygon::memory_usage()

@@ -91,9 +91,12 @@ class PairVertexPolygon : public Pair {
   double reach = 0.0;
   bool surely_inside_ghosts(const double *x, double margin) const;
 
-  // Counts, the pair style's global vector: T1s, T2s, refused events,
-  // topology steps.
+  // Counts since the style was defined (the same on every rank): T1s, T2s,
+  // refused events, topology steps.  The pair style's global vector, which
+  // compute pair sums over ranks, holds them on rank 0 (pvec).
   double stats[4] = {0.0, 0.0, 0.0, 0.0};
+  double pvec[4] = {0.0, 0.0, 0.0, 0.0};
+  void publish_stats();
   int request = 0;    // some owned cell is a topology candidate
   // The steps the internal fix scheduled: a topology step (asked for at the
   // end of the step before) and the deletion of atoms a T2 removed.

@@ -113,8 +113,7 @@ void PairVertexPolygon::coeff(int narg, char **arg)
   };
   int count = 0;
   if (strcmp(arg[2], "vertex") == 0) {
-    if (narg != 3)
-      error->all(FLERR, "pair_coeff of vertex/polygon: 'I I vertex' takes no values");
+    if (narg != 3) error->all(FLERR, "pair_coeff of vertex/polygon: 'I I vertex' takes no values");
     for (int i = ilo; i <= ihi; i++)
       for (int j = MAX(jlo, i); j <= jhi; j++) {
         if (i != j) continue;

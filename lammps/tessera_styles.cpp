@@ -256,10 +256,15 @@ std::vector<TesseraStyle> LAMMPS_NS::tessera_register_plugin(LAMMPS *lmp, void *
         result.provided = !host_has(lmp->input->command_map, entry.name, entry.cmd);
     }
     // a second `plugin load` of the same file: those entries are ours already
-    const bool loaded = entry.pair      ? is_ours(lmp->force->pair_map, entry.name, entry.pair)
-                        : entry.fix     ? is_ours(lmp->modify->fix_map, entry.name, entry.fix)
-                        : entry.compute ? is_ours(lmp->modify->compute_map, entry.name, entry.compute)
-                                        : is_ours(lmp->input->command_map, entry.name, entry.cmd);
+    bool loaded;
+    if (entry.pair)
+      loaded = is_ours(lmp->force->pair_map, entry.name, entry.pair);
+    else if (entry.fix)
+      loaded = is_ours(lmp->modify->fix_map, entry.name, entry.fix);
+    else if (entry.compute)
+      loaded = is_ours(lmp->modify->compute_map, entry.name, entry.compute);
+    else
+      loaded = is_ours(lmp->input->command_map, entry.name, entry.cmd);
     if (result.provided && !loaded) {
       reg(&plugin, lmp);
       fresh++;

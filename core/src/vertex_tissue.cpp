@@ -262,20 +262,30 @@ VertexTissue vertex_tissue_from_voronoi(const Box &box, const Points &pts, const
   t.type.assign(type, type + n);
   if (ids)
     t.cell_id.assign(ids, ids + n);
+  // Vertices numbered in the order of their keys, which depends neither on
+  // where a polygon's list starts nor on the order of the triangles.
   std::map<Key, int> index;
-  for (int c = 0; c < n; ++c) {
+  std::map<Key, Vec2> where;
+  std::vector<std::vector<Key>> ring_keys(n);
+  for (int c = 0; c < n; ++c)
     for (int k = tess.cell_offset[c]; k < tess.cell_offset[c + 1]; ++k) {
       const int tri = tess.cell_vertex[k];
-      const auto found = index.emplace(key_of(tri), t.n_vertices());
-      if (found.second) {
-        // Wrapped into the box (fractional coordinates in [0, 1)).
-        std::vector<double> p = {tess.vertices[tri].x, tess.vertices[tri].y};
-        wrap_into_box(box, p);
-        t.pos.push_back(Vec2{p[0], p[1]});
-      }
-      t.rings[c].push_back(found.first->second);
+      const Key key = key_of(tri);
+      ring_keys[c].push_back(key);
+      if (where.emplace(key, tess.vertices[tri]).second)
+        index.emplace(key, 0);
     }
+  for (auto &kv : index) {
+    kv.second = t.n_vertices();
+    // Wrapped into the box (fractional coordinates in [0, 1)).
+    const Vec2 v = where[kv.first];
+    std::vector<double> p = {v.x, v.y};
+    wrap_into_box(box, p);
+    t.pos.push_back(Vec2{p[0], p[1]});
   }
+  for (int c = 0; c < n; ++c)
+    for (const Key &key : ring_keys[c])
+      t.rings[c].push_back(index[key]);
   return t;
 }
 

@@ -150,10 +150,12 @@ void check_tissue(const VertexTissue &t);
 
 // The vertex tissue of the Voronoi polygons of n cell centres in a periodic
 // box (tessellate_periodic): cell i is centre i (type[i], cell_id ids[i] if
-// given), one vertex per Voronoi vertex of the periodic tiling, numbered in
-// the order their cells and rings first meet them, at positions wrapped into
-// the box.  Co-circular centres give one vertex per Delaunay triangle, i.e.
-// several vertices at one point joined by zero-length edges.
+// given), one vertex per Voronoi vertex of the periodic tiling, at positions
+// wrapped into the box, numbered in an order that depends only on the
+// centres' order and the tiling (the vertex's three centres and their image
+// shifts, sorted), not on how the tessellation lists them.  Co-circular
+// centres give one vertex per Delaunay triangle, i.e. several vertices at
+// one point joined by zero-length edges.
 VertexTissue vertex_tissue_from_voronoi(const Box &box, const Points &pts, const int *type,
                                         const long *ids = nullptr);
 

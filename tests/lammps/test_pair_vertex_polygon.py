@@ -343,11 +343,12 @@ class DataAndRestart(LammpsTestCase):
     """write_data/read_data carry the rings; a restart file continues the run."""
 
     def test_data_file_round_trip(self):
-        first = self.run_lmp(data_start() + dynamics(200) + "write_data mid.data\n")
+        energy = 'print "E $(pe:%.17g)"\n'
+        first = self.run_lmp(data_start() + dynamics(200) + energy + "write_data mid.data\n")
         mid = first.text("mid.data")
-        again = self.run_lmp(from_data("mid.data") + dynamics(0), files={"mid.data": mid})
-        e1 = float(re.findall(r"^\s*200 (\S+)", first.stdout, re.M)[-1])
-        e2 = float(re.findall(r"^\s*0 (\S+)", again.stdout, re.M)[-1])
+        again = self.run_lmp(from_data("mid.data") + dynamics(0) + energy,
+                             files={"mid.data": mid})
+        e1, e2 = printed(first, "E")[0][0], printed(again, "E")[0][0]
         self.assertAlmostEqual(e1, e2, delta=1e-12 * abs(e1))
         self.assertAlmostEqual(e2, written_energy(mid, DYNAMICS_TYPES, 0.0), delta=1e-10 * abs(e2))
 

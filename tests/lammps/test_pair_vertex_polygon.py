@@ -354,19 +354,33 @@ class DataAndRestart(LammpsTestCase):
 
     @nprocs(2)
     def test_restart_continues(self):
+        # Restart files every step of the first 60 (where T1s and T2s happen),
+        # and a continuation from the first one written while a topology step
+        # was scheduled for the next step, and from step 60.
         data = self.run_lmp(data_start()).text("start.data")
-        full = self.run_lmp(from_data() + "restart 300 r.*\n" + dynamics(600) + """
+        first = dynamics(60).replace("thermo 100", "thermo 1").replace(
+            "thermo_style custom step pe c_t[1] c_t[2] c_t[3] atoms",
+            "thermo_style custom step pe c_t[1] c_t[2] c_t[3] atoms c_t[4]")
+        full = self.run_lmp(from_data() + "restart 1 r.*\n" + first + "restart 0\nrun 240\n"
+                            'print "N $(c_t[1]) $(c_t[2]) $(atoms)"\n' + """
 write_dump all custom end.dump id xu yu modify format float %.17g sort id
 """, files={"start.data": data})
-        self.assertGreater(printed(full, "N")[0][0], 5)    # T1s ...
-        self.assertGreater(printed(full, "N")[0][1], 0)    # ... and T2s
-        for n in (1, 2):
-            rest = self.run_lmp(continuation(full.path("r.300"), 300), nprocs=n)
+        final = printed(full, "N")[-1]
+        self.assertGreater(final[0], 5)    # T1s ...
+        self.assertGreater(final[1], 0)    # ... and T2s
+        steps = {int(m.group(1)): float(m.group(2)) for m in re.finditer(
+            r"(?m)^\s*(\d+)(?:\s+[-+.\deE]+){4}\s+\d+\s+([-+.\deE]+)\s*$", full.stdout)}
+        scheduled = [s for s in range(1, 60) if steps.get(s + 1, 0) > steps.get(s, 0)]
+        self.assertTrue(scheduled, "no topology step in the first 60 steps")
+        for start_step, n in ((scheduled[0], 1), (60, 2)):
+            rest = self.run_lmp(continuation(full.path("r.%d" % start_step), 300 - start_step),
+                                nprocs=n)
             a, b = full.dump("end.dump")[0], rest.dump("end.dump")[0]
-            self.assertEqual(printed(full, "N")[0], printed(rest, "N")[0])
+            self.assertEqual(final, printed(rest, "N")[0])
             np.testing.assert_array_equal(a["id"], b["id"])
             for col in ("xu", "yu"):
-                np.testing.assert_allclose(a[col], b[col], rtol=0, atol=1e-9)
+                np.testing.assert_allclose(a[col], b[col], rtol=0, atol=1e-9,
+                                           err_msg="from step %d" % start_step)
 
 
 class Integrators(LammpsTestCase):

@@ -355,3 +355,56 @@ TEST(VertexTissue, SquareLatticeGivesZeroLengthEdges) {
 }
 
 } // namespace
+
+namespace {
+
+// The vertex model's cells in the consumers' view: every cell a slot, the
+// pieces its edges, the neighbours the cells across, the derived quantities
+// (neighbour count, centroid, principal axis) those of the polygons.
+TEST(VertexCells, ViewOfAStretchedHoneycomb) {
+  VertexTissue t = vtest::honeycomb(6, 4);
+  vtest::deform(t, 1.2, 0.0, 1.0 / 1.2);
+  const tessera::EdgeMap m(t);
+  std::vector<double> centres;
+  for (int c = 0; c < t.n_cells(); ++c) {
+    const tessera::Vec2 cm = t.measures(c).centroid;
+    centres.push_back(cm.x);
+    centres.push_back(cm.y);
+  }
+  tessera::PolygonCells view;
+  // Slots 0 .. n-1 hold the cells, one more slot stays empty.
+  view.clear(t.n_cells() + 1, t.n_cells(), tessera::Points{centres.data(), t.n_cells(), 2});
+  std::vector<double> xy;
+  for (int c = 0; c < t.n_cells(); ++c) {
+    t.polygon(c, xy);
+    std::vector<int> nbr;
+    for (size_t k = 0; k < t.rings[c].size(); ++k)
+      nbr.push_back(tessera::twin_cell(t, m, c, static_cast<int>(k)));
+    const tessera::PolygonMeasures pm = t.measures(c);
+    view.add_cell(c, xy.data(), static_cast<int>(nbr.size()), nbr.data(), pm.area, pm.perimeter);
+  }
+  view.finish();
+  const int n = t.n_cells();
+  EXPECT_EQ(view.piece_begin(n), view.piece_end(n)); // the empty slot
+  const tessera::Contacts con = view.contacts();
+  for (int c = 0; c < n; ++c) {
+    EXPECT_NEAR(view.measure(c), 1.0, 1e-12);
+    EXPECT_EQ(view.coordination_number(c), 6);
+    double x[2];
+    view.centroid(c, x);
+    EXPECT_NEAR(x[0], centres[2 * c], 1e-12);
+    EXPECT_NEAR(x[1], centres[2 * c + 1], 1e-12);
+    ASSERT_TRUE(view.principal_axis(c, true, x));
+    EXPECT_NEAR(std::fabs(x[0]), 1.0, 1e-9);
+    // Each neighbour lists this cell back.
+    for (int k = con.offset[c]; k < con.offset[c + 1]; ++k) {
+      const int o = con.neighbor[k];
+      bool back = false;
+      for (int j = con.offset[o]; j < con.offset[o + 1]; ++j)
+        back = back || con.neighbor[j] == c;
+      EXPECT_TRUE(back);
+    }
+  }
+}
+
+} // namespace

@@ -19,6 +19,7 @@
 // forces and the topology layer on the patch of cells a rank sees.
 #pragma once
 
+#include "tessera/cells.h"
 #include "tessera/energy.h"
 #include "tessera/tessellation.h"
 
@@ -234,5 +235,47 @@ int topology_step(VertexTissue &t, const TopologyParams &p, int *refused = nullp
 // ends.  Returns the new cell's index, or -1 (nothing changed) if the line
 // does not cross the boundary exactly twice or a result would not be valid.
 int divide_cell(VertexTissue &t, int c, Vec2 axis, long new_cell_id = 0, long new_vertex_id = 0);
+
+// ---- The cells in the view every consumer reads (tessera/cells.h) ----
+
+// The vertex model's cells as a CellView: n_owned slots, owned cell c in
+// slot c; a slot without a cell (a vertex atom, in LAMMPS) is an empty cell.
+// A cell's pieces are its edges, each with the point (cell) across it and its
+// two corners.  Filled by the model at each force computation: clear(), then
+// add_cell() for the slots that hold cells, in increasing order, then
+// finish().  Points are the cells' positions (LAMMPS: the cell atoms).
+class PolygonCells : public CellView {
+public:
+  void clear(int n_owned, int n_points, const Points &pts);
+  // Cell c: corners xy (n, counter-clockwise, unwrapped), the point across
+  // each edge k (from corner k to k+1), its area and perimeter.
+  void add_cell(int c, const double *xy, int n, const int *neighbor, double area, double perimeter);
+  void finish();
+
+  int dimension() const override { return 2; }
+  int n_owned() const override { return n_owned_; }
+  int n_points() const override { return n_points_; }
+  double measure(int c) const override { return area_[c]; }
+  double boundary(int c) const override { return perimeter_[c]; }
+  int piece_begin(int c) const override { return offset_[c]; }
+  int piece_end(int c) const override { return offset_[c + 1]; }
+  int piece_neighbor(int k) const override { return neighbor_[k]; }
+  double piece_size(int k) const override { return length_[k]; }
+  int piece_corners(int k, std::vector<double> &xyz) const override {
+    xyz.insert(xyz.end(), corners_.begin() + 4 * k, corners_.begin() + 4 * k + 4);
+    return 2;
+  }
+  void point(int i, double *x) const override {
+    x[0] = pts_.x(i);
+    x[1] = pts_.y(i);
+  }
+  Contacts contacts() const override;
+
+private:
+  int n_owned_ = 0, n_points_ = 0, filled_ = 0;
+  Points pts_;
+  std::vector<int> offset_, neighbor_;
+  std::vector<double> corners_, length_, area_, perimeter_;
+};
 
 } // namespace tessera

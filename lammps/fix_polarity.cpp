@@ -17,7 +17,7 @@
 #include "force.h"
 #include "math_const.h"
 #include "modify.h"
-#include "pair_vertex_voronoi.h"
+#include "cell_source.h"
 #include "update.h"
 
 #include "tessera/counter_rng.h"
@@ -159,11 +159,19 @@ void FixPolarity::init()
                  id, fa_name, fa_name);
   }
 
-  pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  pair = CellSource::find(lmp);
   if (!pair && params.J_S != 0.0)
     error->all(FLERR,
-               "fix polarity: 'neighbor' alignment needs pair_style vertex/voronoi, whose "
-               "tessellation gives the Voronoi neighbours");
+               "fix polarity: 'neighbor' alignment needs pair_style vertex/voronoi or "
+               "vertex/polygon, whose cells give the neighbours");
+  // The vertex model's cell atoms sit at their polygons' centroids and have
+  // no velocity of their own.
+  if (pair && pair->cells_are_vertices() && params.J_V != 0.0)
+    error->all(FLERR,
+               "fix polarity {}: 'velocity' alignment reads each cell's velocity, which the cell "
+               "atoms of pair_style vertex/polygon do not have (they sit at their polygons' "
+               "centroids); leave out 'velocity'",
+               id);
   if (domain->dimension == 3)
     init_angles_3d();
   else
@@ -450,7 +458,7 @@ void FixPolarity::initial_integrate(int /*vflag*/)
 /* Notes which force computation's cells the next step's alignment reads
    (only 'neighbor' alignment reads them).  The pair style keeps their
    neighbour lists even when it computes the cells again for output after
-   the end of the step (fix deform): PairVertexVoronoi::force_contacts(). */
+   the end of the step (fix deform): CellSource::force_contacts(). */
 
 void FixPolarity::record_contacts()
 {
@@ -468,7 +476,7 @@ tessera::Contacts FixPolarity::recorded_contacts(bigint state_step)
   const int n = rec_force == pair->force_count() ? rec_n : -1;
   if (rec_step != state_step || n != atom->nlocal)
     error->one(FLERR,
-               "fix polarity: the tessellation of pair vertex/voronoi is from step {} with {} "
+               "fix polarity: the cells of the pair style are from step {} with {} "
                "cells, the polarities need it for step {} with {}",
                rec_step, n, state_step, atom->nlocal);
   return pair->force_contacts();

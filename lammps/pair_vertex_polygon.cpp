@@ -365,7 +365,7 @@ void PairVertexPolygon::refresh()
                    "close, or the cutoff {} is too small (use about 3.5 cell diameters)",
                    a, b, tag[i], cut_global);
       }
-      nbr_local[off[i] + k] = it->second;
+      nbr_local[off[i] + k] = domain->closest_image(i, it->second);
     }
   }
   MPI_Allreduce(&reach_local, &reach, 1, MPI_DOUBLE, MPI_MAX, world);
@@ -402,6 +402,9 @@ void PairVertexPolygon::compute(int eflag, int vflag)
   double energy = 0.0;
   const double l2 = topo.t1_length * topo.t1_length;
   const bool percell = model.has_cell_params();
+  nforce++;
+  view.clear(nlocal, nlocal + atom->nghost, tessera::Points{&x[0][0], nlocal + atom->nghost, 3});
+  cell_energy.assign(nlocal, 0.0);
   for (int i = 0; i < nlocal; i++) {
     if (role(type[i]) != CELL || ring[i][0] < 0) continue;
     const int n = off[i + 1] - off[i];
@@ -436,6 +439,7 @@ void PairVertexPolygon::compute(int eflag, int vflag)
     }
     if (quad[type[i]]) e += percell ? model.quadratic_constant(i, tc) : energy0[type[i]];
     energy += e;
+    cell_energy[i] = e;
     if (eflag_atom) eatom[i] += e;
     if (vflag_atom) {
       // The cell's own virial, about its centroid, to the cell atom.
@@ -446,6 +450,7 @@ void PairVertexPolygon::compute(int eflag, int vflag)
         vatom[i][3] -= 0.5 * (rx * g[2 * k + 1] + ry * g[2 * k]);
       }
     }
+    view.add_cell(i, xy.data(), n, &nbr_local[off[i]], m.area, m.perimeter);
     x[i][0] = m.centroid.x;
     x[i][1] = m.centroid.y;
     // A topology candidate: ask for a topology step (end_of_step).
@@ -466,9 +471,34 @@ void PairVertexPolygon::compute(int eflag, int vflag)
       }
     }
   }
+  view.finish();
+  view.energy = cell_energy.data();
+  view_step = update->ntimestep;
+  view_natoms = atom->natoms;
   if (eflag_global) eng_vdwl += energy;
   if (vflag_fdotr) virial_fdotr_compute();
   publish_stats();
+}
+
+/* The cells are those of the last force computation: at this timestep, for
+   these atoms (collective). */
+
+void PairVertexPolygon::require_current_cells(const std::string &who)
+{
+  const char *why = nullptr;
+  if (view_step < 0)
+    why = "no force computation yet (the cells exist after a run, e.g. 'run 0')";
+  else if (view_step != update->ntimestep)
+    why = "its cells are those of another step";
+  else if (view_natoms != atom->natoms || view.n_owned() != atom->nlocal)
+    why = "the atoms changed since (atoms created or deleted)";
+  int bad = why ? 1 : 0, any = 0;
+  MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_MAX, world);
+  if (any)
+    error->all(FLERR,
+               "{} reads the cells of pair_style vertex/polygon at step {}, but {}; invoke it on "
+               "a timestep when pair vertex/polygon computed forces",
+               who, update->ntimestep, why ? why : "on another rank they are not this step's");
 }
 
 void PairVertexPolygon::publish_stats()

@@ -12,6 +12,7 @@ PairStyle(vertex/polygon,PairVertexPolygon);
 #ifndef LMP_PAIR_VERTEX_POLYGON_H
 #define LMP_PAIR_VERTEX_POLYGON_H
 
+#include "cell_source.h"
 #include "pair.h"
 
 #include "tessera/vertex_model.h"
@@ -34,7 +35,7 @@ class FixVertexPolygon;
    (fix_vertex_polygon.cpp); the parameters are vertex/voronoi's
    (tessera::Model). */
 
-class PairVertexPolygon : public Pair {
+class PairVertexPolygon : public Pair, public CellSource {
   friend class FixVertexPolygon;
 
  public:
@@ -50,6 +51,20 @@ class PairVertexPolygon : public Pair {
   void write_restart_settings(FILE *) override;
   void read_restart_settings(FILE *) override;
   double memory_usage() override;
+
+  // The cells for the computes and fixes that read them (CellSource): owned
+  // cell c is local atom c, vertex atoms are empty cells; neighbours are the
+  // local copies of the cell atoms across each edge, closest to the cell.
+  // Filled at each force computation.
+  const tessera::CellView &cells() const override { return view; }
+  bigint cells_step() const override { return view_step; }
+  void require_current_cells(const std::string &who) override;
+  tessera::Contacts force_contacts() const override { return view.contacts(); }
+  double force_boundary(int c) const override { return view.boundary(c); }
+  bigint force_count() const override { return nforce; }
+  bigint compute_count() const override { return nforce; }
+  bool is_cell_type(int type) const override { return role(type) == CELL; }
+  bool cells_are_vertices() const override { return true; }
 
   enum Role { NONE = 0, CELL = 1, VERTEX = 2 };
   int role(int type) const { return type >= 1 && type < (int) roles.size() ? roles[type] : NONE; }
@@ -101,6 +116,10 @@ class PairVertexPolygon : public Pair {
   // The steps the internal fix scheduled: a topology step (asked for at the
   // end of the step before) and the deletion of atoms a T2 removed.
   bigint topology_step = -1, delete_step = -1;
+  tessera::PolygonCells view;
+  std::vector<double> cell_energy;    // per local atom, for the view
+  bigint view_step = -1, nforce = 0;
+  bigint view_natoms = -1;    // atom count of the view's step
   std::string fix_id;
   FixVertexPolygon *fix = nullptr;
   void check_integrators() const;

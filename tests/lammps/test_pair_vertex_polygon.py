@@ -503,5 +503,187 @@ run 0
         self.assertLammpsError(run, "beyond the cutoff 0.3")
 
 
+class Consumers(LammpsTestCase):
+    """The computes and fixes that read cells work on the vertex model's cells
+    (the same view as pair_style vertex/voronoi's)."""
+
+    def test_vertex_atom_and_local(self):
+        # Areas, perimeters, neighbour counts and energies of compute
+        # vertex/atom, and the junctions of compute vertex/local, against the
+        # polygons written out from the data file; vertex atoms have zero rows.
+        run = self.run_lmp(start() + coeffs() + """
+compute a all vertex/atom
+compute l all vertex/local
+dump d all custom 1 a.dump id type c_a[1] c_a[2] c_a[3] c_a[4] c_a[5]
+dump_modify d format float %.17g sort id
+dump j all local 1 j.dump c_l[1] c_l[2] c_l[3] c_l[4] c_l[5] c_l[6] c_l[7]
+dump_modify j format float %.17g
+run 0
+print "E $(pe:%.17g)"
+write_data cfg.data
+""")
+        box, atoms, rings, _ = read_data(run.text("cfg.data"))
+        frame = run.dump("a.dump")[0]
+        e = printed(run, "E")[0][0]
+        self.assertAlmostEqual(frame["c_a[5]"].sum(), e, delta=1e-10 * abs(e))
+        for k, i in enumerate(frame["id"]):
+            i = int(i)
+            row = [frame["c_a[%d]" % c][k] for c in range(1, 6)]
+            if i not in rings:
+                self.assertEqual(row, [0.0] * 5)
+                continue
+            pts = polygon(box, atoms, rings[i])
+            nxt = np.roll(pts, -1, axis=0)
+            area = 0.5 * np.sum(pts[:, 0] * nxt[:, 1] - nxt[:, 0] * pts[:, 1])
+            lengths = np.linalg.norm(nxt - pts, axis=1)
+            self.assertAlmostEqual(row[0], area, delta=1e-12)
+            self.assertAlmostEqual(row[1], lengths.sum(), delta=1e-12)
+            self.assertAlmostEqual(row[2], lengths.sum() / math.sqrt(area), delta=1e-12)
+            self.assertEqual(row[3], len(rings[i]))
+        # Junctions: one row per edge, from each side, lengths of the polygons.
+        rows = np.loadtxt(run.path("j.dump"), skiprows=9)
+        self.assertEqual(len(rows), sum(len(r) for r in rings.values()))
+        for i, r in rings.items():
+            mine = rows[rows[:, 0] == i]
+            self.assertEqual(len(mine), len(r))
+            np.testing.assert_allclose(mine[:, 2:4], np.roll(mine[:, 4:6], 1, axis=0), atol=1e-12)
+            np.testing.assert_allclose(np.sort(mine[:, 6]), np.sort(np.linalg.norm(
+                np.roll(polygon(box, atoms, r), -1, axis=0) - polygon(box, atoms, r), axis=1)),
+                atol=1e-12)
+
+    def test_tissue_counts_the_t1s(self):
+        # compute vertex/tissue's neighbour exchanges, counted every step,
+        # against the pair style's own count of T1s (an active fluid, no T2s).
+        dipole = "atom_style hybrid dipole sphere"
+        data = self.run_lmp(start(two_types=False).replace("atom_style atomic", dipole) +
+                            "write_data start.data\n").text("start.data")
+        script = from_data().replace("atom_style atomic", dipole) + """group cells type 1
+fix act cells polarity 0.5 1.0 neighbor 0.2 noise 1.0 7
+""" + dynamics(3000).replace(" t2 0.02", "").replace("1.0 1.0 1.0 3.7", "1.0 1.0 1.0 3.85").replace(
+            "compute t all pair vertex/polygon",
+            "compute t all pair vertex/polygon\ncompute tis all vertex/tissue\n"
+            "variable n equal c_tis[3]\nfix sum all ave/time 1 1 1 v_n mode scalar ave running")
+        script = script.replace('print "N', 'print "S $(f_sum*(step+1))"\nprint "N')
+        run = self.run_lmp(script, files={"start.data": data})
+        t1, t2, _ = printed(run, "N")[0]
+        self.assertGreater(t1, 10)
+        self.assertEqual(t2, 0)
+        self.assertAlmostEqual(printed(run, "S")[0][0], t1, delta=1e-6)
+
+    def test_cell_forces_go_to_the_vertices(self):
+        # fix addforce on the cell atoms: each vertex, in three cells, gets a
+        # third of each, i.e. the whole force; the cell atoms keep none.
+        base = start() + coeffs() + "group cells type 1 2\n"
+        dump = ("run 0\nwrite_dump all custom f.dump id fx fy modify format float %.17g "
+                "sort id\n")
+        plain = self.run_lmp(base + dump).dump("f.dump")[0]
+        pushed = self.run_lmp(base + "fix push cells addforce 0.3 -0.2 0\n" + dump).dump("f.dump")[0]
+        cells = plain["id"] <= 64
+        np.testing.assert_allclose(pushed["fx"][cells], 0.0, atol=1e-14)
+        np.testing.assert_allclose(pushed["fx"][~cells] - plain["fx"][~cells], 0.3, atol=1e-12)
+        np.testing.assert_allclose(pushed["fy"][~cells] - plain["fy"][~cells], -0.2, atol=1e-12)
+
+    def polarity_run(self, fix, after=""):
+        """start() with dipoles, fix polarity (fix) on the cell atoms, run 0,
+        then 'after'; the forces, polarities and the data file of step 0."""
+        dipole = "atom_style hybrid dipole sphere"
+        script = start().replace("atom_style atomic", dipole) + coeffs() + \
+            "group cells type 1 2\n" + fix + """
+run 0
+write_dump all custom f.dump id fx fy mux muy modify format float %.17g sort id
+write_data cfg.data
+""" + after
+        return self.run_lmp(script)
+
+    def test_polarity_force_by_bartons_rule(self):
+        # The active force f_a n_c of each cell goes to its vertices, a third
+        # to each (Barton et al.): a vertex moves with the mean of its three
+        # cells' active forces; so the forces handed to a cell's n vertices
+        # add up to n/3 of its own, and the cell atoms keep none.  Expected
+        # values from the rings of the data file and the dumped polarities.
+        fa = 0.4
+        plain = self.polarity_run("").dump("f.dump")[0]
+        run = self.polarity_run(f"fix act cells polarity {fa} 1.0 seed 5\n")
+        pushed = run.dump("f.dump")[0]
+        _, atoms, rings, _ = read_data(run.text("cfg.data"))
+        index = {int(i): k for k, i in enumerate(pushed["id"])}
+        expect = {v: np.zeros(2) for v in atoms if v not in rings}
+        angles = []
+        for c, r in rings.items():
+            k = index[c]
+            n = np.array([pushed["mux"][k], pushed["muy"][k]])
+            n /= np.linalg.norm(n)
+            angles.append(math.atan2(n[1], n[0]))
+            for v in r:
+                expect[v] += fa * n / 3.0
+        self.assertGreater(np.std(angles), 1.0)    # random polarities, not one direction
+        for v, e in expect.items():
+            k = index[v]
+            got = np.array([pushed["fx"][k] - plain["fx"][k], pushed["fy"][k] - plain["fy"][k]])
+            np.testing.assert_allclose(got, e, rtol=0, atol=1e-12, err_msg="vertex %d" % v)
+        for c in rings:
+            self.assertEqual((pushed["fx"][index[c]], pushed["fy"][index[c]]), (0.0, 0.0))
+        total = sum(expect.values())
+        cells = sum(len(r) / 3.0 * fa * np.array([math.cos(a), math.sin(a)])
+                    for r, a in zip(rings.values(), angles))
+        np.testing.assert_allclose(total, cells, rtol=0, atol=1e-12)
+
+    def test_neighbor_alignment_one_step(self):
+        # One Euler step of the angles: theta_i += dt / gamma_R * J_S *
+        # sum_j sin(theta_j - theta_i) over the cells j sharing an edge with
+        # i (from the rings of the data file).
+        js, gr, dt = 2.0, 1.5, 0.01
+        run = self.polarity_run(f"fix act cells polarity 0.3 {gr} neighbor {js} seed 5\n",
+                                f"""fix move vertices brownian 1.0 1 gamma_t 1.0 rng none
+timestep {dt}
+run 1
+write_dump all custom g.dump id mux muy modify format float %.17g sort id
+""")
+        a, b = run.dump("f.dump")[0], run.dump("g.dump")[0]
+        _, _, rings, _ = read_data(run.text("cfg.data"))
+        index = {int(i): k for k, i in enumerate(a["id"])}
+        theta = {c: math.atan2(a["muy"][index[c]], a["mux"][index[c]]) for c in rings}
+        owner = {}
+        for c, r in rings.items():
+            for k in range(len(r)):
+                owner[(r[k], r[(k + 1) % len(r)])] = c
+        for c, r in rings.items():
+            nbrs = {owner[(r[(k + 1) % len(r)], r[k])] for k in range(len(r))}
+            self.assertEqual(len(nbrs), len(r))
+            want = theta[c] + dt / gr * js * sum(math.sin(theta[j] - theta[c]) for j in nbrs)
+            got = math.atan2(b["muy"][index[c]], b["mux"][index[c]])
+            d = (got - want + math.pi) % (2 * math.pi) - math.pi
+            self.assertAlmostEqual(d, 0.0, delta=1e-12, msg="cell %d" % c)
+
+    @nprocs(2)
+    def test_polarity_flocks_alike_on_two_ranks(self):
+        # fix polarity on the cell atoms (active force, neighbour alignment
+        # through the cells' junctions): the same run on 1 and 2 ranks.
+        data = self.run_lmp(start(two_types=False).replace("atom_style atomic",
+                            "atom_style hybrid dipole sphere") + "write_data start.data\n"
+                            ).text("start.data")
+        script = from_data().replace("atom_style atomic", "atom_style hybrid dipole sphere") + \
+            """group cells type 1
+fix act cells polarity 0.3 1.0 neighbor 0.5 seed 11
+""" + dynamics(300).replace("t2 0.02", "") + """
+print "P $(f_act[1]:%.17g)"
+write_dump all custom end.dump id xu yu mux muy modify format float %.17g sort id
+"""
+        ends = []
+        for n in (1, 2):
+            run = self.run_lmp(script, nprocs=n, files={"start.data": data})
+            ends.append((printed(run, "P")[0][0], run.dump("end.dump")[0]))
+        self.assertGreater(ends[0][0], 0.3)
+        self.assertAlmostEqual(ends[0][0], ends[1][0], delta=1e-9)
+        for col in ("xu", "yu", "mux", "muy"):
+            np.testing.assert_allclose(ends[0][1][col], ends[1][1][col], rtol=0, atol=1e-9)
+
+    def test_velocity_alignment_is_refused(self):
+        script = start().replace("atom_style atomic", "atom_style hybrid dipole sphere") + \
+            coeffs() + "group cells type 1 2\nfix act cells polarity 0.3 1.0 velocity 1.0\nrun 0\n"
+        self.assertLammpsError(self.run_lmp(script, ok=False), "'velocity' alignment",
+                               "pair_style vertex/polygon")
+
+
 if __name__ == "__main__":
     lmptest.main()

@@ -5,6 +5,14 @@
 // points (no periodicity, no Voronoi cells), for N random points at density 1
 // in a periodic square box.  Median of a few repeats.
 //
+// Then the from-scratch triangulation alone, the core's against CGAL's, on
+// the same points: random points, and a run's owned and ghost points (the
+// jittered hexagonal tissue below with its images): the core's plain
+// triangulator (time_plain_delaunay: spatial sort and insertion), the full
+// Mesh::build (with the input checks and the renumbering for the cells),
+// and CGAL's Delaunay_triangulation_2 (range insert, which sorts spatially
+// too).  This thread's CPU time, median of the repeats.
+//
 // Then the per-step path of a run: a jittered hexagonal tissue (points in
 // lattice order, i.e. spatially sorted as LAMMPS keeps atoms, plus their
 // periodic images within 3 as ghosts) whose centres take random steps of
@@ -16,12 +24,17 @@
 // repair against the rebuild from scratch that every fold cost before.
 //
 //   bench_core [max_N] [--steps-only]     (default 1000000)
+//   bench_core --triangulate WHAT KIND N  (one triangulation, for instruction
+//       counts under valgrind --tool=callgrind: WHAT = none (the points
+//       only), plain, build or cgal; KIND = random or tissue)
 #include "tessera/energy.h"
 #include "tessera/mesh.h"
 #include "tessera/tessellation.h"
 
+#ifdef TESSERA_BENCH_CGAL
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#endif
 
 #include <algorithm>
 #include <chrono>
@@ -35,8 +48,6 @@
 
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using DT = CGAL::Delaunay_triangulation_2<Kernel>;
 
 double now_seconds() {
   using clock = std::chrono::steady_clock;
@@ -49,6 +60,25 @@ double cpu_seconds() {
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
+
+#ifdef TESSERA_BENCH_CGAL
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using DT = CGAL::Delaunay_triangulation_2<Kernel>;
+
+// CGAL's plain triangulation of points 0..n-1 (the copy into CGAL's points
+// not timed); returns CPU seconds, the number of finite faces in *faces.
+double cgal_seconds(const std::vector<double> &xy, int n, long *faces) {
+  std::vector<DT::Point> cp;
+  cp.reserve(n);
+  for (int i = 0; i < n; ++i) cp.emplace_back(xy[2 * i], xy[2 * i + 1]);
+  const double t0 = cpu_seconds();
+  DT dt;
+  dt.insert(cp.begin(), cp.end());
+  const double t = cpu_seconds() - t0;
+  *faces = static_cast<long>(dt.number_of_faces());
+  return t;
+}
+#endif
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -243,9 +273,95 @@ double fold_steps(long max_n) {
   return checksum;
 }
 
+// The points of one benchmark case: n random points at density 1, or the
+// hexagonal tissue of about n cells with its images (all of them, as
+// Mesh::build sees them in a run).
+std::vector<double> case_points(const std::string &kind, long n) {
+  if (kind == "tissue") return HexTissue(n).xy;
+  const double side = std::sqrt(static_cast<double>(n));
+  uint64_t seed = 12345 + static_cast<uint64_t>(n);
+  std::vector<double> xy(2 * n);
+  for (double &v : xy) v = side * static_cast<double>(splitmix(seed) >> 11) * 0x1.0p-53;
+  return xy;
+}
+
+// The from-scratch table (see the top of the file).
+double build_table(long max_n) {
+  std::printf("\nFrom-scratch triangulation of the same points: CPU microseconds per point, "
+              "median of the repeats\n\n");
+  std::printf("%9s %7s %5s %12s %12s %12s %12s %10s\n", "points", "kind", "reps", "plain",
+              "Mesh::build", "CGAL DT2", "plain/CGAL", "triangles");
+  double checksum = 0.0;
+  for (long target : {1000L, 10000L, 100000L, 1000000L}) {
+    if (target > max_n) break;
+    for (const std::string kind : {"random", "tissue"}) {
+      const std::vector<double> xy = case_points(kind, target);
+      const int n = static_cast<int>(xy.size() / 2);
+      const tessera::Points pts{xy.data(), n, 2};
+      const int reps = n >= 1000000 ? 3 : n >= 100000 ? 5 : 15;
+      std::vector<double> t_plain, t_build, t_cgal;
+      long faces = 0, cgal_faces = 0;
+      for (int r = 0; r < reps; ++r) {
+        double t0 = cpu_seconds();
+        tessera::time_plain_delaunay(pts, n, &faces);
+        t_plain.push_back(cpu_seconds() - t0);
+        t0 = cpu_seconds();
+        {
+          tessera::Mesh mesh;
+          mesh.build(pts);
+          checksum += mesh.n_points();
+        }
+        t_build.push_back(cpu_seconds() - t0);
+#ifdef TESSERA_BENCH_CGAL
+        t_cgal.push_back(cgal_seconds(xy, n, &cgal_faces));
+#else
+        t_cgal.push_back(std::nan(""));
+        cgal_faces = faces;
+#endif
+      }
+      if (faces != cgal_faces)
+        std::printf("(triangle counts differ: %ld, CGAL %ld)\n", faces, cgal_faces);
+      const double us = 1e6 / n;
+      std::printf("%9d %7s %5d %12.3f %12.3f %12.3f %12.3f %10ld\n", n, kind.c_str(), reps,
+                  median(t_plain) * us, median(t_build) * us, median(t_cgal) * us,
+                  median(t_plain) / median(t_cgal), faces);
+      std::fflush(stdout);
+      checksum += static_cast<double>(faces);
+    }
+  }
+  return checksum;
+}
+
+// One triangulation (--triangulate), for instruction counts.
+int triangulate_once(const std::string &what, const std::string &kind, long n) {
+  const std::vector<double> xy = case_points(kind, n);
+  const int m = static_cast<int>(xy.size() / 2);
+  const tessera::Points pts{xy.data(), m, 2};
+  long faces = 0;
+  if (what == "plain") {
+    tessera::time_plain_delaunay(pts, m, &faces);
+  } else if (what == "build") {
+    tessera::Mesh mesh;
+    mesh.build(pts);
+    faces = mesh.n_points();
+#ifdef TESSERA_BENCH_CGAL
+  } else if (what == "cgal") {
+    cgal_seconds(xy, m, &faces);
+#endif
+  } else if (what != "none") {
+    std::fprintf(stderr, "--triangulate: WHAT is none, plain, build or cgal, got %s\n",
+                 what.c_str());
+    return 2;
+  }
+  std::printf("%s %s: %d points (%ld)\n", what.c_str(), kind.c_str(), m, faces);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
+  if (argc == 5 && std::string(argv[1]) == "--triangulate")
+    return triangulate_once(argv[2], argv[3], std::strtol(argv[4], nullptr, 10));
   long max_n = 1000000;
   bool steps_only = false;
   if (argc > 1 && std::string(argv[argc - 1]) == "--steps-only") {
@@ -282,9 +398,6 @@ int main(int argc, char **argv) {
     std::vector<double> xy(2 * n);
     for (double &v : xy) v = side * static_cast<double>(splitmix(seed) >> 11) * 0x1.0p-53;
     const tessera::Points pts{xy.data(), static_cast<int>(n), 2};
-    std::vector<DT::Point> cpts;
-    cpts.reserve(n);
-    for (long i = 0; i < n; ++i) cpts.emplace_back(xy[2 * i], xy[2 * i + 1]);
 
     std::vector<double> t_tess, t_force, t_cgal;
     for (int r = 0; r < reps; ++r) {
@@ -303,12 +416,13 @@ int main(int argc, char **argv) {
       t_force.push_back(t1 - t0);
       checksum += out.energy + f[0];
 
-      t0 = now_seconds();
-      DT dt;
-      dt.insert(cpts.begin(), cpts.end());
-      t1 = now_seconds();
-      t_cgal.push_back(t1 - t0);
-      checksum += static_cast<double>(dt.number_of_faces());
+#ifdef TESSERA_BENCH_CGAL
+      long faces = 0;
+      t_cgal.push_back(cgal_seconds(xy, static_cast<int>(n), &faces));
+      checksum += static_cast<double>(faces);
+#else
+      t_cgal.push_back(std::nan(""));
+#endif
     }
     const double us = 1e6 / static_cast<double>(n);
     const double mt = median(t_tess), mf = median(t_force), mc = median(t_cgal);
@@ -317,6 +431,7 @@ int main(int argc, char **argv) {
     std::fflush(stdout);
   }
   }
+  if (!steps_only) checksum += build_table(max_n);
   checksum += incremental_steps(max_n, model);
   checksum += fold_steps(max_n);
   std::printf("\n(checksum %.6g)\n", checksum);

@@ -6,16 +6,15 @@
 // as ghosts, whose centres take random steps of about 0.01 s per step.  Per
 // step and per owned cell, in microseconds (median over the steps):
 //
-//   rebuild   tessellate_local_3d (CGAL Delaunay_triangulation_3 of owned and
-//             ghost points from scratch, then the cells), what a 3D run
-//             does every step today;
+//   rebuild   tessellate_local_3d (Tessera's Delaunay tetrahedralisation of
+//             owned and ghost points from scratch, then the cells);
 //   update    Mesh3::update (the flips), region of interest the box grown
 //             by 1.5;
 //   cells     Mesh3::cells (the Tessellation3 from the kept tetrahedra);
 //   mesh3     update + cells, with a build() + cells() when update fails;
 //   forces    compute_forces_3d on it (the same for both, for scale);
-//   plain     one CGAL Delaunay_triangulation_3 of the N owned points alone
-//             (range insert, spatially sorted), the yardstick.
+//   plain     one plain Delaunay tetrahedralisation of the N owned points
+//             alone (time_plain_delaunay_3d, Tessera's own), the yardstick.
 //
 // Also flips per step, exact predicate calls per step, rebuilds, and memory
 // per owned cell: the Mesh3 arrays and the Tessellation3 (capacities).
@@ -24,6 +23,8 @@
 // the plain triangulation's included.
 //
 //   bench_core3d [max_N] [steps] [--mesh-only]   (default 100000; steps 20)
+//   bench_core3d --build [max_N] [repeats]       (bench_build3d.cpp: the
+//                                                 from-scratch build against CGAL's)
 #include "tessera/energy.h"
 #include "tessera/mesh3d.h"
 #include "tessera/voronoi3d.h"
@@ -77,7 +78,11 @@ size_t tess_bytes(const tessera::Tessellation3 &t) {
 
 }  // namespace
 
+int bench_build3d(int argc, char **argv);  // bench_build3d.cpp
+
 int main(int argc, char **argv) {
+  if (argc > 1 && (std::string(argv[1]) == "--build" || std::string(argv[1]) == "--build-one"))
+    return bench_build3d(argc - 1, argv + 1);
   long max_n = argc > 1 ? std::atol(argv[1]) : 100000;
   const int steps_arg = argc > 2 ? std::atoi(argv[2]) : 20;
   // --mesh-only: no rebuild column (for profiling Mesh3 alone).

@@ -12,7 +12,8 @@
    periodic direction).  Global vector: holes, total hole area, loops,
    wrapping loops, and the largest hole (area, centroid x y, length, cells);
    with 'min_area A' holes smaller than A (the gaps at three-cell corners)
-   are left out of the global values.
+   are left out of the global values.  compute vertex/loops/atom
+   (compute_vertex_loops_atom.cpp) is this compute with per-atom output.
 ------------------------------------------------------------------------- */
 
 #include "compute_vertex_loops.h"
@@ -49,10 +50,20 @@ constexpr int ARC_DOUBLES = 7;    // cell ID, next ID, cx, cy, r, phi, theta
 ------------------------------------------------------------------------- */
 
 ComputeVertexLoops::ComputeVertexLoops(LAMMPS *lmp, int narg, char **arg) :
+    ComputeVertexLoops(lmp, narg, arg, false)
+{
+}
+
+ComputeVertexLoops::ComputeVertexLoops(LAMMPS *lmp, int narg, char **arg, bool per_atom) :
     Compute(lmp, narg, arg), nmax(0), rows(nullptr), pair(nullptr), loops_of(-1), warned(0),
-    min_area(0.0)
+    min_area(0.0), want_chains(per_atom)
 {
   int iarg = 3;
+  if (per_atom && iarg < narg)
+    error->all(FLERR,
+               "Illegal compute vertex/loops/atom command: unexpected argument '{}' (it takes "
+               "none: 'compute ID group vertex/loops/atom')",
+               arg[iarg]);
   while (iarg < narg) {
     if (strcmp(arg[iarg], "min_area") == 0) {
       if (iarg + 2 > narg)
@@ -73,20 +84,22 @@ ComputeVertexLoops::ComputeVertexLoops(LAMMPS *lmp, int narg, char **arg) :
                  arg[iarg]);
     }
   }
-  if (igroup != 0)
+  if (igroup != 0 && !per_atom)
     error->all(FLERR,
                "compute vertex/loops {}: the loops are those of the whole tissue; use group "
                "'all', not '{}'",
                id, group->names[igroup]);
   if (atom->tag_enable == 0)
-    error->all(FLERR, "compute vertex/loops requires atom IDs (atom_modify id yes)");
+    error->all(FLERR, "compute {} requires atom IDs (atom_modify id yes)", style);
   if (domain->dimension != 2) {
     auto *p = CellSource::find(lmp);
     if (p && p->on_sphere()) sphere_error();
     error->all(FLERR,
-               "compute vertex/loops is for 2d finite cells; a 3d tissue has no free boundary "
-               "loops (nor have cells on a sphere)");
+               "compute {} is for 2d finite cells; a 3d tissue has no free boundary loops (nor "
+               "have cells on a sphere)",
+               style);
   }
+  if (per_atom) return;    // (its output: compute_vertex_loops_atom.cpp)
 
   local_flag = 1;
   size_local_rows = 0;
@@ -109,24 +122,24 @@ void ComputeVertexLoops::init()
   pair = CellSource::find(lmp);
   if (!pair)
     error->all(FLERR,
-               "compute vertex/loops {} reads the cells of pair_style vertex/voronoi, but the "
-               "pair style is '{}'; define 'pair_style vertex/voronoi CUT radius r'",
-               id, force->pair_style ? force->pair_style : "none");
+               "compute {} {} reads the cells of pair_style vertex/voronoi, but the pair style "
+               "is '{}'; define 'pair_style vertex/voronoi CUT radius r'",
+               style, id, force->pair_style ? force->pair_style : "none");
   // (again here: the pair style may have changed since the compute was defined)
   if (pair->on_sphere()) sphere_error();
   if (!(pair->finite_radius() > 0.0))
     error->all(FLERR,
-               "compute vertex/loops {} needs finite cells (pair_style vertex/voronoi CUT radius "
-               "r): a confluent tissue has no free boundary",
-               id);
+               "compute {} {} needs finite cells (pair_style vertex/voronoi CUT radius r): a "
+               "confluent tissue has no free boundary",
+               style, id);
 }
 
 void ComputeVertexLoops::sphere_error()
 {
   error->all(FLERR,
-             "compute vertex/loops {}: cells on a sphere (surface sphere) close the surface, so "
-             "there is no free boundary to follow",
-             id);
+             "compute {} {}: cells on a sphere (surface sphere) close the surface, so there is "
+             "no free boundary to follow",
+             style, id);
 }
 
 /* The loops of this step's cells, once per pair computation. */
@@ -136,10 +149,10 @@ void ComputeVertexLoops::find_loops()
   // (read before any run, e.g. through the library interface: no pair style yet)
   if (!pair)
     error->all(FLERR,
-               "compute vertex/loops {}: no cells yet: it reads the cells of pair_style "
-               "vertex/voronoi, which exist after a run (e.g. 'run 0')",
-               id);
-  pair->require_current_cells(fmt::format("compute vertex/loops {}", id));
+               "compute {} {}: no cells yet: it reads the cells of pair_style vertex/voronoi, "
+               "which exist after a run (e.g. 'run 0')",
+               style, id);
+  pair->require_current_cells(fmt::format("compute {} {}", style, id));
   if (pair->compute_count() == loops_of) return;
   loops_of = pair->compute_count();
 
@@ -205,6 +218,16 @@ void ComputeVertexLoops::find_loops()
     const auto loops =
         tessera::free_loops(every, image, 1e-6 * pair->finite_radius(), &unmatched);
     nloops = static_cast<int>(loops.size());
+    if (want_chains) {
+      chain_arcs.clear();
+      chain_begin.assign(1, 0);
+      for (const auto &loop : loops) {
+        for (const auto &a : tessera::unwrapped_arcs(every, loop))
+          chain_arcs.insert(chain_arcs.end(),
+                            {static_cast<double>(a.cell), a.cx, a.cy, a.r, a.phi, a.theta});
+        chain_begin.push_back(static_cast<int>(chain_arcs.size() / CHAIN_DOUBLES));
+      }
+    }
     table.assign(static_cast<size_t>(nloops) * NCOLS, 0.0);
     for (int l = 0; l < nloops; l++) {
       double *row = &table[static_cast<size_t>(l) * NCOLS];
@@ -223,13 +246,22 @@ void ComputeVertexLoops::find_loops()
   MPI_Bcast(&unmatched, 1, MPI_INT, 0, world);
   table.resize(static_cast<size_t>(nloops) * NCOLS);
   if (nloops) MPI_Bcast(table.data(), nloops * NCOLS, MPI_DOUBLE, 0, world);
+  if (want_chains) {
+    chain_begin.resize(nloops + 1, 0);
+    MPI_Bcast(chain_begin.data(), nloops + 1, MPI_INT, 0, world);
+    chain_arcs.resize(static_cast<size_t>(chain_begin[nloops]) * CHAIN_DOUBLES);
+    if (!chain_arcs.empty())
+      MPI_Bcast(chain_arcs.data(), static_cast<int>(chain_arcs.size()), MPI_DOUBLE, 0, world);
+  }
   if (unmatched && !warned && me == 0) {
     error->warning(FLERR,
-                   "compute vertex/loops {}: {} free arc(s) at step {} found no arc continuing "
-                   "the boundary; their loops were closed where they stopped",
-                   id, unmatched, update->ntimestep);
+                   "compute {} {}: {} free arc(s) at step {} found no arc continuing the "
+                   "boundary; their loops were closed where they stopped",
+                   style, id, unmatched, update->ntimestep);
     warned = 1;
   }
+
+  if (want_chains) return;    // (no global values)
 
   // The holes (at least min_area), and the largest of them (the first in
   // the table's order on a tie): 0 for each of its values if there is none.
@@ -281,5 +313,6 @@ void ComputeVertexLoops::compute_local()
 
 double ComputeVertexLoops::memory_usage()
 {
-  return (double) nmax * NCOLS * sizeof(double) + table.capacity() * sizeof(double);
+  return (double) nmax * NCOLS * sizeof(double) + table.capacity() * sizeof(double) +
+      chain_arcs.capacity() * sizeof(double) + chain_begin.capacity() * sizeof(int);
 }

@@ -28,6 +28,9 @@ class ComputeVertexLoops : public Compute {
   double memory_usage() override;
 
  protected:
+  // per_atom: the constructor of compute vertex/loops/atom (the same loops,
+  // output per atom instead of the local array and global vector).
+  ComputeVertexLoops(class LAMMPS *, int, char **, bool per_atom);
   int nmax;          // rows allocated
   double **rows;     // one row per loop (on rank 0)
   class CellSource *pair;
@@ -35,6 +38,13 @@ class ComputeVertexLoops : public Compute {
   int warned;
   double min_area;    // holes below this area are left out of the global values
   std::vector<double> table;    // the loops, 7 values each (every rank)
+  // With want_chains: each loop's arcs in walking order, unwrapped, on
+  // every rank: chain_arcs holds CHAIN_DOUBLES values per arc (cell ID,
+  // centre x y, radius, phi, theta), loop l's from chain_begin[l].
+  bool want_chains;
+  std::vector<double> chain_arcs;
+  std::vector<int> chain_begin;
+  static constexpr int CHAIN_DOUBLES = 6;
   void find_loops();
   void sphere_error();    // stops: a sphere has no free boundary
 };

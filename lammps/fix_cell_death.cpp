@@ -14,6 +14,7 @@
 #include "atom.h"
 #include "atom_vec.h"
 #include "cell_events.h"
+#include "cell_group.h"
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
@@ -133,17 +134,36 @@ void FixCellDeath::init()
                min_user, SPHERE_MIN_CELLS, SPHERE_MIN_CELLS);
   min_cells = min_user >= 0 ? min_user : sphere ? SPHERE_MIN_CELLS : 1;
   warned_floor = 0;
-  if (pair) pair->require_cells(igroup, "fix cell/death");    // particles are not extruded
   if (!pair && trigger == AREA)
     error->all(FLERR,
                "fix cell/death: the area trigger needs pair_style vertex/voronoi (its "
                "tessellation gives the cells' areas)");
 }
 
+/* Whether the fix takes owned atom i: a cell of its group (particles in
+   the group do not die). */
+
+bool FixCellDeath::takes(int i) const
+{
+  return (atom->mask[i] & groupbit) && cell_group::is_cell(pair, atom->type[i]);
+}
+
+/* How many cells may die now above the floor: the cells of the whole
+   system count, particles do not.  Collective. */
+
+bigint FixCellDeath::floor_room() const
+{
+  if (min_cells <= 0) return MAXBIGINT;
+  return MAX((bigint) 0, cell_group::count_cells(lmp, pair) - min_cells);
+}
+
 /* As for fix cell/divide, a run's setup re-makes the current step's decisions. */
 
 void FixCellDeath::setup(int /*vflag*/)
 {
+  cell_group::note_particles(lmp, pair, igroup, fmt::format("fix {} cell/death", id),
+                             "they do not die, and the floor 'min' counts cells only",
+                             noted_particles);
   decide();
 }
 
@@ -156,7 +176,6 @@ void FixCellDeath::end_of_step()
 void FixCellDeath::decide()
 {
   const int nlocal = atom->nlocal;
-  const int *mask = atom->mask;
   const tagint *tag = atom->tag;
   double **x = atom->x;
   const uint64_t step = update->ntimestep;
@@ -167,7 +186,7 @@ void FixCellDeath::decide()
   std::vector<std::pair<double, tagint>> mine;
   pending.clear();
   for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
+    if (!takes(i)) continue;
     if (region && !region->match(x[i][0], x[i][1], x[i][2])) continue;
     const bool die = trigger == RATE ? uniform01(seed, tag[i], step, DEATH) < rate * update->dt
                                      : pair->cells().measure(i) < area_min;
@@ -183,7 +202,7 @@ void FixCellDeath::decide()
     // ones on any number of ranks.  (min 0: every cell may die.)
     // Each keeps its place in the list, for the check at the event.
     std::vector<std::pair<double, tagint>> all = gather_sorted(mine, world);
-    const bigint room = MAX((bigint) 0, atom->natoms - min_cells);
+    const bigint room = floor_room();
     if ((bigint) all.size() > room) {
       if (!warned_floor && comm->me == 0)
         error->warning(FLERR,
@@ -210,10 +229,10 @@ void FixCellDeath::pre_exchange()
 {
   if (next_reneighbor != update->ntimestep) return;
   next_reneighbor = -1;
-  // min N again, against the atom count now: another fix cell/death may have
+  // min N again, against the cell count now: another fix cell/death may have
   // removed cells at this step since the decisions, so that the floor holds
   // for the whole system (divisions only add cells).
-  const bigint room = min_cells > 0 ? MAX((bigint) 0, atom->natoms - min_cells) : MAXBIGINT;
+  const bigint room = floor_room();
   int ndel = 0;
   int i = 0;
   while (i < atom->nlocal) {

@@ -45,6 +45,9 @@ class FixCellDeath : public Fix {
   std::string region_id;
   class Region *region;
   class PairVertexVoronoi *pair;
+  bool noted_particles = false;
+  bool takes(int i) const;    // owned atom i is a cell of the group
+  bigint floor_room() const;
   // Cells that die at the next step -> their place in the sorted list (min N).
   std::unordered_map<tagint, bigint> pending;
   cell_events::EventCount events;

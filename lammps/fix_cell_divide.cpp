@@ -18,6 +18,7 @@
 #include "atom.h"
 #include "atom_vec.h"
 #include "cell_events.h"
+#include "cell_group.h"
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
@@ -254,7 +255,6 @@ void FixCellDivide::init()
     if (!region) error->all(FLERR, "fix cell/divide: region '{}' no longer exists", region_id);
   }
   pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
-  if (pair) pair->require_cells(igroup, "fix cell/divide");    // particles do not divide or die
   if (!pair && (trigger == AREA || axis == LONG || axis == SHORT))
     error->all(FLERR,
                "fix cell/divide: the area trigger and axis long/short need pair_style "
@@ -297,6 +297,14 @@ void FixCellDivide::init()
                  separation, prd[d], "xyz"[d], 0.5 * separation);
 }
 
+/* Whether the fix takes owned atom i: a cell of its group (particles in
+   the group neither age, grow nor divide). */
+
+bool FixCellDivide::takes(int i) const
+{
+  return (atom->mask[i] & groupbit) && cell_group::is_cell(pair, atom->type[i]);
+}
+
 /* The base preferred area of cells that have none yet (before the first run,
    or cells that entered the group): their d_area0 now. */
 
@@ -316,9 +324,8 @@ void FixCellDivide::set_area0()
 {
   if (!growth || area0_index < 0) return;
   double *a0 = atom->dvector[area0_index];
-  const int *mask = atom->mask;
   for (int i = 0; i < atom->nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
+    if (!takes(i)) continue;
     // (a cell of rate 0 has an infinite cycle: it keeps its base)
     const double cyc = trigger == CYCLE ? cellstate[i][CYCLE_TIME]
                                         : 1.0 / (rate_index < 0 ? rate : cell_rate(i));
@@ -342,9 +349,8 @@ void FixCellDivide::setup_pre_force(int /*vflag*/)
 void FixCellDivide::pre_force(int /*vflag*/)
 {
   clock += update->dt;
-  const int *mask = atom->mask;
   for (int i = 0; i < atom->nlocal; i++)
-    if (mask[i] & groupbit) cellstate[i][AGE] += update->dt;
+    if (takes(i)) cellstate[i][AGE] += update->dt;
   set_area0();
 }
 
@@ -355,6 +361,8 @@ void FixCellDivide::pre_force(int /*vflag*/)
 
 void FixCellDivide::setup(int /*vflag*/)
 {
+  cell_group::note_particles(lmp, pair, igroup, fmt::format("fix {} cell/divide", id),
+                             "they neither age, grow nor divide", noted_particles);
   fill_base_area0();
   decide();
 }
@@ -483,7 +491,6 @@ void FixCellDivide::end_of_step()
 void FixCellDivide::decide()
 {
   const int nlocal = atom->nlocal;
-  const int *mask = atom->mask;
   const tagint *tag = atom->tag;
   double **x = atom->x;
   const double dt = update->dt;
@@ -497,7 +504,7 @@ void FixCellDivide::decide()
   pending.clear();
   decide_time = clock;
   for (int i = 0; i < nlocal; i++) {
-    if (!(mask[i] & groupbit)) continue;
+    if (!takes(i)) continue;
     if (region && !region->match(x[i][0], x[i][1], x[i][2])) continue;
     bool divide = false;
     if (trigger == RATE)
@@ -518,7 +525,7 @@ void FixCellDivide::decide()
   daughter_tag.clear();
   if (nall == 0) return;
   std::vector<std::pair<double, tagint>> all = gather_sorted(mine, world);
-  const bigint room = cap_room(atom->natoms);
+  const bigint room = cap_room();
   if ((bigint) all.size() > room) {
     warn_cap((bigint) all.size() - room);
     all.resize(room);
@@ -532,14 +539,15 @@ void FixCellDivide::decide()
   next_reneighbor = update->ntimestep + 1;
 }
 
-/* How many more cells max N allows when the tissue has n atoms (no cap:
-   any number).  It is compared with the global atom count, so that several
-   fix cell/divide commands, or deaths in between, share the one cap. */
+/* How many more cells max N allows now (no cap: any number).  It counts
+   the cells of the whole system, so that several fix cell/divide
+   commands, or deaths in between, share the one cap; particles do not
+   count.  Collective. */
 
-bigint FixCellDivide::cap_room(bigint n) const
+bigint FixCellDivide::cap_room() const
 {
   if (max_cells <= 0) return MAXBIGINT;
-  return MAX((bigint) 0, max_cells - n);
+  return MAX((bigint) 0, max_cells - cell_group::count_cells(lmp, pair));
 }
 
 /* The cap stops m divisions: with growth linear the cells that may not
@@ -574,7 +582,7 @@ void FixCellDivide::pre_exchange()
   // The cap again, against the atom count now: another fix cell/divide may
   // have added cells at this step since the decisions (deaths only make
   // room, and the decisions already kept within the cap of that time).
-  const bigint room = cap_room(atom->natoms);
+  const bigint room = cap_room();
   if ((bigint) daughter_tag.size() > room) warn_cap((bigint) daughter_tag.size() - room);
 
   // Ghost atoms are rebuilt by this re-neighboring; their slots take daughters.

@@ -49,6 +49,11 @@ class FixCellDivide : public Fix {
   void unpack_restart(int, int) override;
   int size_restart(int) override;
   int maxsize_restart() override;
+  // The division area of 'area Ac' (-1: another trigger), for messages.
+  double division_area() const { return trigger == AREA ? area_max : -1.0; }
+
+  // 'growth linear': the fix sets d_area0 before every step's forces.
+  bool grows_area0() const { return growth != 0; }
 
  protected:
   enum Trigger { RATE, CYCLE, AREA };
@@ -66,6 +71,8 @@ class FixCellDivide : public Fix {
   bool cap_warned;             // the max-with-growth warning was given
   class Region *region;
   class PairVertexVoronoi *pair;
+  bool noted_particles = false;
+  bool takes(int i) const;    // owned atom i is a cell of the group
   int area0_index;    // d_area0 in atom->dvector, or -1
   std::string rate_name;    // 'rate d_name': each cell's own rate, a per-atom property
   int rate_index = -1;
@@ -85,7 +92,7 @@ class FixCellDivide : public Fix {
   void cell_axis(int, double *) const;
   void fill_base_area0();
   void set_area0();
-  bigint cap_room(bigint) const;
+  bigint cap_room() const;
   void warn_cap(bigint);
   void decide();
 };

@@ -25,6 +25,7 @@
 #include "fix_cell_signal.h"
 
 #include "atom.h"
+#include "cell_group.h"
 #include "comm.h"
 #include "error.h"
 #include "force.h"
@@ -141,10 +142,20 @@ FixCellSignal::FixCellSignal(LAMMPS *lmp, int narg, char **arg) :
       if (strcmp(arg[iarg + 1], "auto") == 0)
         nsub_fixed = 0;
       else {
-        nsub_fixed = utils::inumeric(FLERR, arg[iarg + 1], false, lmp);
-        if (nsub_fixed < 1)
+        const bigint n = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
+        if (n < 1)
           error->all(FLERR, "fix cell/signal: substeps must be auto or an integer >= 1, got {}",
                      arg[iarg + 1]);
+        // The most 'substeps auto' takes: each substep passes over every
+        // cell and junction, so more would make a step take minutes.
+        if (n >= 10000000)
+          error->all(FLERR,
+                     "fix cell/signal: substeps {} is not below 10000000, the most 'substeps "
+                     "auto' takes (each substep passes over every cell and junction, so a step "
+                     "would take that many times as long); give the count the rates need, or "
+                     "'substeps auto', which finds it every step",
+                     arg[iarg + 1]);
+        nsub_fixed = static_cast<int>(n);
       }
       iarg += 2;
     } else {
@@ -162,7 +173,8 @@ FixCellSignal::FixCellSignal(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "fix cell/signal: no species; give at least one law; syntax: {}", SYNTAX);
   if (!atom->tag_enable) error->all(FLERR, "fix cell/signal requires atom IDs");
 
-  comm_forward = static_cast<int>(fields.size());
+  // (the implicit step sends two vectors at once)
+  comm_forward = std::max(static_cast<int>(fields.size()), 2);
   vector_flag = 1;
   size_vector = static_cast<int>(fields.size()) + 1;
   global_freq = 1;
@@ -222,6 +234,17 @@ void FixCellSignal::init()
                "fix cell/signal {} exchanges across the junctions of pair_style vertex/voronoi, "
                "but the pair style is '{}'; define 'pair_style vertex/voronoi'",
                id, force->pair_style ? force->pair_style : "none");
+  all_taken = igroup == 0 && !cell_group::any_particle_type(pair, atom->ntypes);
+  // Only finite cells have free arcs: elsewhere a bath would never act.
+  if (any_bath && !(pair->finite_radius() > 0.0))
+    for (const Field &f : fields)
+      if (f.Pb > 0.0)
+        error->all(FLERR,
+                   "fix cell/signal {}: bath d_{} exchanges across the free arcs of finite cells, "
+                   "but these cells have none (pair_style vertex/voronoi without 'radius r': "
+                   "confluent 2d cells, 3d cells or cells on a sphere tile space, so the bath "
+                   "would never act); remove 'bath d_{} ...', or use finite cells",
+                   id, f.name, f.name);
   for (Field &f : fields) {
     int flag = -1, cols = -1;
     f.index = atom->find_custom(f.name.c_str(), flag, cols);
@@ -247,15 +270,30 @@ void FixCellSignal::check_cells(const char *when)
   pair->require_current_cells(fmt::format("fix cell/signal {} ({})", id, when));
 }
 
-/* Every field of every group cell must be finite and >= 0. */
+/* Whether the fix takes owned atom i: a cell of its group. */
+
+bool FixCellSignal::takes(int i) const
+{
+  return (atom->mask[i] & groupbit) && cell_group::is_cell(pair, atom->type[i]);
+}
+
+/* This step's flags of the owned atoms the fix takes. */
+
+void FixCellSignal::mark_taken()
+{
+  const int nlocal = atom->nlocal;
+  taken.assign(std::max(nlocal, 1), 0);
+  for (int i = 0; i < nlocal; i++) taken[i] = takes(i) ? 1 : 0;
+}
+
+/* Every field of every cell taken must be finite and >= 0. */
 
 void FixCellSignal::check_values(const char *when)
 {
-  const int *mask = atom->mask;
   for (const Field &f : fields) {
     const double *u = atom->dvector[f.index];
     for (int i = 0; i < atom->nlocal; i++)
-      if ((mask[i] & groupbit) && !(u[i] >= 0.0 && std::isfinite(u[i])))
+      if (takes(i) && !(u[i] >= 0.0 && std::isfinite(u[i])))
         error->one(FLERR,
                    "fix cell/signal {}: d_{} of cell {} is {} at step {} ({}); species must be "
                    "finite and >= 0",
@@ -265,8 +303,13 @@ void FixCellSignal::check_values(const char *when)
 
 void FixCellSignal::setup(int /*vflag*/)
 {
+  cell_group::note_particles(lmp, pair, igroup, fmt::format("fix {} cell/signal", id),
+                             "it neither integrates their values nor counts them in its totals, "
+                             "and no cell exchanges with them",
+                             noted_particles);
   check_values("at the start of the run");
   nsub_last = 0;
+  warned_implicit.clear();
 }
 
 /* The variable laws' rates on the owned cells, once per step. */
@@ -274,7 +317,6 @@ void FixCellSignal::setup(int /*vflag*/)
 void FixCellSignal::evaluate_variables()
 {
   const int nlocal = atom->nlocal;
-  const int *mask = atom->mask;
   bool any = false;
   for (const Production &p : laws) any = any || p.kind == VAR;
   if (!any) return;
@@ -284,7 +326,7 @@ void FixCellSignal::evaluate_variables()
     p.value.assign(std::max(nlocal, 1), 0.0);
     input->variable->compute_atom(p.ivar, igroup, p.value.data(), 1, 0);
     for (int i = 0; i < nlocal; i++)
-      if ((mask[i] & groupbit) && !std::isfinite(p.value[i]))
+      if (taken[i] && !std::isfinite(p.value[i]))
         error->one(FLERR, "fix cell/signal {}: law '{}' gives {} for cell {} at step {}", id,
                    p.text, p.value[i], atom->tag[i], update->ntimestep);
   }
@@ -303,7 +345,7 @@ void FixCellSignal::prepare_rows()
   const tessera::Contacts c = v.contacts();
   if (any_bath || implicit) {
     freelen.resize(nlocal);
-    for (int i = 0; i < nlocal; i++) freelen[i] = (mask[i] & groupbit) ? v.free_length(i) : 0.0;
+    for (int i = 0; i < nlocal; i++) freelen[i] = taken[i] ? v.free_length(i) : 0.0;
   } else
     freelen.clear();
   if (igroup == 0) {
@@ -316,7 +358,7 @@ void FixCellSignal::prepare_rows()
   nb_index.clear();
   nb_size.clear();
   for (int i = 0; i < nlocal; i++) {
-    if (mask[i] & groupbit) {
+    if (taken[i]) {
       for (int k = c.offset[i]; k < c.offset[i + 1]; k++) {
         const int j = c.neighbor[k];
         if (j < 0 || !(mask[j] & groupbit)) continue;
@@ -332,10 +374,18 @@ void FixCellSignal::prepare_rows()
 }
 
 namespace {
+/* vmax x^n / (K^n + x^n) (kind 1, activation) or vmax K^n / (K^n + x^n)
+   (repression), through t = (x/K)^n where x <= K and t = (K/x)^n where
+   x > K, so that t stays in [0, 1] and no power overflows, whatever n and
+   the ratio (x >= 0). */
 double hill_value(int kind, double vmax, double K, double n, double x)
 {
-  const double xn = std::pow(x / K, n);
-  return kind == 1 ? vmax * xn / (1.0 + xn) : vmax / (1.0 + xn);
+  if (x <= K) {
+    const double t = std::pow(x / K, n);
+    return kind == 1 ? vmax * t / (1.0 + t) : vmax / (1.0 + t);
+  }
+  const double t = std::pow(K / x, n);
+  return kind == 1 ? vmax / (1.0 + t) : vmax * t / (1.0 + t);
 }
 }    // namespace
 
@@ -368,18 +418,17 @@ double FixCellSignal::hill_term(const Production &p, int i, const double *x, int
 void FixCellSignal::productions()
 {
   const int nlocal = atom->nlocal;
-  const int *mask = atom->mask;
   rate.assign(fields.size() * static_cast<size_t>(nlocal), 0.0);
   for (const Production &p : laws) {
     double *r = &rate[p.target * static_cast<size_t>(nlocal)];
     if (p.kind == VAR) {
       for (int i = 0; i < nlocal; i++)
-        if (mask[i] & groupbit) r[i] += p.value[i];
+        if (taken[i]) r[i] += p.value[i];
       continue;
     }
     const double *x = atom->dvector[fields[p.input].index];
     for (int i = 0; i < nlocal; i++)
-      if (mask[i] & groupbit) r[i] += hill_term(p, i, x, 1);
+      if (taken[i]) r[i] += hill_term(p, i, x, 1);
   }
 }
 
@@ -414,6 +463,7 @@ void FixCellSignal::end_of_step()
 {
   check_cells("fix cell/signal integrates after the force computation of each step");
   const double dt = update->dt;
+  mark_taken();
   evaluate_variables();
   prepare_rows();
   if (implicit) {
@@ -430,16 +480,22 @@ double FixCellSignal::compute_vector(int n)
 {
   if (n == static_cast<int>(fields.size())) return nsub_last;
   const double *u = atom->dvector[fields[n].index];
-  const int *mask = atom->mask;
   double local = 0.0, all = 0.0;
   for (int i = 0; i < atom->nlocal; i++)
-    if (mask[i] & groupbit) local += u[i];
+    if (takes(i)) local += u[i];
   MPI_Allreduce(&local, &all, 1, MPI_DOUBLE, MPI_SUM, world);
   return all;
 }
 
 int FixCellSignal::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
 {
+  if (comm_vector && comm_vector2) {
+    for (int k = 0; k < n; k++) {
+      buf[2 * k] = comm_vector[list[k]];
+      buf[2 * k + 1] = comm_vector2[list[k]];
+    }
+    return 2 * n;
+  }
   if (comm_vector) {
     for (int k = 0; k < n; k++) buf[k] = comm_vector[list[k]];
     return n;
@@ -466,6 +522,13 @@ int FixCellSignal::pack_forward_comm(int n, int *list, double *buf, int /*pbc_fl
 
 void FixCellSignal::unpack_forward_comm(int n, int first, double *buf)
 {
+  if (comm_vector && comm_vector2) {
+    for (int k = 0; k < n; k++) {
+      comm_vector[first + k] = buf[2 * k];
+      comm_vector2[first + k] = buf[2 * k + 1];
+    }
+    return;
+  }
   if (comm_vector) {
     for (int k = 0; k < n; k++) comm_vector[first + k] = buf[k];
     return;

@@ -58,6 +58,13 @@ class FixCellSignal : public Fix {
   class PairVertexVoronoi *pair;
   std::vector<int> species;    // the fields that are species
   bool any_bath = false;       // some species has a bath (Pb > 0)
+  // The atoms the fix takes: the cells of its group (cell_group.h).  taken:
+  // this step's flag per owned atom; all_taken: every atom is taken.
+  std::vector<char> taken;
+  bool all_taken = false;
+  bool noted_particles = false;
+  bool takes(int i) const;
+  void mark_taken();
   // Per owned atom: free arc length (only with a bath or 'implicit yes').
   std::vector<double> freelen;
   // This step's junctions of each owned group cell with group cells
@@ -97,11 +104,21 @@ class FixCellSignal : public Fix {
   // 'implicit yes': one backward-Euler step of exchange, bath and
   // degradation per step (fix_cell_signal_implicit.cpp).
   int implicit = 0;
-  double *comm_vector = nullptr;    // forward-communicate this vector, not the fields
-  std::vector<double> rate;         // implicit: productions, nfields x nlocal
-  std::vector<double> cg_x, cg_r, cg_p, cg_q, cg_b;
+  double *comm_vector = nullptr;     // forward-communicate this vector, not the fields
+  double *comm_vector2 = nullptr;    // and this one after it, if given
+  std::vector<double> rate;          // implicit: productions, nfields x nlocal
+  // The solution x1 + xd, a correction, the solver's vectors, the
+  // right-hand side and the residual.
+  std::vector<double> cg_x, cg_xd, cg_d, cg_r, cg_p, cg_q, cg_b, cg_res;
+  std::vector<double> cg_keep;    // x1 and xd before a correction
+  std::vector<char> warned_implicit;    // per field: the accuracy warning was given
   void implicit_step(double dt);
-  void apply_matrix(const Field &f, double dt, double *x, double *out);
+  void forward_vectors(double *x, double *x2);
+  double apply_matrix(const Field &f, double dt, double *x, double *out);
+  double exchange_of(int i, const double *x1, const double *xd) const;
+  double residual(const Field &f, double dt, const double *b, double *x1, double *xd, double *r);
+  int cg(const Field &f, double dt, const double *rhs, double *x, double scale, double &reached);
+  void inaccurate(const Field &f, double dt, double rel);
   double dot(const double *a, const double *b);
 };
 

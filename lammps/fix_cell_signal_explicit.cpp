@@ -59,15 +59,16 @@ void FixCellSignal::pack_values()
    not finite; else the rates go to drate[nf * i + f].  With want_fastest,
    returns this rank's largest P W_i + Pb F_i + k over the group cells and
    species (W_i: cell i's total junction size), which sets the substeps.
-   PLAIN: group all, no bath, no production (every field is a species). */
+   PLAIN: every atom taken (group all, no particles), no bath, no
+   production (every field is a species). */
 
 template <int NF, bool PLAIN>
 double FixCellSignal::explicit_pass(bool apply, double h, bool want_fastest, int &bad)
 {
   const int nf = NF > 0 ? NF : static_cast<int>(fields.size());
   const int nlocal = atom->nlocal;
-  const int *mask = atom->mask;
-  const bool all = igroup == 0;
+  const char *take = taken.data();
+  const bool all = all_taken;
   const bool store = !apply;
   if (store) {
     const size_t need = static_cast<size_t>(nf) * std::max(nlocal, 1);
@@ -94,7 +95,7 @@ double FixCellSignal::explicit_pass(bool apply, double h, bool want_fastest, int
   bool any_cell = false;
   int nbad = 0;
   for (int i = 0; i < nlocal; i++) {
-    if (!PLAIN && !all && !(mask[i] & groupbit)) continue;
+    if (!PLAIN && !all && !take[i]) continue;
     any_cell = true;
     const double *ui = v + static_cast<size_t>(nf) * i;
     for (int f = 0; f < nf; f++) ex[f] = 0.0;
@@ -164,7 +165,7 @@ double FixCellSignal::explicit_pass(bool apply, double h, bool want_fastest, int
 
 double FixCellSignal::explicit_rates(bool apply, double h, bool want_fastest, int &bad)
 {
-  const bool plain = laws.empty() && !any_bath && igroup == 0;
+  const bool plain = laws.empty() && !any_bath && all_taken;
   switch (fields.size()) {
     case 1:
       return plain ? explicit_pass<1, true>(apply, h, want_fastest, bad)
@@ -191,15 +192,13 @@ void FixCellSignal::explicit_apply(double dt)
 {
   const size_t nf = fields.size();
   const int nlocal = atom->nlocal;
-  const int *mask = atom->mask;
-  const bool all = igroup == 0;
   const double *rate_of = drate.data();
   for (int f : species) {
     double *u = atom->dvector[fields[f].index];
     const double *r = rate_of + f;
     const double *old = value.data() + f;
     for (int i = 0; i < nlocal; i++) {
-      if (!all && !(mask[i] & groupbit)) continue;
+      if (!taken[i]) continue;
       const double next = old[nf * i] + dt * r[nf * i];
       if (!(next >= 0.0 && next <= std::numeric_limits<double>::max()))
         fail(f, i, next,

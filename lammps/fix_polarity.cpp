@@ -18,6 +18,8 @@
 #include "math_const.h"
 #include "modify.h"
 #include "cell_source.h"
+#include "citeme.h"
+#include "tessera_citations.h"
 #include "update.h"
 
 #include "tessera/counter_rng.h"
@@ -59,6 +61,7 @@ inline bool one_block(double **a, int n, int stride)
 FixPolarity::FixPolarity(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), d_rot(0.0), seed(0), pair(nullptr)
 {
+  if (lmp->citeme) lmp->citeme->add(tessera_cite::thesis);
   if (narg < 5)
     error->all(FLERR,
                "Illegal fix polarity command: expected 'fix ID group polarity f_a gamma_R "

@@ -252,17 +252,16 @@ void FixPolarity::polar_orders_3d(double &polar, double &nematic)
   }
 }
 
-
 /* The rotational noise of local atom i in 3d (scale sqrt(2 D_r dt)): an
    angle vector of three Gaussians (rotational diffusion on the unit
-   sphere), or, with the cells on a sphere, one Gaussian angle about the
+   sphere), or, for a cell on a sphere, one Gaussian angle about the
    outward normal u_i (diffusion of the angle in the tangent plane, as in 2d:
-   <n(t).n(0)> = exp(-D_r t)). */
+   <n(t).n(0)> = exp(-D_r t)); a particle there diffuses as in space. */
 
 void FixPolarity::noise_3d(int i, double scale, bigint step, double *w) const
 {
   const tagint t = atom->tag[i];
-  if (pair && pair->on_sphere()) {
+  if (pair && pair->on_sphere() && pair->is_cell_type(atom->type[i])) {
     const double *c = pair->sphere_centre();
     const double *x = state_position(i);
     const double u[3] = {x[0] - c[0], x[1] - c[1], x[2] - c[2]};
@@ -298,9 +297,14 @@ void FixPolarity::field_sphere(bigint state_step)
     const double *x = &state_x[3 * static_cast<size_t>(i)];
     return tessera::Vec3{x[0], x[1], x[2]};
   };
+  // Atoms that are no cells are active Brownian particles in space, off
+  // the sphere (its surface fix leaves them free): their polarity is not
+  // tangent to it, and one at its centre has no tangent plane at all.
+  const int *type = atom->type;
   for (int i = 0; i < nall; i++) {
     double *n = &unit[3 * i];
     if (n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0) continue;
+    if (!pair->is_cell_type(type[i])) continue;
     const tessera::Vec3 t = tessera::sphere_tangent(c, at(i), {n[0], n[1], n[2]});
     const double l = std::sqrt(t.x * t.x + t.y * t.y + t.z * t.z);
     if (!(l > 0.0)) continue;
@@ -326,6 +330,10 @@ void FixPolarity::field_sphere(bigint state_step)
     for (int i = 0; i < nlocal; i++) {
       if (!has_v[i]) continue;
       const double *w = &vhat[3 * i];
+      if (!pair->is_cell_type(type[i])) {    // a particle: its velocity in space
+        for (int d = 0; d < 3; d++) tau[3 * i + d] += params.J_V * w[d];
+        continue;
+      }
       const tessera::Vec3 t = tessera::sphere_tangent(c, at(i), {w[0], w[1], w[2]});
       const double l = std::sqrt(t.x * t.x + t.y * t.y + t.z * t.z);
       if (!(l > 0.0)) continue;

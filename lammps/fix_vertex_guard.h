@@ -51,6 +51,20 @@ class FixVertexGuard : public Fix {
   // The style name, and the function that makes one (for the pair style,
   // which registers the style on first use).
   static const char *style_name() { return "VERTEX_VORONOI_GUARD"; }
+
+  // The owned atoms the last move put past a fixed ('f') boundary on this
+  // rank (LAMMPS drops them at the next exchange): how many, and of the
+  // lowest ID, the ID, the dimension and side (0 lower, 1 upper), its
+  // coordinate there and the boundary's; the step (-1: none).  For the
+  // lost-atom message.
+  struct Left {
+    bigint step = -1;
+    int count = 0;
+    tagint tag = 0;
+    int dim = 0, side = 0;
+    double x = 0.0, bound = 0.0;
+  };
+  const Left &left_box() const { return left; }
   static Fix *creator(class LAMMPS *, int, char **);
 
  private:
@@ -60,9 +74,46 @@ class FixVertexGuard : public Fix {
   bigint step0 = -1;
   int warned = 0;
   int dim = 2;
+  // The neighbourhood of each owned cell at the step's last force
+  // computation, from the cells it computed (record()): what the messages
+  // name as the cause.  By local index, like x0.
+  struct Around {
+    tagint near_tag = 0;
+    double near_d = -1.0;     // closest Voronoi neighbour's distance (-1: none)
+    double measure = -1.0;    // area (3d: volume; -1: no cell)
+    double boundary = 0.0;    // perimeter (3d: surface)
+    double force = 0.0;       // |f| then
+  };
+  std::vector<Around> around;
+  Left left;
+  void note_left_box();
+  std::vector<int> nb_offset;    // owned atom i's neighbours' IDs are
+  std::vector<tagint> nb_tag;    // nb_tag[nb_offset[i] .. nb_offset[i+1])
   void record();
+  void record_neighbourhood();
   double loss_limit() const;
-  std::string describe(int i, double moved, double size) const;
+  // The message's text for owned atom i of rank root (collective: every
+  // rank calls it, and gets the text).
+  std::string describe_all(int root, int i, double moved);
+  // A cell's state for the messages: its excess over its preferred area or
+  // perimeter, and the numbers.
+  struct State {
+    double excess = -1.0;    // >= 1: far above (see state_of; -1: unknown)
+    double A = 0.0, A0 = 0.0, P = 0.0, P0 = 0.0;
+    tagint tag = 0;
+  };
+  State state_of(int i, const double *typical) const;
+  // The closest pair of neighbours among all cells at the last record (d <
+  // 0: none), set by describe_all() for describe().
+  struct {
+    double d = -1.0;
+    tagint a = 0, b = 0;
+  } closest;
+  // worst: the cell around i that exceeds its preferred values most;
+  // ratio: the largest A/A0 (-1: none known) and P - P0 (-HUGE_VAL) around
+  // i; typical: the tissue's mean A/A0 and P - P0, and the count of cells.
+  std::string describe(int i, double moved, double size, const State &worst, const double *ratio,
+                       const double *typical) const;
 };
 
 }    // namespace LAMMPS_NS

@@ -14,6 +14,7 @@ FixStyle(VERTEX_VORONOI_SPHERE,FixVertexSphere);
 
 #include "fix.h"
 
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -37,7 +38,12 @@ class PairVertexVoronoi;
    evaluation (min_pre_force: the minimisers move them along the tangent
    forces, off the sphere at second order), so the minimum found is on the
    sphere; the geometry uses the owned atoms gathered by the pair style, not
-   the ghosts' positions. */
+   the ghosts' positions.  The minimisers also see each cell's force
+   without its radial part (min_post_force): the cells' own forces are
+   tangent, but another sub-style's (particles pressing on the cells) is
+   not, and its radial part, which the constraint holds and no step can
+   lower, would spoil the line searches (cg, sd: "linesearch alpha is
+   zero" far from the minimum) and keep fnorm above any tolerance. */
 
 class FixVertexSphere : public Fix {
  public:
@@ -48,7 +54,12 @@ class FixVertexSphere : public Fix {
   void post_integrate() override { project(true); }
   void min_pre_exchange() override { project(false); }
   void min_pre_force(int) override { project(false); }
-  void setup(int) override { record(); }
+  void min_post_force(int) override;
+  void setup(int) override
+  {
+    record();
+    check_time();
+  }
   void end_of_step() override { record(); }
   PairVertexVoronoi *pair = nullptr;
 
@@ -60,6 +71,11 @@ class FixVertexSphere : public Fix {
   // u0 to the new direction first.
   static void project_one(const double *c, double R, double *x, double *mu,
                           const double *u0 = nullptr);
+  // For the error when the sphere of radius R reaches past the box
+  // (collective): how the cells and the radius grew since this fix first
+  // placed them, and, for each fix cell/divide with an area trigger, that
+  // trigger against the cells' area and preferred area.
+  std::string growth_note(double R) const;
 
  private:
   void project(bool transport);
@@ -68,6 +84,13 @@ class FixVertexSphere : public Fix {
   void record();
   std::vector<tagint> tag0;
   std::vector<double> u0;
+  // At the first run: a warning when the radius reads LAMMPS's time and
+  // that time restarted at 0 (read_restart on LAMMPS 29 Sep 2021).
+  void check_time();
+  int time_checked = 0;
+  // The cell count, radius and step when this fix first placed the cells.
+  bigint start_natoms = -1, start_step = 0;
+  double start_R = 0.0;
 };
 
 }    // namespace LAMMPS_NS

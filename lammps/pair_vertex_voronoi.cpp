@@ -18,8 +18,10 @@
 #include "pair_vertex_voronoi_confluent.h"
 #include "pair_vertex_voronoi_finite.h"
 #include "pair_vertex_voronoi_sphere.h"
+#include "tessera_citations.h"
 
 #include "atom.h"
+#include "citeme.h"
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
@@ -43,6 +45,7 @@ using namespace LAMMPS_NS;
 
 PairVertexVoronoi::PairVertexVoronoi(LAMMPS *lmp) : Pair(lmp)
 {
+  if (lmp->citeme) lmp->citeme->add(tessera_cite::thesis);
   single_enable = 0;
   restartinfo = 1;
   one_coeff = 0;
@@ -137,7 +140,10 @@ void PairVertexVoronoi::init_style()
   // The model's unit: 3D polyhedra, finite 2D cells ('radius') or confluent
   // 2D cells; kept across runs while the model stays the same.
   std::unique_ptr<VertexModel> want;
-  no_virial_fdotr_compute = 0;    // the sphere's unit computes its own virial
+  // The global virial: f dot r, or under 'pair_modify nofdotr' the sum of the
+  // cells' own virials (accumulate; the same total); the sphere's unit
+  // always computes its own.
+  no_virial_fdotr_compute = nofdotr_given;
   if (sphere_on)
     want = std::make_unique<VertexSphere>(lmp, this);
   else if (domain->dimension == 3)
@@ -148,6 +154,11 @@ void PairVertexVoronoi::init_style()
     want = std::make_unique<VertexConfluent>(lmp, this);
   if (!unit || strcmp(unit->name(), want->name()) != 0) unit = std::move(want);
   unit->init();
+  // The publication of the model in use.
+  if (lmp->citeme)
+    lmp->citeme->add(domain->dimension == 3 && !sphere_on ? tessera_cite::voronoi_3d
+                         : radius > 0.0                   ? tessera_cite::voronoi_finite
+                                                          : tessera_cite::voronoi_2d);
   if (radius == 0.0 && free_set && comm->me == 0)
     error->warning(FLERR,
                    "pair_style vertex/voronoi: 'free' tensions are ignored without 'radius r' "
@@ -564,21 +575,25 @@ void PairVertexVoronoi::accumulate(double energy, int nw)
   tess_step = update->ntimestep;
   finish_cells();
   record_view_state();
-  if (vflag_atom) {
+  // The cells' virials: per atom, and summed into the global virial when
+  // LAMMPS asks the style for it instead of f dot r ('pair_modify nofdotr';
+  // the sphere's unit adds its own).
+  const bool global = vflag_global && !sphere_on;
+  if (vflag_atom || global) {
     for (int c = 0; c < nlocal; c++) {
       const double *w = &cell_w[static_cast<size_t>(nw) * c];
+      double v[6] = {w[0], w[1], 0.0, 0.5 * (w[2] + w[3]), 0.0, 0.0};
+      if (nw == 9) {
+        v[1] = w[4];
+        v[2] = w[8];
+        v[3] = 0.5 * (w[1] + w[3]);
+        v[4] = 0.5 * (w[2] + w[6]);
+        v[5] = 0.5 * (w[5] + w[7]);
+      }
       const int i = cell_atom(c);
-      if (nw == 4) {
-        vatom[i][0] += w[0];
-        vatom[i][1] += w[1];
-        vatom[i][3] += 0.5 * (w[2] + w[3]);
-      } else {
-        vatom[i][0] += w[0];
-        vatom[i][1] += w[4];
-        vatom[i][2] += w[8];
-        vatom[i][3] += 0.5 * (w[1] + w[3]);
-        vatom[i][4] += 0.5 * (w[2] + w[6]);
-        vatom[i][5] += 0.5 * (w[5] + w[7]);
+      for (int k = 0; k < 6; k++) {
+        if (vflag_atom) vatom[i][k] += v[k];
+        if (global) virial[k] += v[k];
       }
     }
   }
@@ -674,6 +689,16 @@ void *PairVertexVoronoi::extract(const char *str, int &dim)
   if (strcmp(str, "gamma") == 0) return adapt_gamma;
   if (strcmp(str, "lambda") == 0) return lambda;
   return nullptr;
+}
+
+/* 'pair_modify nofdotr' sets LAMMPS's flag, which init_style sets for the
+   sphere's unit: remember that the user asked for it. */
+
+void PairVertexVoronoi::modify_params(int narg, char **arg)
+{
+  Pair::modify_params(narg, arg);
+  for (int i = 0; i < narg; i++)
+    if (strcmp(arg[i], "nofdotr") == 0) nofdotr_given = 1;
 }
 
 double PairVertexVoronoi::memory_usage()

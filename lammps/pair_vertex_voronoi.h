@@ -56,6 +56,7 @@ class PairVertexVoronoi : public Pair, public CellSource {
   void write_restart_settings(FILE *) override;
   void read_restart_settings(FILE *) override;
   void *extract(const char *, int &) override;
+  void modify_params(int, char **) override;
   void reinit() override;
   double memory_usage() override;
 
@@ -89,11 +90,8 @@ class PairVertexVoronoi : public Pair, public CellSource {
   bigint compute_count() const { return ncompute; }
   // Finite Voronoi radius r, or 0 (confluent or 3D cells).
   double finite_radius() const { return radius; }
-  // For the step guard: sqrt(A0) of a type (cbrt(V0) in 3D), and owned atom
-  // i's closest neighbour (ID, distance) at the last force computation, with
-  // owned atoms at owned_x (dimension values per atom, recorded then).
+  // For the step guard: sqrt(A0) of a type (cbrt(V0) in 3D).
   double cell_size(int type) const;
-  bool closest_neighbour(int i, const double *owned_x, tagint &j, double &d) const;
   // What limits the step of an integrator that moved cells too far: a
   // smaller timestep, 'fix dt/reset', and fix brownian/heun unless in use.
   std::string step_advice() const;
@@ -116,9 +114,6 @@ class PairVertexVoronoi : public Pair, public CellSource {
   // ('pair_coeff I I ...').  Under pair_style hybrid/overlay the atoms of
   // other types are not cells: never tessellated, an empty cell in cells().
   bool is_cell_type(int type) const { return type_set && type_set[type]; }
-  // For cell-only commands: an error naming the first atom of the group
-  // that is not a cell.
-  void require_cells(int igroup, const char *command) const;
   // The values a new cell of this type takes in the per-cell properties
   // d_area0, d_ka, d_kp, d_perim0 (the quadratic form of its type's
   // parameters in use; 0 for a type that is no cell, and d_perim0 0 for a
@@ -128,6 +123,8 @@ class PairVertexVoronoi : public Pair, public CellSource {
 
  protected:
   void keyword_defaults();    // the pair_style keywords' defaults
+  int nofdotr_given = 0;      // 'pair_modify nofdotr' given (init_style sets LAMMPS's flag)
+  void check_single_instance() const;    // one vertex/voronoi under pair_style hybrid
   double cut_global;
   bigint ncompute = 0;
   tessera::Tension tension;

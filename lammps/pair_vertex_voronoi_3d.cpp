@@ -253,13 +253,15 @@ void Vertex3d::compute(int eflag, int vflag)
   pair->prepare_atoms();
   const tessera::Points3 pts{pair->cell_x(), nall, 3};
   // Per-atom virial (compute stress/atom): each cell's own energy term's
-  // virial, assigned to its atom; the cells' virials add up to the total.
-  if (pair->vflag_atom) pair->cell_w.resize(9 * static_cast<size_t>(nlocal));
+  // virial, assigned to its atom; the cells' virials add up to the total
+  // (the global virial under 'pair_modify nofdotr').
+  const bool cell_virial = pair->vflag_atom || pair->vflag_global;
+  if (cell_virial) pair->cell_w.resize(9 * static_cast<size_t>(nlocal));
   tessera::ForceOutput3 out;
   try {
     out = tessera::compute_forces_3d(tess3, pts, pair->type0.data(), pair->model, pair->cell_f(),
                                      3, pair->cell_e.data(),
-                                     pair->vflag_atom ? pair->cell_w.data() : nullptr);
+                                     cell_virial ? pair->cell_w.data() : nullptr);
   } catch (tessera::Error &e) {
     error->one(FLERR, "pair_style vertex/voronoi at step {}: {}", update->ntimestep, e.what());
   }

@@ -21,11 +21,9 @@
 #include "atom.h"
 #include "error.h"
 #include "force.h"
-#include "group.h"
 #include "pair_hybrid.h"
 
 #include <cstring>
-#include <limits>
 
 using namespace LAMMPS_NS;
 
@@ -168,31 +166,6 @@ void PairVertexVoronoi::finish_cells()
   for (int c = 0; c < ncell_local; c++) cell_e_atom[cell_local[c]] = cell_e[c];
   subset.bind(unit->view(), cell_local, nlocal, nall, tessera::Points3{&atom->x[0][0], nall, 3});
   subset.energy = cell_e_atom.data();
-}
-
-/* For cell-only commands (fix cell/divide, cell/death): stop when an atom
-   of group igroup is no cell, naming the lowest such atom ID and its type. */
-
-void PairVertexVoronoi::require_cells(int igroup, const char *command) const
-{
-  const int groupbit = group->bitmask[igroup];
-  const int *mask = atom->mask, *type = atom->type;
-  tagint first = std::numeric_limits<tagint>::max(), all = 0;
-  int ftype = 0;
-  for (int i = 0; i < atom->nlocal; i++)
-    if ((mask[i] & groupbit) && !is_cell_type(type[i]) && atom->tag[i] < first) {
-      first = atom->tag[i];
-      ftype = type[i];
-    }
-  MPI_Allreduce(&first, &all, 1, MPI_LMP_TAGINT, MPI_MIN, world);
-  if (all == std::numeric_limits<tagint>::max()) return;
-  int t = first == all ? ftype : 0, tall = 0;
-  MPI_Allreduce(&t, &tall, 1, MPI_INT, MPI_MAX, world);
-  error->all(FLERR,
-             "{}: atom {} of group '{}' is not a cell (its type {} has no vertex/voronoi cell "
-             "parameters); give the command a group of cell types only, e.g. 'group cells type "
-             "...'",
-             command, all, group->names[igroup], tall);
 }
 
 /* A new cell is a cell of its type: A0, KA = K/2, KP = Gamma/2 and

@@ -2,19 +2,21 @@
    Tessera: active Voronoi vertex model in LAMMPS.
    SPDX-License-Identifier: GPL-2.0-or-later
 
-   pair_style vertex/voronoi: what the step guard (fix_vertex_guard.cpp)
-   and the lost-atom check report: each owned cell's closest Voronoi
-   neighbour, this step's closest pair of neighbours, and the error when
-   atoms were lost since the last step.
+   pair_style vertex/voronoi: what the lost-atom check reports: this
+   step's closest pair of neighbours, and the error when atoms were lost
+   since the last step (the step guard, fix_vertex_guard.cpp, finds each
+   cell's closest neighbour itself).
 ------------------------------------------------------------------------- */
 
 #include "pair_vertex_voronoi.h"
+#include "fix_vertex_guard.h"
 #include "pair_vertex_voronoi_model.h"
 
 #include "atom.h"
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "modify.h"
 #include "output.h"
 #include "thermo.h"
 #include "update.h"
@@ -24,38 +26,6 @@
 #include <string>
 
 using namespace LAMMPS_NS;
-
-/* The closest neighbour of owned atom i in the last cells, at the
-   positions of that force computation: owned atoms' from owned_x (dim per
-   atom, recorded then: the guard's copy), ghosts' from atom->x (not yet
-   updated when the guard asks, between the move and the next forward
-   communication). */
-
-bool PairVertexVoronoi::closest_neighbour(int i, const double *owned_x, tagint &j, double &d) const
-{
-  d = -1.0;
-  const int nlocal = atom->nlocal;
-  const tessera::CellView &v = cells();
-  if (i < 0 || i >= v.n_owned() || v.n_owned() != nlocal || v.n_points() != nlocal + atom->nghost)
-    return false;
-  const int dim = domain->dimension;
-  const tessera::Contacts c = v.contacts();
-  double **x = atom->x;
-  for (int k = c.offset[i]; k < c.offset[i + 1]; k++) {
-    const int q = c.neighbor[k];
-    double r2 = 0.0;
-    for (int a = 0; a < dim; a++) {
-      const double dq = (q < nlocal ? owned_x[dim * q + a] : x[q][a]) - owned_x[dim * i + a];
-      r2 += dq * dq;
-    }
-    const double r = std::sqrt(r2);
-    if (d < 0.0 || r < d) {
-      d = r;
-      j = atom->tag[q];
-    }
-  }
-  return d >= 0.0;
-}
 
 /* The closest pair of neighbours among this rank's cells at this force
    computation, for the error message of lost atoms (IDs and distance are
@@ -156,6 +126,39 @@ void PairVertexVoronoi::check_lost_atoms()
                "region must lie inside the box, which with shrink-wrapped boundaries 'boundary "
                "s' is only as large as the atoms)",
                head, atom->natoms - seen);
+  // An atom the integrators moved past a fixed boundary (the latest).
+  FixVertexGuard::Left left;
+  const int iguard = modify->find_fix(guard_id);
+  if (iguard >= 0)
+    if (auto *guard = dynamic_cast<FixVertexGuard *>(modify->fix[iguard])) left = guard->left_box();
+  // the latest step any rank saw, and of its atoms the lowest ID
+  bigint lstep = -1;
+  MPI_Allreduce(&left.step, &lstep, 1, MPI_LMP_BIGINT, MPI_MAX, world);
+  if (lstep >= 0) {
+    const bool mine = left.step == lstep;
+    int count = 0, nleft = mine ? left.count : 0;
+    MPI_Allreduce(&nleft, &count, 1, MPI_INT, MPI_SUM, world);
+    struct {
+      double tag;
+      int rank;
+    } lin{mine ? static_cast<double>(left.tag) : std::numeric_limits<double>::max(), comm->me},
+        lout;
+    MPI_Allreduce(&lin, &lout, 1, MPI_DOUBLE_INT, MPI_MINLOC, world);
+    double w[4] = {static_cast<double>(left.dim), static_cast<double>(left.side), left.x,
+                   left.bound};
+    MPI_Bcast(w, 4, MPI_DOUBLE, lout.rank, world);
+    static const char *axis = "xyz";
+    const int d = static_cast<int>(w[0]);
+    const bool upper = w[1] > 0.5;
+    error->all(FLERR,
+               "{}. Atom {} left the box through its fixed ('f') {} {} boundary at step {} ({} = "
+               "{:.6g}, {} {:.6g}){}, and LAMMPS drops an atom outside a fixed boundary: keep the "
+               "cells in with a wall (fix wall/harmonic, fix wall/region), let the box follow them "
+               "with a shrink-wrapped boundary ('s' in the boundary command), or enlarge the box{}",
+               head, static_cast<tagint>(lout.tag), upper ? "upper" : "lower", axis[d], lstep,
+               axis[d], w[2], upper ? "past" : "below", w[3],
+               count > 1 ? fmt::format(" with {} more atoms", count - 1) : std::string(), closest);
+  }
   if (moved >= 0.0 && moved <= smax)
     error->all(FLERR,
                "{}. The last integration step moved no atom further than {:.3g} (less than a cell "

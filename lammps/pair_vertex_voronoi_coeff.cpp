@@ -10,6 +10,7 @@
 
 #include "atom.h"
 #include "error.h"
+#include "force.h"
 
 #include <cmath>
 #include <cstring>
@@ -132,8 +133,29 @@ void PairVertexVoronoi::settings(int narg, char **arg)
    pair_coeff I J Lambda           (I != J: junction tension between types)
 ------------------------------------------------------------------------- */
 
+/* Every cell, whatever its type, is in one tessellation with all the
+   others: a second vertex/voronoi under pair_style hybrid would tessellate
+   its cells as if the first one's were not there (and the computes, which
+   read one style's cells, would not find the style). */
+
+void PairVertexVoronoi::check_single_instance() const
+{
+  if (force->pair == this) return;
+  // (pair_match returns the only match whatever the sub-style number)
+  Pair *second = force->pair_match("vertex/voronoi", 1, 2);
+  if (!second || second == force->pair_match("vertex/voronoi", 1, 1)) return;
+  error->all(FLERR,
+             "pair_style {}: vertex/voronoi is given more than once; every cell shares one "
+             "tessellation with all the others, whatever their types, so one vertex/voronoi "
+             "describes them all: keep one in the pair_style line and give each cell type its "
+             "parameters with 'pair_coeff I I vertex/voronoi ...' (and 'pair_coeff I J "
+             "vertex/voronoi Lambda' for the tension between types I and J)",
+             force->pair_style);
+}
+
 void PairVertexVoronoi::coeff(int narg, char **arg)
 {
+  check_single_instance();
   if (!allocated) {
     allocate();
     for (int i = 1; i <= atom->ntypes; i++) setflag[i][i] = 1;

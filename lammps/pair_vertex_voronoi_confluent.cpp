@@ -206,10 +206,12 @@ void VertexConfluent::compute(int eflag, int vflag)
 {
   const double t0 = MPI_Wtime();
   prepare();
-  // Without per-atom virials (which need the general loop), the per-cell
-  // half of the forces runs inside Mesh::advance; its time counts as
-  // tessellation in the statistics (values 1 and 2).
-  fuse_cells = !pair->vflag_atom;
+  // Without per-cell virials (per-atom, or the global one under 'pair_modify
+  // nofdotr'; they need the general loop), the per-cell half of the forces
+  // runs inside Mesh::advance; its time counts as tessellation in the
+  // statistics (values 1 and 2).
+  const bool cell_virial = pair->vflag_atom || pair->vflag_global;
+  fuse_cells = !cell_virial;
   // Each pass that widens the ghost shell re-acquires the atoms; then the
   // energy/virial accumulators are set up again for the new atom count.
   for (int pass = 0; tessellate(); pass++) {
@@ -225,13 +227,14 @@ void VertexConfluent::compute(int eflag, int vflag)
   tessera::Points pts{pair->cell_x(), nall, 3};
   // Per-atom virial (compute stress/atom): each cell's own energy term's
   // virial, assigned to its atom; the cells' virials add up to the total.
-  if (pair->vflag_atom) pair->cell_w.resize(4 * static_cast<size_t>(nlocal));
+  if (cell_virial) pair->cell_w.resize(4 * static_cast<size_t>(nlocal));
   tessera::ForceOutput out;
   try {
-    // The global virial comes from LAMMPS's f dot r (virial_fdotr_compute).
+    // The global virial comes from LAMMPS's f dot r (virial_fdotr_compute),
+    // or under 'pair_modify nofdotr' from the cells' virials (accumulate).
     out = tessera::compute_forces(tess, pts, pair->type0.data(), pair->model, pair->cell_f(), 3,
                                   pair->cell_e.data(),
-                                  pair->vflag_atom ? pair->cell_w.data() : nullptr, false,
+                                  cell_virial ? pair->cell_w.data() : nullptr, false,
                                   &cell_pass);
   } catch (tessera::Error &e) {
     // Energy or virial overflow (parameters or lengths far outside the

@@ -55,12 +55,14 @@ void VertexFinite::compute(int /*eflag*/, int /*vflag*/)
   const double t1 = MPI_Wtime();
 
   pair->prepare_atoms();
-  if (pair->vflag_atom) pair->cell_w.resize(4 * static_cast<size_t>(nlocal));
+  // Per-cell virials: per-atom, and the global one under 'pair_modify nofdotr'.
+  const bool cell_virial = pair->vflag_atom || pair->vflag_global;
+  if (cell_virial) pair->cell_w.resize(4 * static_cast<size_t>(nlocal));
   tessera::ForceOutput out;
   try {
     out = tessera::finite_forces(ftess, pts, pair->type0.data(), pair->model,
                                  pair->free_t0.data(), pair->cell_f(), 3, pair->cell_e.data(),
-                                 pair->vflag_atom ? pair->cell_w.data() : nullptr);
+                                 cell_virial ? pair->cell_w.data() : nullptr);
   } catch (tessera::Error &e) {
     error->one(FLERR, "pair_style vertex/voronoi at step {}: {}", update->ntimestep, e.what());
   }

@@ -170,12 +170,19 @@ void PairVertexVoronoi::check_sphere_box(double R) const
   static const char *axis = "xyz";
   for (int d = 0; d < 3; d++) {
     if (domain->boundary[d][0] >= 2 && domain->boundary[d][1] >= 2) continue;    // s or m
-    if (centre[d] - R < lo[d] || centre[d] + R > hi[d])
+    if (centre[d] - R < lo[d] || centre[d] + R > hi[d]) {
+      // how the cells grew there (fix_vertex_sphere.cpp)
+      std::string why;
+      const int ifix = sphere_fix_id.empty() ? -1 : modify->find_fix(sphere_fix_id);
+      if (ifix >= 0)
+        if (auto *fix = dynamic_cast<FixVertexSphere *>(modify->fix[ifix]))
+          why = fix->growth_note(R);
       error->all(FLERR,
                  "pair_style vertex/voronoi: the sphere (centre {} {} {}, radius {}) at step {} "
-                 "reaches past the box along {} ({} to {}); enlarge the box (the sphere must lie "
-                 "inside it) or use shrink-wrapped boundaries ('boundary s s s')",
-                 centre[0], centre[1], centre[2], R, update->ntimestep, axis[d], lo[d], hi[d]);
+                 "reaches past the box along {} ({} to {}){}; enlarge the box (the sphere must "
+                 "lie inside it) or use shrink-wrapped boundaries ('boundary s s s')",
+                 centre[0], centre[1], centre[2], R, update->ntimestep, axis[d], lo[d], hi[d], why);
+    }
   }
   if (domain->triclinic)
     error->all(FLERR, "pair_style vertex/voronoi: 'surface sphere' needs an orthogonal box");

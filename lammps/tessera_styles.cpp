@@ -19,9 +19,11 @@
 #include "compute_vertex_atom.h"
 #include "compute_vertex_local.h"
 #include "compute_vertex_loops.h"
+#include "compute_vertex_loops_atom.h"
 #include "compute_vertex_tissue.h"
 #include "create_vertices.h"
 #include "fix_cell_adapt.h"
+#include "fix_clock.h"
 #include "fix_cell_death.h"
 #include "fix_cell_divide.h"
 #include "fix_cell_signal.h"
@@ -114,6 +116,7 @@ const std::vector<Entry> &style_table()
       compute_style<ComputeVertexAtom>("vertex/atom"),
       compute_style<ComputeVertexLocal>("vertex/local"),
       compute_style<ComputeVertexLoops>("vertex/loops"),
+      compute_style<ComputeVertexLoopsAtom>("vertex/loops/atom"),
       compute_style<ComputeVertexTissue>("vertex/tissue"),
       fix_style<FixCellDivide>("cell/divide"),
       fix_style<FixCellDeath>("cell/death"),
@@ -122,6 +125,7 @@ const std::vector<Entry> &style_table()
       compute_style<ComputeCellNeighborMean>("cell/neighbor/mean"),
       pair_style<PairVertexPolygon>("vertex/polygon"),
       command_style<CreateVertices>("create_vertices"),
+      fix_style<FixClock>("clock"),
   };
   return table;
 }

@@ -2,20 +2,26 @@
 //
 // Mesh3: a 3D Delaunay tetrahedralisation repaired by flips (see mesh3d.h).
 //
-// Predicates.  orient(a, b, c, d) is the sign of det[b-a; c-a; d-a] (CGAL's
-// orientation: positive when the tetrahedron a b c d is positively
-// oriented).  The in-sphere test of a
-// positively oriented tetrahedron against e is positive when e lies inside
-// its circumsphere (CGAL's side_of_oriented_sphere).  Both are evaluated in
-// floating point with a static error bound (a multiple of the permanent, the
-// determinant with every product replaced by its magnitude, ten times and more
-// above the classical bounds); only inside the bound do they call CGAL's
-// exact predicates.  An exact zero of the in-sphere test is broken by the
-// symbolic perturbation of Delaunay_triangulation_3: the five points ranked
-// by lexicographic xyz order, the two highest ranked decide through
-// orientation tests with the point replaced (Devillers and Teillaud,
-// "Perturbations for Delaunay and weighted Delaunay 3D triangulations",
-// 2011), so the repaired triangulation is the unique one a rebuild gives.
+// Build.  Tessera's own Delaunay tetrahedralisation of the points and the
+// far points (mesh3d_delaunay.h), its tetrahedra numbered by their smallest
+// point index.
+//
+// Predicates (mesh3d_delaunay.h).  orient(a, b, c, d) is the sign of
+// det[b-a; c-a; d-a] (positive when the tetrahedron a b c d is positively
+// oriented, CGAL's convention).  The in-sphere test of a positively
+// oriented tetrahedron against e is positive when e lies inside its
+// circumsphere (CGAL's side_of_oriented_sphere).  Both are evaluated in
+// floating point with static error bounds (multiples of the permanent, the
+// determinant with every product replaced by its magnitude, ten times and
+// more above the classical bounds); only inside the bound do they call
+// tessera::exact's predicates.  An exact zero of the in-sphere test is
+// broken by the symbolic perturbation of Devillers and Teillaud
+// ("Perturbations for Delaunay and weighted Delaunay 3D triangulations",
+// 2011), the one CGAL's Delaunay_triangulation_3 uses: the five points
+// ranked by lexicographic xyz order, the two highest ranked decide through
+// orientation tests with the point replaced.  The builder uses the same
+// predicate, so the repaired triangulation is the unique one a rebuild
+// gives.
 //
 // Flips.  A triangle a b c between tetrahedra (a b c p) and (a b c d) that
 // fails the in-sphere test is flipped 2-3 when the segment p d crosses the
@@ -34,13 +40,10 @@
 
 #include "tessera/mesh3d.h"
 
+#include "exact_predicates.h"
+#include "mesh3d_delaunay.h"
 #include "mesh3d_detail.h"
 #include "point_name.h"
-
-#include <CGAL/Delaunay_triangulation_3.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_cell_base_with_info_3.h>
-#include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include <algorithm>
 #include <chrono>
@@ -50,72 +53,6 @@
 namespace tessera {
 
 namespace {
-
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
-using Cb = CGAL::Triangulation_cell_base_with_info_3<int, K, CGAL::Delaunay_triangulation_cell_base_3<K>>;
-using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
-using DT = CGAL::Delaunay_triangulation_3<K, Tds>;
-using P3 = K::Point_3;
-
-inline P3 cp(const double *a) { return P3(a[0], a[1], a[2]); }
-
-// Sign of det[b-a; c-a; d-a]; exact_calls counts the calls to CGAL.
-int orient_raw(const double *a, const double *b, const double *c, const double *d, long &exact_calls) {
-  const double bx = b[0] - a[0], by = b[1] - a[1], bz = b[2] - a[2];
-  const double cx = c[0] - a[0], cy = c[1] - a[1], cz = c[2] - a[2];
-  const double dx = d[0] - a[0], dy = d[1] - a[1], dz = d[2] - a[2];
-  const double cydz = cy * dz, czdy = cz * dy, czdx = cz * dx, cxdz = cx * dz, cxdy = cx * dy,
-               cydx = cy * dx;
-  const double det = bx * (cydz - czdy) + by * (czdx - cxdz) + bz * (cxdy - cydx);
-  const double perm = std::fabs(bx) * (std::fabs(cydz) + std::fabs(czdy)) +
-                      std::fabs(by) * (std::fabs(czdx) + std::fabs(cxdz)) +
-                      std::fabs(bz) * (std::fabs(cxdy) + std::fabs(cydx));
-  const double bound = 1e-14 * perm;
-  if (det > bound) return 1;
-  if (det < -bound) return -1;
-  ++exact_calls;
-  const CGAL::Orientation o = CGAL::orientation(cp(a), cp(b), cp(c), cp(d));
-  return o == CGAL::POSITIVE ? 1 : (o == CGAL::NEGATIVE ? -1 : 0);
-}
-
-// Positive when e is inside the circumsphere of the positively oriented
-// tetrahedron p0 p1 p2 p3 (CGAL's side_of_oriented_sphere), unperturbed.
-int insphere_raw(const double *p0, const double *p1, const double *p2, const double *p3,
-                 const double *e, long &exact_calls) {
-  const double ax = p0[0] - e[0], ay = p0[1] - e[1], az = p0[2] - e[2];
-  const double bx = p1[0] - e[0], by = p1[1] - e[1], bz = p1[2] - e[2];
-  const double cx = p2[0] - e[0], cy = p2[1] - e[1], cz = p2[2] - e[2];
-  const double dx = p3[0] - e[0], dy = p3[1] - e[1], dz = p3[2] - e[2];
-  const double axby = ax * by, bxay = bx * ay, bxcy = bx * cy, cxby = cx * by;
-  const double cxdy = cx * dy, dxcy = dx * cy, dxay = dx * ay, axdy = ax * dy;
-  const double axcy = ax * cy, cxay = cx * ay, bxdy = bx * dy, dxby = dx * by;
-  const double ab = axby - bxay, bc = bxcy - cxby, cd = cxdy - dxcy, da = dxay - axdy;
-  const double ac = axcy - cxay, bd = bxdy - dxby;
-  const double abc = az * bc - bz * ac + cz * ab;
-  const double bcd = bz * cd - cz * bd + dz * bc;
-  const double cda = cz * da + dz * ac + az * cd;
-  const double dab = dz * ab + az * bd + bz * da;
-  const double al = ax * ax + ay * ay + az * az, bl = bx * bx + by * by + bz * bz;
-  const double cl = cx * cx + cy * cy + cz * cz, dl = dx * dx + dy * dy + dz * dz;
-  const double det = (dl * abc - cl * dab) + (bl * cda - al * bcd);
-  const double pab = std::fabs(axby) + std::fabs(bxay), pbc = std::fabs(bxcy) + std::fabs(cxby);
-  const double pcd = std::fabs(cxdy) + std::fabs(dxcy), pda = std::fabs(dxay) + std::fabs(axdy);
-  const double pac = std::fabs(axcy) + std::fabs(cxay), pbd = std::fabs(bxdy) + std::fabs(dxby);
-  const double pabc = std::fabs(az) * pbc + std::fabs(bz) * pac + std::fabs(cz) * pab;
-  const double pbcd = std::fabs(bz) * pcd + std::fabs(cz) * pbd + std::fabs(dz) * pbc;
-  const double pcda = std::fabs(cz) * pda + std::fabs(dz) * pac + std::fabs(az) * pcd;
-  const double pdab = std::fabs(dz) * pab + std::fabs(az) * pbd + std::fabs(bz) * pda;
-  const double perm = dl * pabc + cl * pdab + bl * pcda + al * pbcd;
-  const double bound = 1e-13 * perm;
-  // det is the determinant in the orientation convention opposite to CGAL's.
-  if (det > bound) return -1;
-  if (det < -bound) return 1;
-  ++exact_calls;
-  const CGAL::Oriented_side s = CGAL::side_of_oriented_sphere(cp(p0), cp(p1), cp(p2), cp(p3), cp(e));
-  return s == CGAL::ON_POSITIVE_SIDE ? 1 : (s == CGAL::ON_NEGATIVE_SIDE ? -1 : 0);
-}
-
 
 // Capacity for `size` elements plus 1/32 (and `unit` whole elements' worth
 // of 64 more), on an empty vector (after Mesh3::release()).
@@ -138,51 +75,33 @@ inline void sort3(int *f) {
 }  // namespace
 
 int Mesh3::orient(const Points3 &pts, int a, int b, int c, int d) const {
-  return orient_raw(pos(pts, a), pos(pts, b), pos(pts, c), pos(pts, d), exact_);
+  return detail3::orient3d_filtered(pos(pts, a), pos(pts, b), pos(pts, c), pos(pts, d), exact_);
 }
 
 bool Mesh3::less_xyz(const Points3 &pts, int a, int b) const {
-  const double *p = pos(pts, a), *q = pos(pts, b);
-  if (p[0] != q[0]) return p[0] < q[0];
-  if (p[1] != q[1]) return p[1] < q[1];
-  return p[2] < q[2];
+  return detail3::less_xyz(pos(pts, a), pos(pts, b));
 }
 
 // Perturbed in-sphere test of point e against the positively oriented
 // tetrahedron t[0..3]: +1 inside, -1 outside, never 0.
 int Mesh3::insphere(const Points3 &pts, const int *t, int e) const {
-  const int s = insphere_raw(pos(pts, t[0]), pos(pts, t[1]), pos(pts, t[2]), pos(pts, t[3]),
-                             pos(pts, e), exact_);
-  if (s != 0) return s;
-  // Symbolic perturbation: rank the five points (slot 4 is e).
-  int slot[5] = {0, 1, 2, 3, 4};
-  auto point = [&](int k) { return k == 4 ? e : t[k]; };
-  std::sort(slot, slot + 5, [&](int x, int y) { return less_xyz(pts, point(x), point(y)); });
-  for (int r = 4; r > 2; --r) {
-    const int k = slot[r];
-    if (k == 4) return -1;
-    int q[4] = {t[0], t[1], t[2], t[3]};
-    q[k] = e;
-    const int o = orient(pts, q[0], q[1], q[2], q[3]);
-    if (o != 0) return o;
-  }
-  return -1;
+  const double *c[4] = {pos(pts, t[0]), pos(pts, t[1]), pos(pts, t[2]), pos(pts, t[3])};
+  return detail3::insphere_perturbed(c, pos(pts, e), exact_);
 }
 
-// CGAL's Delaunay triangulation of the points and the far points, exported
-// to tv_, tn_ and vt_; returns the number of tetrahedra.  CGAL's
-// triangulation lives only in this call.
+// The Delaunay tetrahedralisation of the points and the far points into
+// tv_, tn_ and vt_; returns the number of tetrahedra.  Tetrahedra are
+// numbered by their smallest point index: callers keep points in spatial
+// order (LAMMPS sorts atoms), so a point's star lies in a few cache lines;
+// the owned points' tetrahedra come first.  Room for a few per cent more
+// tetrahedra (2-3 flips add one) is reserved, so that the first flips do
+// not double the arrays (as push_back would).
 int Mesh3::triangulate(const Points3 &pts, const long *ids, const int *report) {
   const int n = pts.n;
   auto name = [&](int i) { return point_name(report ? report[i] : i, ids); };
-  int nt = 0;
-  DT dt;
-  {
-    std::vector<std::pair<P3, int>> in(n + 8);
-    for (int i = 0; i < n + 8; ++i) in[i] = {cp(pos(pts, i)), i};
-    dt.insert(in.begin(), in.end());
-  }
-  if (static_cast<int>(dt.number_of_vertices()) != n + 8) {
+  detail3::Tetrahedra out;
+  const detail3::Delaunay3 status = detail3::delaunay_3d(pts, far_, 8, out, 1.0 / 32);
+  if (status != detail3::Delaunay3::kOk) {
     std::vector<int> order(n);
     for (int i = 0; i < n; ++i) order[i] = i;
     std::sort(order.begin(), order.end(), [&](int a, int b) {
@@ -197,41 +116,10 @@ int Mesh3::triangulate(const Points3 &pts, const long *ids, const int *report) {
     }
     throw Error("tessera: points were lost by the 3D triangulation");
   }
-  // Tetrahedra numbered by their smallest point index (a counting sort):
-  // callers keep points in spatial order (LAMMPS sorts atoms), so a point's
-  // star lies in a few cache lines; the owned points' tetrahedra come first.
-  std::vector<int> first(n + 9, 0);
-  auto smallest = [](DT::Cell_handle c) {
-    return std::min(std::min(c->vertex(0)->info(), c->vertex(1)->info()),
-                    std::min(c->vertex(2)->info(), c->vertex(3)->info()));
-  };
-  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) {
-    c->info() = -1;
-    if (!dt.is_infinite(c)) {
-      ++first[smallest(c) + 1];
-      ++nt;
-    }
-  }
-  for (int i = 0; i < n + 8; ++i) first[i + 1] += first[i];
-  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) c->info() = first[smallest(c)]++;
-  // Room for a few per cent more tetrahedra (2-3 flips add one) reserved
-  // before the arrays are filled, so that the first flips do not double them
-  // (as push_back would) and no copy is made while CGAL's triangulation lives.
-  reserve_with_margin(tv_, 4 * static_cast<size_t>(nt), 4);
-  reserve_with_margin(tn_, 4 * static_cast<size_t>(nt), 4);
-  tv_.assign(4 * static_cast<size_t>(nt), -1);
-  tn_.assign(4 * static_cast<size_t>(nt), -1);
-  vt_.assign(n + 8, -1);
-  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
-    const int t = c->info();
-    for (int k = 0; k < 4; ++k) {
-      const int v = c->vertex(k)->info();
-      tv_[4 * t + k] = v;
-      tn_[4 * t + k] = c->neighbor(k)->info();
-      vt_[v] = t;
-    }
-  }
-  return nt;
+  tv_.swap(out.tv);
+  tn_.swap(out.tn);
+  vt_.swap(out.vt);
+  return out.n_tets;
 }
 
 void Mesh3::build(const Points3 &pts, const long *ids, const int *report) {
@@ -250,10 +138,9 @@ void Mesh3::build(const Points3 &pts, const long *ids, const int *report) {
     if (p[0] != q[0] || p[1] != q[1] || p[2] != q[2]) i1 = i;
   }
   for (int i = i1 + 1; i1 > 0 && i < n && i2 < 0; ++i)
-    if (!CGAL::collinear(cp(pts.p(0)), cp(pts.p(i1)), cp(pts.p(i)))) i2 = i;
+    if (!detail3::collinear3(pts.p(0), pts.p(i1), pts.p(i))) i2 = i;
   for (int i = i2 + 1; i2 > 0 && i < n && i3 < 0; ++i)
-    if (CGAL::orientation(cp(pts.p(0)), cp(pts.p(i1)), cp(pts.p(i2)), cp(pts.p(i))) != CGAL::COPLANAR)
-      i3 = i;
+    if (exact::orient3d(pts.p(0), pts.p(i1), pts.p(i2), pts.p(i)) != 0) i3 = i;
   if (i3 < 0)
     throw Error("tessera: fewer than 4 non-coplanar points; the 3D mesh needs a 3D configuration");
 
@@ -273,9 +160,9 @@ void Mesh3::build(const Points3 &pts, const long *ids, const int *report) {
     for (int d = 0; d < 3; ++d)
       far_[k][d] = 0.5 * (lo[d] + hi[d]) + ((k >> d) & 1 ? 32.0 : -32.0) * extent;
 
-  // The previous mesh is not needed: its arrays are released before CGAL's
+  // The previous mesh is not needed: its arrays are released before the
   // triangulation is built, so that the two never coexist (the peak memory
-  // of a rebuild is CGAL's triangulation and the arrays exported from it).
+  // of a rebuild is the builder's arrays and those exported from them).
   release();
   const int nt = triangulate(pts, ids, report);
   reserve_with_margin(skip_, nt, 1);
@@ -560,15 +447,13 @@ bool Mesh3::untangle(const Points3 &pts, int t) {
 }
 
 double time_plain_delaunay_3d(const Points3 &pts, int n, long *cells) {
-  using Plain = CGAL::Delaunay_triangulation_3<K>;
-  std::vector<Plain::Point> in;
-  in.reserve(static_cast<size_t>(n > 0 ? n : 0));
-  for (int i = 0; i < n; ++i) in.push_back(cp(pts.p(i)));
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
-  Plain dt(in.begin(), in.end());
+  detail3::Tetrahedra out;
+  const Points3 own{pts.data, n > 0 ? n : 0, pts.stride};
+  detail3::delaunay_3d(own, nullptr, 0, out, 0.0, false);
   const double seconds = std::chrono::duration<double>(clock::now() - t0).count();
-  if (cells) *cells = static_cast<long>(dt.number_of_finite_cells());
+  if (cells) *cells = out.n_tets;
   return seconds;
 }
 

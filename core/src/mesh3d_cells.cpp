@@ -1,7 +1,7 @@
 // Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
 //
 // Mesh3::cells: the owned cells of the kept tetrahedra, as tessellate_local_3d
-// builds them from CGAL's (see mesh3d.h).  Face f of cell i towards j is the
+// builds them from a fresh triangulation (see mesh3d.h).  Face f of cell i towards j is the
 // ring of tetrahedra around the Delaunay edge i j, walked from a tetrahedron
 // (i j a b) across the triangle (i j b) when (i j a b) is an even
 // permutation of its positively oriented corners: the ring then runs
@@ -21,11 +21,10 @@
 #include "tessera/mesh3d.h"
 
 #include "fourfold3d.h"
+#include "mesh3d_delaunay.h"
 #include "vec3_detail.h"
 
 #include "point_name.h"
-
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 
 #include <algorithm>
 #include <cmath>
@@ -45,15 +44,15 @@ using namespace detail3;
 constexpr double kSliver = 1e-6;
 constexpr double kCoSpherical = 1e-8;
 
-// The circumcentre of a sliver to the nearest double (CGAL's exact
-// construction; the formula of vec3_detail.h loses about eps/q of the
-// radius at flatness q).
+// The circumcentre of a sliver to the nearest double (computed in
+// rationals, mesh3d_exact.cpp; the formula of vec3_detail.h loses about
+// eps/q of the radius at flatness q).
 V3 exact_circumcentre(V3 p0, V3 p1, V3 p2, V3 p3) {
-  using E = CGAL::Exact_predicates_exact_constructions_kernel;
-  const E::Point_3 c = CGAL::circumcenter(E::Point_3(p0.x, p0.y, p0.z), E::Point_3(p1.x, p1.y, p1.z),
-                                          E::Point_3(p2.x, p2.y, p2.z), E::Point_3(p3.x, p3.y, p3.z));
-  return {CGAL::to_double(CGAL::exact(c.x())), CGAL::to_double(CGAL::exact(c.y())),
-          CGAL::to_double(CGAL::exact(c.z()))};
+  const double a[3] = {p0.x, p0.y, p0.z}, b[3] = {p1.x, p1.y, p1.z}, c[3] = {p2.x, p2.y, p2.z},
+               d[3] = {p3.x, p3.y, p3.z};
+  double h[3];
+  detail3::exact_circumcentre(a, b, c, d, h);
+  return {h[0], h[1], h[2]};
 }
 
 // Circumcentre of tetrahedron p0..p3 (exact for a sliver); *sliver says
@@ -478,7 +477,8 @@ void Mesh3::cells(const Points3 &pts, int n_owned, Tessellation3 &t, const long 
   check_separation_3d(t, pts, ids, d2min);
   {
     // Four-fold edges, found through the mesh's adjacency (far points and
-    // their tetrahedra count as absent, as CGAL's infinite ones).
+    // their tetrahedra count as absent, as the hull's in
+    // tessellate_local_3d).
     class MeshGraph : public detail3::TetGraph {
     public:
       MeshGraph(const std::vector<int> &tv, const std::vector<int> &tn, const std::vector<int> &used,

@@ -20,6 +20,12 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
   double sep2;
   if (!start_update(pts, sep2))
     return false;
+  if (tiny_) { // no floating-point filters: the full path
+    if (!update(pts, roi_lo, roi_hi))
+      return false;
+    cells(pts, n_owned, t);
+    return true;
+  }
   const int nt = static_cast<int>(v_.size() / 3);
   const int nft0 = nft_;
   t.triangles.resize(nft0);

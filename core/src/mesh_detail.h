@@ -1,19 +1,15 @@
 // Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
 //
 // Shared by the mesh's source files (mesh_build, mesh_update, mesh_cells,
-// mesh_advance): CGAL's types, the input limits, the filtered predicates,
-// the circumcentre, and the search for multifold vertices.  Internal to the
-// core (not installed).
+// mesh_advance, mesh_repair): the input limits, the filtered predicates and
+// the tie-break of co-circular points, the circumcentre, and the search for
+// multifold vertices.  Internal to the core (not installed).
 #pragma once
 
 #include "tessera/mesh.h"
 
+#include "exact_predicates.h"
 #include "point_name.h"
-
-#include <CGAL/Delaunay_triangulation_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_face_base_with_info_2.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -29,14 +25,21 @@
 
 namespace tessera {
 
-namespace {
+namespace detail {
+// The sign of the in-circle determinant of exactly co-circular a, b, c, d
+// under the symbolic perturbation that breaks their tie (mesh_build.cpp;
+// doc/model.md, "Exact geometry"): never 0 for four distinct points with
+// a, b, c not collinear.
+int in_circle_tie(const double *a, const double *b, const double *c, const double *d);
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, Kernel>;
-using Fb = CGAL::Triangulation_face_base_with_info_2<int, Kernel>;
-using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
-using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, Tds>;
-using CPoint = Kernel::Point_2;
+// The triangulator of Mesh::build alone (mesh_build.cpp), on points
+// 0..pts.n-1 without the input checks: the triangles into tri (three
+// corners each, counter-clockwise, the smallest first; -1 is the point at
+// infinity).  False when all points are on one line or two coincide.
+bool delaunay_triangles(const Points &pts, std::vector<int> &tri);
+}  // namespace detail
+
+namespace {
 
 // Voronoi edges shorter than this fraction of the adjacent circumradius (or
 // than the circumcentres' error bounds, see zero_edge) are the zero-length
@@ -64,43 +67,61 @@ inline double min_separation2(double S) {
   return d * d;
 }
 
+// Coordinates below this magnitude (other than 0) let products of four
+// coordinate differences underflow, where the floating-point filters'
+// relative error bounds no longer hold.  A point set with one (build() and
+// update() look) takes the exact predicates without the in-circle filters:
+// all nonzero differences of coordinates of at least 2^-200 are at least
+// 2^-252, and products of four of those stay normal.
+constexpr double kTinyCoordinate = 0x1p-200;
+
 // Orientation of (a, b, c): > 0 counter-clockwise.  Shewchuk's static error
-// bound decides almost every case in double precision; the rest go to CGAL's
-// exact predicate.
+// bound (plus 2^-1060 for products that underflow) decides almost every
+// case in double precision; the rest go to the exact predicate.
 inline int orientation(double ax, double ay, double bx, double by, double cx, double cy) {
   const double l = (ax - cx) * (by - cy), r = (ay - cy) * (bx - cx);
   const double det = l - r;
-  const double bound = 3.3306690738754716e-16 * (std::fabs(l) + std::fabs(r));
+  const double bound = 3.3306690738754716e-16 * (std::fabs(l) + std::fabs(r)) + 0x1p-1060;
   if (det > bound)
     return 1;
   if (-det > bound)
     return -1;
-  return static_cast<int>(CGAL::orientation(CPoint(ax, ay), CPoint(bx, by), CPoint(cx, cy)));
+  const double a[2] = {ax, ay}, b[2] = {bx, by}, c[2] = {cx, cy};
+  return exact::orient2d(a, b, c);
 }
 
-// > 0 when d is strictly inside the circle through the counter-clockwise a, b, c.
+// > 0 when d is strictly inside the circle through the counter-clockwise
+// a, b, c, ties broken by the symbolic perturbation: the same side as
+// CGAL's perturbed side_of_oriented_circle, so that the Delaunay
+// triangulation is unique.  Shewchuk's static filter first (valid when no
+// coordinate is tiny, see kTinyCoordinate; with filter false it is skipped),
+// then the exact predicate.
 inline int in_circle(double ax, double ay, double bx, double by, double cx, double cy, double dx,
-                     double dy) {
-  const double adx = ax - dx, ady = ay - dy, bdx = bx - dx, bdy = by - dy, cdx = cx - dx,
-               cdy = cy - dy;
-  const double bc = bdx * cdy, cb = cdx * bdy, ca = cdx * ady, ac = adx * cdy, ab = adx * bdy,
-               ba = bdx * ady;
-  const double al = adx * adx + ady * ady, bl = bdx * bdx + bdy * bdy, cl = cdx * cdx + cdy * cdy;
-  const double det = al * (bc - cb) + bl * (ca - ac) + cl * (ab - ba);
-  const double perm = (std::fabs(bc) + std::fabs(cb)) * al + (std::fabs(ca) + std::fabs(ac)) * bl +
-                      (std::fabs(ab) + std::fabs(ba)) * cl;
-  const double bound = 1.1102230246251577e-15 * perm;
-  if (det > bound)
-    return 1;
-  if (-det > bound)
-    return -1;
-  return static_cast<int>(CGAL::side_of_oriented_circle(CPoint(ax, ay), CPoint(bx, by),
-                                                        CPoint(cx, cy), CPoint(dx, dy)));
+                     double dy, bool filter = true) {
+  if (filter) {
+    const double adx = ax - dx, ady = ay - dy, bdx = bx - dx, bdy = by - dy, cdx = cx - dx,
+                 cdy = cy - dy;
+    const double bc = bdx * cdy, cb = cdx * bdy, ca = cdx * ady, ac = adx * cdy, ab = adx * bdy,
+                 ba = bdx * ady;
+    const double al = adx * adx + ady * ady, bl = bdx * bdx + bdy * bdy,
+                 cl = cdx * cdx + cdy * cdy;
+    const double det = al * (bc - cb) + bl * (ca - ac) + cl * (ab - ba);
+    const double perm = (std::fabs(bc) + std::fabs(cb)) * al +
+                        (std::fabs(ca) + std::fabs(ac)) * bl + (std::fabs(ab) + std::fabs(ba)) * cl;
+    const double bound = 1.1102230246251577e-15 * perm;
+    if (det > bound)
+      return 1;
+    if (-det > bound)
+      return -1;
+  }
+  const double a[2] = {ax, ay}, b[2] = {bx, by}, c[2] = {cx, cy}, d[2] = {dx, dy};
+  const int s = exact::incircle(a, b, c, d);
+  return s != 0 ? s : detail::in_circle_tie(a, b, c, d);
 }
 
 // The correctly rounded square root (as std::sqrt) without the errno path:
-// with CGAL's -frounding-math GCC turned std::sqrt in advance() into a call
-// into libm, 5 % of a step.
+// with -frounding-math (which CGAL's build flags brought in) GCC turned
+// std::sqrt in advance() into a call into libm, 5 % of a step.
 #if defined(__SSE2__)
 #define TESSERA_ALWAYS_INLINE inline __attribute__((always_inline))
 TESSERA_ALWAYS_INLINE double root(double x) { return _mm_cvtsd_f64(_mm_sqrt_sd(_mm_set_sd(x), _mm_set_sd(x))); }

@@ -309,6 +309,8 @@ bool Mesh::repair_one(const Points &pts, double sep2, int f) {
       T.push_back({p, s, x});
     }
     if (ok && T.size() != C.size()) ok = false;  // cannot happen after the Euler check
+    for (auto &tr : T)  // each with its smallest point first, as Mesh::canonical()
+      std::rotate(tr.begin(), std::min_element(tr.begin(), tr.end()), tr.end());
     if (ok) {
       // New edges closer than the separation limit: build() names the points.
       for (const auto &tr : T)

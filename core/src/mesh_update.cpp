@@ -1,7 +1,8 @@
 // Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
 //
 // Mesh::update: the triangulation kept Delaunay across steps by Lawson flips
-// with filtered exact predicates.
+// with filtered exact predicates (ties of co-circular points broken as
+// build() breaks them, so that the two give the same triangles).
 
 #include "mesh_detail.h"
 
@@ -14,12 +15,28 @@ bool Mesh::flip_needed(const Points &pts, int p, int q, int r, int s) const {
     return orientation(pts.x(s), pts.y(s), pts.x(q), pts.y(q), pts.x(r), pts.y(r)) > 0;
   if (q == kInfinite) // hull chain r -> p -> s
     return orientation(pts.x(r), pts.y(r), pts.x(p), pts.y(p), pts.x(s), pts.y(s)) > 0;
-  return in_circle(pts.x(p), pts.y(p), pts.x(q), pts.y(q), pts.x(r), pts.y(r), pts.x(s), pts.y(s)) >
-         0;
+  return in_circle(pts.x(p), pts.y(p), pts.x(q), pts.y(q), pts.x(r), pts.y(r), pts.x(s), pts.y(s),
+                   !tiny_) > 0;
+}
+
+void Mesh::canonical(int t) {
+  int *v = &v_[3 * t], *n = &nb_[3 * t];
+  const int k = v[1] < v[0] ? (v[2] < v[1] ? 2 : 1) : (v[2] < v[0] ? 2 : 0);
+  if (k == 0)
+    return;
+  const int v0 = v[0], v1 = v[1], v2 = v[2], n0 = n[0], n1 = n[1], n2 = n[2];
+  if (k == 1) {
+    v[0] = v1, v[1] = v2, v[2] = v0;
+    n[0] = n1, n[1] = n2, n[2] = n0;
+  } else {
+    v[0] = v2, v[1] = v0, v[2] = v1;
+    n[0] = n2, n[1] = n0, n[2] = n1;
+  }
 }
 
 // Flips the edge between triangle t = (r, p, q) (r = vertex k) and
-// u = (s, q, p) (s = vertex j) into t = (r, p, s), u = (s, q, r).
+// u = (s, q, p) (s = vertex j) into t = (r, p, s), u = (s, q, r), each then
+// rotated to its canonical order.
 void Mesh::flip(int t, int k, int u, int j) {
   const int r = v_[3 * t + k], p = v_[3 * t + (k + 1) % 3], q = v_[3 * t + (k + 2) % 3];
   const int s = v_[3 * u + j];
@@ -53,6 +70,8 @@ void Mesh::flip(int t, int k, int u, int j) {
     vt_[s] = u;
   if (q != kInfinite)
     vt_[q] = u;
+  canonical(t);
+  canonical(u);
   flipped_.push_back(t);
   flipped_.push_back(u);
   mark_dirty(r);
@@ -135,13 +154,17 @@ bool Mesh::start_update(const Points &pts, double &sep2) {
     return false;
   }
   double scale = 0.0;
+  bool tiny = false;
   for (int i = 0; i < pts.n; ++i) {
     if (!std::isfinite(pts.x(i)) || !std::isfinite(pts.y(i))) { // build() names it
       valid_ = false;
       return false;
     }
-    scale = std::max({scale, std::fabs(pts.x(i)), std::fabs(pts.y(i))});
+    const double ax = std::fabs(pts.x(i)), ay = std::fabs(pts.y(i));
+    scale = std::max({scale, ax, ay});
+    tiny |= (ax < kTinyCoordinate && ax != 0.0) | (ay < kTinyCoordinate && ay != 0.0);
   }
+  tiny_ = tiny;
   if (scale > kMaxCoordinate) { // build() names it
     valid_ = false;
     return false;
@@ -248,16 +271,18 @@ bool Mesh::flip_pass(const Points &pts, double sep2) {
       valid_ = false;
       return false;
     }
+    const int s = v_[3 * u + j];
     flip(t, k, u, j);
     if (++flips_ > max_flips) { // cannot happen for a valid mesh; be safe
       valid_ = false;
       return false;
     }
-    // The four outer edges of the new pair (r,p,s) in t and (s,q,r) in u.
-    const int edges[4][2] = {{t, 0}, {t, 2}, {u, 0}, {u, 2}};
+    // The four outer edges of the new pair (r, p, s) in t and (s, q, r) in
+    // u: those opposite r and s.
+    const int edges[4][2] = {{t, r}, {t, s}, {u, s}, {u, r}};
     for (const auto &e : edges) {
       stack_.push_back(e[0]);
-      stack_.push_back(e[1]);
+      stack_.push_back(corner(e[0], e[1]));
     }
   }
   restore_partition();

@@ -5,16 +5,18 @@
 // Triangulation.  The spherical Delaunay triangulation of points on a sphere
 // is the convex hull of the points (a circle on the sphere is the sphere cut
 // by a plane; a triangle's circumcircle cap is empty iff no point lies
-// beyond its facet plane).  It is built from the unit directions u_i as
-// rounded to doubles, with exact predicates, by CGAL's Delaunay
-// triangulation on the sphere (Caroli et al., SEA 2010: the predicates are
-// 3D orientations, so the result is the hull of the rounded directions), or
-// by CGAL's convex hull when the points lie in one hemisphere.  The rounded
-// directions are not exactly on the sphere, but a point can only fall
-// inside the hull of the others if it is within about sqrt(eps) of another
-// one (the sagitta of a cap of angular size d is d^2/2, against round-off
-// of order eps), whatever the co-circularity; pairs closer than 2^-23 (the
-// bound of CGAL's triangulation on the sphere) are refused, naming them.
+// beyond its facet plane).  It is built by sphere_hull.cpp from the unit
+// directions u_i as rounded to doubles, with exact predicates: the exact
+// convex hull of the rounded directions, which is the spherical Delaunay
+// triangulation of the directions they round.  The rounded directions are
+// not exactly on the sphere, but a point can only fall inside the hull of
+// the others if it is within about sqrt(eps) of another one (the sagitta of
+// a cap of angular size d is d^2/2, against round-off of order eps),
+// whatever the co-circularity; pairs closer than 2^-23 (a margin of 8 over
+// sqrt(eps) = 2^-26) are refused, naming them.  Four or more co-circular
+// points make one face of the hull, a polygon, which the hull splits into
+// triangles in an order that depends on the insertion order; their poles
+// coincide up to round-off and are merged below.
 //
 // Geometry.  Voronoi vertex of facet (a, b, c), counter-clockwise from
 // outside: v = n/|n|, n = (u_b - u_a) x (u_c - u_a), its outward normal.  A
@@ -29,26 +31,14 @@
 #include "tessera/sphere.h"
 
 #include "point_name.h"
+#include "sphere_hull.h"
 #include "sphere_vec.h"
-
-#include <CGAL/Delaunay_triangulation_on_sphere_2.h>
-#include <CGAL/Delaunay_triangulation_on_sphere_traits_2.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_on_sphere_face_base_2.h>
-#include <CGAL/Triangulation_on_sphere_vertex_base_2.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
-#include <CGAL/Surface_mesh.h>
-#include <CGAL/convex_hull_3.h>
-#include <CGAL/hilbert_sort_on_sphere.h>
 
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <numeric>
 #include <sstream>
-#include <unordered_map>
 
 namespace tessera {
 
@@ -56,28 +46,10 @@ using namespace sphere_detail;
 
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using P3 = K::Point_3;
-
-// Closest two directions may be (chord on the unit sphere), the bound under
-// which CGAL's triangulation on the sphere guarantees that no point rounded
-// to doubles near the sphere is hidden by round-off: 2^-23.
+// Closest two directions may be (chord on the unit sphere): 2^-23, eight
+// times the sqrt(eps) under which round-off can hide a point inside the hull
+// of the others (the file's header).
 constexpr double kMinChord = 0x1p-23;
-
-std::array<double, 3> key_of(const P3 &p) { return {p.x(), p.y(), p.z()}; }
-struct KeyHash {
-  static uint64_t mix(uint64_t z) {  // splitmix64's finaliser
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  size_t operator()(const std::array<double, 3> &a) const {
-    uint64_t b[3];
-    std::memcpy(b, a.data(), sizeof b);
-    return mix(b[0] + mix(b[1] + mix(b[2])));
-  }
-};
-using IndexMap = std::unordered_map<std::array<double, 3>, int, KeyHash>;
 
 [[noreturn]] void throw_too_close(int i, int j, const std::vector<Vec3> &dir, const long *ids) {
   std::ostringstream s;
@@ -98,91 +70,6 @@ int nearest(int i, const std::vector<Vec3> &dir) {
       if (a < best_angle) best_angle = a, best = j;
     }
   return best;
-}
-
-// CGAL's Delaunay triangulation on the sphere (Caroli et al.'s predicates,
-// points inserted along a Hilbert curve on the sphere: about eight times
-// faster than the hull at N = 1e5).  Returns false, leaving the work to the
-// hull, when it does not give a full triangulation of the sphere: points all in one
-// hemisphere (CGAL then fills the rest with "ghost" faces, which are not
-// hull facets) or a direction CGAL finds too far off the sphere.
-struct VertexIndex {
-  int i = -1;
-};
-using SphereTraits = CGAL::Delaunay_triangulation_on_sphere_traits_2<K>;
-using SVb = CGAL::Triangulation_vertex_base_with_info_2<VertexIndex, SphereTraits,
-                                                        CGAL::Triangulation_on_sphere_vertex_base_2<SphereTraits>>;
-using SFb = CGAL::Triangulation_on_sphere_face_base_2<SphereTraits>;
-using STds = CGAL::Triangulation_data_structure_2<SVb, SFb>;
-using SDT = CGAL::Delaunay_triangulation_on_sphere_2<SphereTraits, STds>;
-
-bool delaunay_on_sphere(const std::vector<P3> &P, const IndexMap &index_of,
-                        const std::vector<Vec3> &dir, const long *ids,
-                        std::vector<std::array<int, 3>> &faces) {
-  std::vector<P3> order(P);
-  CGAL::hilbert_sort_on_sphere(order.begin(), order.end(), 1.0, P3(0.0, 0.0, 0.0));
-  SDT dt(SphereTraits(P3(0.0, 0.0, 0.0), 1.0));
-  SDT::Face_handle hint;
-  for (const P3 &p : order) {
-    const int i = index_of.at(key_of(p));
-    const SDT::Vertex_handle v = dt.insert(p, hint);
-    if (v == SDT::Vertex_handle()) return false;
-    if (v->info().i >= 0) {
-      // CGAL took the point for an existing vertex: a pair closer than the
-      // precision limit is named; otherwise (CGAL's own criterion, on points
-      // that are not close) the hull decides.
-      const int j = v->info().i;
-      if (norm(vv(dir[i]) - vv(dir[j])) < kMinChord) throw_too_close(std::min(i, j), std::max(i, j), dir, ids);
-      return false;
-    }
-    v->info().i = i;
-    hint = v->face();
-  }
-  if (dt.dimension() != 2 || static_cast<int>(dt.number_of_vertices()) != static_cast<int>(P.size()))
-    return false;
-  faces.clear();
-  for (auto f = dt.all_faces_begin(); f != dt.all_faces_end(); ++f) {
-    if (dt.is_ghost(f)) return false;
-    faces.push_back({f->vertex(0)->info().i, f->vertex(1)->info().i, f->vertex(2)->info().i});
-  }
-  return true;
-}
-
-// The convex hull (CGAL's quickhull, exact predicates): right for any
-// points, also all in one hemisphere.  A point the rounding of directions
-// put inside the hull of the others is named with its nearest point.
-void convex_hull(const std::vector<P3> &P, const IndexMap &index_of, const std::vector<Vec3> &dir,
-                 const long *ids, std::vector<std::array<int, 3>> &faces) {
-  const int n = static_cast<int>(P.size());
-  // Into a Surface_mesh: the polygon-soup overload of convex_hull_3 drops an
-  // extreme point of some exactly convex inputs (12 icosahedron directions
-  // gave 11 hull points), which the mesh output keeps.
-  CGAL::Surface_mesh<P3> sm;
-  CGAL::convex_hull_3(P.begin(), P.end(), sm);
-  std::vector<int> hull_index(sm.number_of_vertices() + sm.number_of_removed_vertices(), -1);
-  std::vector<char> on_hull(n, 0);
-  for (const auto v : sm.vertices()) {
-    const auto it = index_of.find(key_of(sm.point(v)));
-    if (it == index_of.end()) throw Error("tessera: internal error: a hull vertex is no input point");
-    hull_index[v.idx()] = it->second;
-    on_hull[it->second] = 1;
-  }
-  for (int i = 0; i < n; ++i)
-    if (!on_hull[i]) {
-      const int j = nearest(i, dir);
-      throw_too_close(std::min(i, j), std::max(i, j), dir, ids);
-    }
-  faces.clear();
-  for (const auto f : sm.faces()) {
-    std::array<int, 3> tri{{-1, -1, -1}};
-    int m = 0;
-    for (const auto v : CGAL::vertices_around_face(sm.halfedge(f), sm)) {
-      if (m == 3) throw Error("tessera: internal error: a hull facet is not a triangle");
-      tri[m++] = hull_index[v.idx()];
-    }
-    if (m != 3) throw Error("tessera: internal error: a hull facet is not a triangle");
-    faces.push_back(tri);
-  }
 }
 
 }  // namespace
@@ -241,54 +128,40 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
     t.direction[i] = to3((1.0 / r) * d);
   }
 
-  // Two points with one projection.
-  {
-    std::vector<int> order(n);
-    std::iota(order.begin(), order.end(), 0);
-    auto key = [&](int i) {
-      const Vec3 &u = t.direction[i];
-      return std::array<double, 3>{u.x, u.y, u.z};
-    };
-    std::sort(order.begin(), order.end(), [&](int a, int b) {
-      const auto ka = key(a), kb = key(b);
-      return ka != kb ? ka < kb : a < b;
-    });
-    for (int k = 1; k < n; ++k)
-      if (key(order[k]) == key(order[k - 1])) {
-        const int a = std::min(order[k], order[k - 1]), b = std::max(order[k], order[k - 1]);
-        throw Error("tessera: " + point_name(a, ids) + " and " + point_name(b, ids) +
-                    " project to the same point of the sphere");
-      }
+  // The hull of the rounded directions (sphere_hull.h): its errors are the
+  // input's.
+  std::vector<double> xyz(3 * static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    xyz[3 * i] = t.direction[i].x;
+    xyz[3 * i + 1] = t.direction[i].y;
+    xyz[3 * i + 2] = t.direction[i].z;
   }
-
-  std::vector<P3> P(n);
-  for (int i = 0; i < n; ++i) P[i] = P3(t.direction[i].x, t.direction[i].y, t.direction[i].z);
-
-  // Not all on one plane (one circle of the sphere).  Three distinct points
-  // of a sphere are never collinear, but their roundings could be.
-  int i2 = -1, i3 = -1;
-  for (int i = 2; i < n && i2 < 0; ++i)
-    if (!CGAL::collinear(P[0], P[1], P[i])) i2 = i;
-  if (i2 >= 0)
-    for (int i = 2; i < n && i3 < 0; ++i)
-      if (i != i2 && CGAL::orientation(P[0], P[1], P[i2], P[i]) != CGAL::COPLANAR) i3 = i;
-  if (i3 < 0) {
+  HullResult hull =
+      sphere_hull(xyz.data(), n, reference_hull ? HullRoute::Conflict : HullRoute::Walk);
+  switch (hull.status) {
+  case HullResult::Equal:
+    throw Error("tessera: " + point_name(hull.i, ids) + " and " + point_name(hull.j, ids) +
+                " project to the same point of the sphere");
+  case HullResult::Flat: {
+    // Three distinct points of a sphere are never collinear, but their
+    // roundings could be: all collinear counts as one plane too.
     std::ostringstream s;
     s << "tessera: all " << n
       << " points lie on one circle of the sphere (one plane; a great circle if it passes"
          " through the centre): their tessellation is degenerate";
     throw Error(s.str());
   }
-
-  // Point indices by their (rounded) directions, which are distinct now.
-  std::unordered_map<std::array<double, 3>, int, KeyHash> index_of;
-  index_of.reserve(2 * n);
-  for (int i = 0; i < n; ++i) index_of.emplace(key_of(P[i]), i);
-
-  std::vector<std::array<int, 3>> faces;
-  if (reference_hull || !delaunay_on_sphere(P, index_of, t.direction, ids, faces))
-    convex_hull(P, index_of, t.direction, ids, faces);
-  if (static_cast<long>(faces.size()) != 2L * n - 4)
+  case HullResult::Hidden: {
+    // Round-off put the point inside the hull of the others: it is within
+    // about sqrt(eps) of its nearest point.
+    const int i = hull.i, j = nearest(i, t.direction);
+    throw_too_close(std::min(i, j), std::max(i, j), t.direction, ids);
+  }
+  case HullResult::Ok:
+    break;
+  }
+  std::vector<std::array<int, 3>> &faces = hull.triangles;
+  if (static_cast<long>(faces.size()) != 2L * n - 4 || hull.neighbors.size() != faces.size())
     throw Error("tessera: internal error: the triangulation of the points on the sphere is not a"
                 " triangulated sphere");
   // Pairs closer than the precision bound (the nearest point is always a
@@ -299,28 +172,9 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
       if (i < j && norm(vv(t.direction[i]) - vv(t.direction[j])) < kMinChord)
         throw_too_close(std::min(i, j), std::max(i, j), t.direction, ids);
     }
-
+  // Counter-clockwise seen from outside, every point below or on each
+  // triangle's plane (exactly: the hull turns its facets outwards).
   t.triangles = std::move(faces);
-  // Orientation: counter-clockwise seen from outside, i.e. every other point
-  // below the facet.  CGAL's faces are consistently oriented; test one.
-  // The point farthest from the facet's plane decides (a point on the plane
-  // to round-off, as the fourth corner of a cube's face, may lie on either
-  // side of it and would turn every triangle the wrong way).
-  {
-    const auto &f0 = t.triangles[0];
-    const V a = vv(t.direction[f0[0]]);
-    const V nrm = cross(vv(t.direction[f0[1]]) - a, vv(t.direction[f0[2]]) - a);
-    int far = -1;
-    double best = -1.0;
-    for (int i = 0; i < n; ++i)
-      if (i != f0[0] && i != f0[1] && i != f0[2]) {
-        const double h = std::fabs(dot(nrm, vv(t.direction[i]) - a));
-        if (h > best) best = h, far = i;
-      }
-    const CGAL::Orientation o = CGAL::orientation(P[f0[0]], P[f0[1]], P[f0[2]], P[far]);
-    if (o == CGAL::POSITIVE)
-      for (auto &tri : t.triangles) std::swap(tri[1], tri[2]);
-  }
 
   const int nt = static_cast<int>(t.triangles.size());
   t.vertex_direction.resize(nt);
@@ -336,48 +190,35 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
     t.circumradius[f] = R * rho[f];
   }
 
-  // Cells: around point i, triangle (i, x, y) leads from neighbour x to y.
-  std::vector<int> count(n + 1, 0);
-  for (const auto &tri : t.triangles)
-    for (int m = 0; m < 3; ++m) ++count[tri[m] + 1];
+  // Cells: around point i, triangle (i, x, y) leads from neighbour x to y,
+  // and its neighbour across the edge y -> i is the next, (i, y, z).  Each
+  // ring starts at the first triangle that has i as a corner.
+  std::vector<int> count(n + 1, 0), first(n, -1);
+  for (int f = 0; f < nt; ++f)
+    for (int m = 0; m < 3; ++m) {
+      const int i = t.triangles[f][m];
+      ++count[i + 1];
+      if (first[i] < 0) first[i] = f;
+    }
   for (int i = 0; i < n; ++i) count[i + 1] += count[i];
   t.cell_offset = count;
   const int total = count[n];
-  std::vector<int> ex(total), ey(total), etri(total);
-  {
-    std::vector<int> fill(count.begin(), count.end() - 1);
-    for (int f = 0; f < nt; ++f)
-      for (int m = 0; m < 3; ++m) {
-        const int i = t.triangles[f][m];
-        const int k = fill[i]++;
-        ex[k] = t.triangles[f][(m + 1) % 3];
-        ey[k] = t.triangles[f][(m + 2) % 3];
-        etri[k] = f;
-      }
-  }
   t.cell_vertex.resize(total);
   t.cell_neighbor.resize(total);
   t.edge_length.resize(total);
   t.area.assign(n, 0.0);
   t.perimeter.assign(n, 0.0);
   for (int i = 0; i < n; ++i) {
-    const int k0 = count[i], k1 = count[i + 1];
-    // Chain the triangles: the next one starts where this one ends.
-    int cur = k0;
-    for (int k = k0; k < k1; ++k) {
-      t.cell_vertex[k] = etri[cur];
-      t.cell_neighbor[k] = ey[cur];
-      if (k + 1 == k1) break;
-      int next = -1;
-      for (int q = k0; q < k1; ++q)
-        if (ex[q] == ey[cur]) {
-          next = q;
-          break;
-        }
-      if (next < 0) throw Error("tessera: internal error: open ring of triangles around " +
-                                point_name(i, ids));
-      cur = next;
+    int f = first[i];
+    for (int k = count[i]; k < count[i + 1]; ++k) {
+      const auto &tri = t.triangles[f];
+      const int m = tri[0] == i ? 0 : tri[1] == i ? 1 : 2;
+      t.cell_vertex[k] = f;
+      t.cell_neighbor[k] = tri[(m + 2) % 3];
+      f = hull.neighbors[f][(m + 2) % 3];
     }
+    if (f != first[i])
+      throw Error("tessera: internal error: open ring of triangles around " + point_name(i, ids));
   }
   // Zero-length edges: the poles of nearly co-circular points (a multifold
   // vertex split by round-off or a tiny jitter), closer than 1e-10 of their
@@ -397,9 +238,13 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
       const int k0 = count[i], k1 = count[i + 1];
       for (int k = k0; k < k1; ++k) {
         const int ta = t.cell_vertex[k], tb = t.cell_vertex[k + 1 == k1 ? k0 : k + 1];
-        const double th = angle(vv(t.vertex_direction[ta]), vv(t.vertex_direction[tb]));
-        const double r = std::min(rho[ta], rho[tb]);
-        if (th < 1e-10 * r + 8.0 * DBL_EPSILON / r) {
+        const V va = vv(t.vertex_direction[ta]), vb = vv(t.vertex_direction[tb]);
+        const double r = std::min(rho[ta], rho[tb]), limit = 1e-10 * r + 8.0 * DBL_EPSILON / r;
+        // The angle is at least the chord, less round-off far below 1e-14:
+        // a chord beyond twice the limit decides without the arc tangent.
+        const V d = va - vb;
+        if (dot(d, d) > (2.0 * limit + 1e-14) * (2.0 * limit + 1e-14)) continue;
+        if (angle(va, vb) < limit) {
           zero[k] = 1;
           poles.join(ta, tb);
           any = true;
@@ -419,6 +264,9 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
       }
     }
   }
+  // Each edge's arc once, for the first of its two cells (angle(a, b) and
+  // angle(b, a) are the same double); by the triangulation's edge it crosses.
+  std::vector<double> arc(3 * static_cast<size_t>(nt), -1.0);
   for (int i = 0; i < n; ++i) {
     const int k0 = count[i], k1 = count[i + 1];
     const V u = vv(t.direction[i]);
@@ -427,7 +275,16 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
       const int kn = k + 1 == k1 ? k0 : k + 1;
       const int ta = t.cell_vertex[k], tb = t.cell_vertex[kn];
       const V va = vv(t.vertex_direction[ta]), vb = vv(t.vertex_direction[tb]);
-      const double l = zero[k] ? 0.0 : R * angle(va, vb);
+      double l = 0.0;
+      if (!zero[k]) {
+        const auto &na = hull.neighbors[ta], &nb = hull.neighbors[tb];
+        double &a = arc[3 * ta + (na[0] == tb ? 0 : na[1] == tb ? 1 : 2)];
+        if (a < 0.0) {
+          a = angle(va, vb);
+          arc[3 * tb + (nb[0] == ta ? 0 : nb[1] == ta ? 1 : 2)] = a;
+        }
+        l = R * a;
+      }
       t.edge_length[k] = l;
       perim += l;
       area += solid_angle(u, va, vb);  // (exactly 0 for a zero edge: va == vb)
@@ -440,7 +297,8 @@ SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3
   // the circle's two poles, and the cells are lunes of two edges.  A cell
   // with fewer than three edges of non-zero length exists only then.
   for (int i = 0; i < n; ++i)
-    if (t.coordination_number(i, 0.0) < 3) {
+    if (std::count_if(t.edge_length.begin() + count[i], t.edge_length.begin() + count[i + 1],
+                      [](double l) { return l > 0.0; }) < 3) {
       std::ostringstream s;
       s << "tessera: all " << n
         << " points lie on one circle of the sphere (to round-off; a great circle if its plane"

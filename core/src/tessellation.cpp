@@ -1,6 +1,6 @@
 // Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
 //
-// Delaunay triangulation (CGAL, exact predicates) of owned + ghost points and
+// Delaunay triangulation (Mesh, exact predicates) of owned + ghost points and
 // the owned cells' Voronoi polygons read off it.
 
 #include "tessera/tessellation.h"

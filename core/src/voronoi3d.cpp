@@ -1,7 +1,8 @@
 // Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
 //
-// 3D Voronoi cells from CGAL's Delaunay tetrahedralisation (exact
-// predicates), their volumes and surfaces, and the energy's exact gradient.
+// 3D Voronoi cells from Tessera's Delaunay tetrahedralisation (exact
+// predicates, mesh3d_delaunay.h), their volumes and surfaces, and the
+// energy's exact gradient.
 //
 // Geometry of the gradient.  Face f of cell i (towards j) is the polygon of
 // the circumcentres h_k of the tetrahedra around the Delaunay edge i-j; all of
@@ -18,25 +19,20 @@
 // e_m, has dc/dp_m = A^{-1}[:, m] (p_m - c)^T (m = 1..3) and
 // dc/dp0 = I - sum_m dc/dp_m.
 //
-// Co-spherical points.  Several tetrahedra then share a circumcentre and CGAL
-// picks one of the triangulations.  Every triangulation of the points near
+// Co-spherical points.  Several tetrahedra then share a circumcentre and the
+// symbolic perturbation picks one of the triangulations.  Every triangulation of the points near
 // such a configuration gives planar faces on the right bisector planes; a
 // non-Delaunay one differs from the true cells only inside a ball of the size
 // e of the perturbation, by O(e^2) in face areas and O(e^3) in volumes.  So V
 // and S (unlike the 2D perimeter, which has |edge| terms) are continuously
-// differentiable there and the gradient through CGAL's triangulation is the
-// true gradient, whichever way the tie was broken.
+// differentiable there and the gradient through the chosen triangulation is
+// the true gradient, whichever way the tie was broken.
 
 #include "tessera/voronoi3d.h"
 
 #include "fourfold3d.h"
+#include "mesh3d_delaunay.h"
 #include "vec3_detail.h"
-
-#include <CGAL/Delaunay_triangulation_3.h>
-#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Triangulation_cell_base_with_info_3.h>
-#include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include <algorithm>
 #include <cmath>
@@ -49,13 +45,6 @@ namespace tessera {
 
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, K>;
-using Cb = CGAL::Triangulation_cell_base_with_info_3<int, K, CGAL::Delaunay_triangulation_cell_base_3<K>>;
-using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
-using DT = CGAL::Delaunay_triangulation_3<K, Tds>;
-using P3 = K::Point_3;
-
 using namespace detail3;
 
 std::string point_name(int i, const long *ids) {
@@ -67,17 +56,16 @@ std::string point_name(int i, const long *ids) {
   return s.str();
 }
 
-// The circumcentre of a flat tetrahedron (sliver) to the nearest double:
-// the formula above loses about eps/q of its radius (q its flatness), all
-// of it for the slivers of co-spherical points that round-off creates.
+// The circumcentre of a flat tetrahedron (sliver) to the nearest double
+// (in rationals, mesh3d_exact.cpp): the formula above loses about eps/q of
+// its radius (q its flatness), all of it for the slivers of co-spherical
+// points that round-off creates.
 V3 exact_circumcentre(V3 p0, V3 p1, V3 p2, V3 p3) {
-  using E = CGAL::Exact_predicates_exact_constructions_kernel;
-  const E::Point_3 c = CGAL::circumcenter(E::Point_3(p0.x, p0.y, p0.z), E::Point_3(p1.x, p1.y, p1.z),
-                                          E::Point_3(p2.x, p2.y, p2.z), E::Point_3(p3.x, p3.y, p3.z));
-  // exact(): the lazy number's own approximation is an interval, as
-  // ill-conditioned as the formula above.
-  return {CGAL::to_double(CGAL::exact(c.x())), CGAL::to_double(CGAL::exact(c.y())),
-          CGAL::to_double(CGAL::exact(c.z()))};
+  const double a[3] = {p0.x, p0.y, p0.z}, b[3] = {p1.x, p1.y, p1.z}, c[3] = {p2.x, p2.y, p2.z},
+               d[3] = {p3.x, p3.y, p3.z};
+  double h[3];
+  detail3::exact_circumcentre(a, b, c, d, h);
+  return {h[0], h[1], h[2]};
 }
 
 }  // namespace
@@ -163,8 +151,8 @@ constexpr double kCoSpherical = 1e-8;
 // configuration (doc/model.md, "Reliability of the finite and 3D paths").
 // The sliver keeps the neighbour's circumcentre and radius (unused).  A
 // sliver without such a neighbour (not co-spherical) keeps its own.
-void drop_slivers(Tessellation3 &t, const DT &dt, const std::vector<DT::Cell_handle> &handle,
-                  const Points3 &pts) {
+void drop_slivers(Tessellation3 &t, const detail3::Tetrahedra &dt, const std::vector<int> &handle,
+                  const std::vector<int> &tmap, const Points3 &pts) {
   auto quality = [&](int v) {
     const auto &q = t.tets[v];
     return flatness(load(pts, q[0]), load(pts, q[1]), load(pts, q[2]), load(pts, q[3]));
@@ -188,11 +176,11 @@ void drop_slivers(Tessellation3 &t, const DT &dt, const std::vector<DT::Cell_han
   bool any = false;
   for (int v : slivers)
     for (int k = 0; k < 4; ++k) {
-      const DT::Cell_handle nb = handle[v]->neighbor(k);
+      const int nb = dt.tn[4 * static_cast<size_t>(handle[v]) + k];
       // Only tetrahedra already in the faces: the tetrahedra of t stay those
       // of the owned cells' faces (as an incremental mesh reproduces them).
-      if (dt.is_infinite(nb) || nb->info() < 0) continue;
-      const int w = nb->info();
+      if (nb < 0 || tmap[nb] < 0) continue;
+      const int w = tmap[nb];
       if (!(quality(w) >= kSliver) || !on_sphere(v, w)) continue;
       // Co-spherical is not enough: four points of a square shared by two
       // cubes of co-spherical points (a four-fold Voronoi edge, SC) lie on
@@ -222,44 +210,36 @@ void drop_slivers(Tessellation3 &t, const DT &dt, const std::vector<DT::Cell_han
   t.face_offset.swap(fo);
 }
 
-// CGAL's adjacency for find_fourfold_edges: ids are indices into handle
-// (t's tetrahedra first; others numbered through info() as they are met).
-class CgalGraph : public detail3::TetGraph {
+// The triangulation's adjacency for find_fourfold_edges: ids are its
+// tetrahedra's numbers (handle: of t's tetrahedra, tmap the inverse, -1 for
+// the others); the hull's outside counts as absent.
+class FlatGraph : public detail3::TetGraph {
 public:
-  CgalGraph(const DT &dt, std::vector<DT::Cell_handle> &handle)
-      : dt_(dt), handle_(handle), n_tets_(static_cast<int>(handle.size())) {}
-  long id(int v) override { return v; }
-  long neighbor(long g, int k) override {
-    const DT::Cell_handle nb = handle_[g]->neighbor(k);
-    if (dt_.is_infinite(nb)) return -1;
-    if (nb->info() < 0) {
-      nb->info() = static_cast<int>(handle_.size());
-      handle_.push_back(nb);
-    }
-    return nb->info();
-  }
+  FlatGraph(const detail3::Tetrahedra &dt, const std::vector<int> &handle,
+            const std::vector<int> &tmap)
+      : dt_(dt), handle_(handle), tmap_(tmap) {}
+  long id(int v) override { return handle_[v]; }
+  long neighbor(long g, int k) override { return dt_.tn[4 * g + k]; }
   void corners(long g, int q[4]) override {
-    for (int k = 0; k < 4; ++k) {
-      const DT::Vertex_handle v = handle_[g]->vertex(k);
-      q[k] = dt_.is_infinite(v) ? -1 : v->info();
-    }
+    for (int k = 0; k < 4; ++k) q[k] = dt_.tv[4 * g + k];
   }
   int t_neighbor(int v, int k) override {
-    const DT::Cell_handle nb = handle_[v]->neighbor(k);
-    if (dt_.is_infinite(nb)) return -2;
-    const int i = nb->info();
-    return i >= 0 && i < n_tets_ ? i : -1;
+    const int nb = dt_.tn[4 * static_cast<size_t>(handle_[v]) + k];
+    if (nb < 0) return -2;
+    return tmap_[nb];
   }
   int opposite(long g, int k) override {
-    const DT::Cell_handle c = handle_[g], nb = c->neighbor(k);
-    const DT::Vertex_handle v = nb->vertex(nb->index(c));
-    return dt_.is_infinite(v) ? -1 : v->info();
+    const int nb = dt_.tn[4 * g + k];
+    if (nb < 0) return -1;
+    const int *a = &dt_.tv[4 * g], *b = &dt_.tv[4 * static_cast<size_t>(nb)];
+    for (int s = 0; s < 4; ++s)
+      if (b[s] != a[0] && b[s] != a[1] && b[s] != a[2] && b[s] != a[3]) return b[s];
+    return -1;
   }
 
 private:
-  const DT &dt_;
-  std::vector<DT::Cell_handle> &handle_;
-  int n_tets_;
+  const detail3::Tetrahedra &dt_;
+  const std::vector<int> &handle_, &tmap_;
 };
 
 // Face areas, volumes and surfaces of the owned cells from t.vertices.
@@ -302,15 +282,14 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
     empty.face_offset.assign(1, 0);
     return empty;
   }
-  std::vector<std::pair<P3, int>> in(n);
   for (int i = 0; i < n; ++i) {
     const double *p = pts.p(i);
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
       throw Error("tessera: non-finite coordinates for " + point_name(i, ids));
-    in[i] = {P3(p[0], p[1], p[2]), i};
   }
-  DT dt(in.begin(), in.end());
-  if (static_cast<int>(dt.number_of_vertices()) != n) {
+  detail3::Tetrahedra dt;
+  const detail3::Delaunay3 status = detail3::delaunay_3d(pts, nullptr, 0, dt, 0.0, false);
+  if (status != detail3::Delaunay3::kOk) {
     // Coincident points: name a pair.
     std::vector<int> order(n);
     for (int i = 0; i < n; ++i) order[i] = i;
@@ -324,13 +303,10 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
         throw Error("tessera: two cell centres at the same position (" + point_name(order[k], ids) +
                     " and " + point_name(order[k + 1], ids) + ")");
     }
+    if (status == detail3::Delaunay3::kFlat)
+      throw Error("tessera: the points are coplanar; need a 3D configuration");
     throw Error("tessera: points were lost by the triangulation");
   }
-  if (dt.dimension() < 3) throw Error("tessera: the points are coplanar; need a 3D configuration");
-
-  std::vector<DT::Vertex_handle> vh(n);
-  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) vh[v->info()] = v;
-  for (auto c = dt.all_cells_begin(); c != dt.all_cells_end(); ++c) c->info() = -1;
 
   Tessellation3 t;
   t.n_points = n;
@@ -340,15 +316,16 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
   t.volume.assign(n_owned, 0.0);
   t.surface.assign(n_owned, 0.0);
 
-  std::vector<DT::Cell_handle> handle;  // of each tetrahedron in t.tets
-  auto tet_of = [&](DT::Cell_handle c) {
-    if (c->info() >= 0) return c->info();
+  const int *tv = dt.tv.data(), *tn = dt.tn.data();
+  std::vector<int> handle;                // of each tetrahedron in t.tets
+  std::vector<int> tmap(dt.n_tets, -1);  // and back
+  auto tet_of = [&](int c) {
+    if (tmap[c] >= 0) return tmap[c];
     const int id = static_cast<int>(t.tets.size());
-    c->info() = id;
+    tmap[c] = id;
     handle.push_back(c);
-    std::array<int, 4> q;
-    for (int k = 0; k < 4; ++k) q[k] = c->vertex(k)->info();
-    t.tets.push_back(q);
+    const int *q = tv + 4 * static_cast<size_t>(c);
+    t.tets.push_back({q[0], q[1], q[2], q[3]});
     const V3 p0 = load(pts, q[0]), p1 = load(pts, q[1]), p2 = load(pts, q[2]), p3 = load(pts, q[3]);
     const V3 h = flatness(p0, p1, p2, p3) >= kSliver ? circumcentre(p0, p1, p2, p3)
                                                      : exact_circumcentre(p0, p1, p2, p3);
@@ -358,60 +335,78 @@ Tessellation3 tessellate_local_3d(const Points3 &pts, int n_owned, const long *i
     return id;
   };
 
-  std::vector<DT::Edge> edges;
-  std::vector<DT::Cell_handle> ring;
+  // Per tetrahedron and per point: the owned cell that last met it.
+  std::vector<int> tseen(dt.n_tets, -1), pseen(n, -1), star;
   for (int i = 0; i < n_owned; ++i) {
-    edges.clear();
-    dt.finite_incident_edges(vh[i], std::back_inserter(edges));
+    // The star of i, every tetrahedron containing it; on the hull if a
+    // triangle through i has no tetrahedron beyond it.
+    star.clear();
+    star.push_back(dt.vt[i]);
+    tseen[dt.vt[i]] = i;
     bool unbounded = false;
-    for (const DT::Edge &e : edges) {
-      DT::Vertex_handle a = e.first->vertex(e.second), b = e.first->vertex(e.third);
-      const int j = (a->info() == i) ? b->info() : a->info();
-      ring.clear();
-      auto circ = dt.incident_cells(e), end = circ;
-      do {
-        if (dt.is_infinite(circ)) unbounded = true;
-        ring.push_back(circ);
-      } while (++circ != end);
-      if (unbounded) break;
-      // Orientation: rotating from the first tetrahedron to the next crosses
-      // the triangle (i, j, b); the ring runs counter-clockwise about
-      // x_j - x_i iff (i, j, a, b) is positively oriented.
-      const DT::Cell_handle c0 = ring[0], c1 = ring[1];
-      const int li = c0->index(vh[i]), lj = c0->index(vh[j]);
-      int la = -1, lb = -1;
-      for (int k = 0; k < 4; ++k) {
-        if (k == li || k == lj) continue;
-        if (c1->has_vertex(c0->vertex(k)))
-          lb = k;
-        else
-          la = k;
+    for (size_t h = 0; h < star.size() && !unbounded; ++h) {
+      const int m = star[h];
+      for (int s = 0; s < 4; ++s) {
+        if (tv[4 * m + s] == i) continue;
+        const int nb = tn[4 * m + s];
+        if (nb < 0) {
+          unbounded = true;
+          break;
+        }
+        if (tseen[nb] != i) {
+          tseen[nb] = i;
+          star.push_back(nb);
+        }
       }
-      const bool ccw = parity(li, lj, la, lb) > 0;
-      if (!ccw) std::reverse(ring.begin(), ring.end());
-      for (const auto &c : ring) t.face_vertex.push_back(tet_of(c));
-      t.face_offset.push_back(static_cast<int>(t.face_vertex.size()));
-      t.face_neighbor.push_back(j);
-      t.face_area.push_back(0.0);  // measured below, after merge_slivers
     }
     if (unbounded) {
       if (throw_if_unbounded)
         throw Error("tessera: the cell of " + point_name(i, ids) +
                     " is unbounded (on the convex hull): the ghost shell is missing");
       t.unbounded_cell = i;
-      // Drop the faces of this cell collected so far.
-      const int f_begin = t.cell_offset.back();
-      t.face_vertex.resize(t.face_offset[f_begin]);
-      t.face_offset.resize(f_begin + 1);
-      t.face_neighbor.resize(f_begin);
-      t.face_area.resize(f_begin);
+      t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
+      continue;
+    }
+    for (const int m : star) {
+      int li = 0;
+      while (tv[4 * m + li] != i) ++li;
+      for (int lj = 0; lj < 4; ++lj) {
+        const int j = tv[4 * m + lj];
+        if (lj == li || pseen[j] == i) continue;
+        pseen[j] = i;
+        int la = -1, lb = -1;
+        for (int q = 0; q < 4; ++q)
+          if (q != li && q != lj) (la < 0 ? la : lb) = q;
+        if (parity(li, lj, la, lb) < 0) std::swap(la, lb);
+        // Around the edge i j: from a tetrahedron (i j a b), positively
+        // oriented, across the triangle (i j b); the ring then runs
+        // counter-clockwise about x_j - x_i.
+        int cur = m, va = tv[4 * m + la], vb = tv[4 * m + lb];
+        do {
+          t.face_vertex.push_back(tet_of(cur));
+          int sa = 0;
+          while (tv[4 * cur + sa] != va) ++sa;
+          const int nx = tn[4 * cur + sa];
+          int vc = -1;
+          for (int q = 0; q < 4; ++q) {
+            const int v = tv[4 * nx + q];
+            if (v != i && v != j && v != vb) vc = v;
+          }
+          va = vb;
+          vb = vc;
+          cur = nx;
+        } while (cur != m);
+        t.face_offset.push_back(static_cast<int>(t.face_vertex.size()));
+        t.face_neighbor.push_back(j);
+        t.face_area.push_back(0.0);  // measured below, after drop_slivers
+      }
     }
     t.cell_offset.push_back(static_cast<int>(t.face_neighbor.size()));
   }
-  drop_slivers(t, dt, handle, pts);
+  drop_slivers(t, dt, handle, tmap, pts);
   measure(t, pts);
   check_separation_3d(t, pts, ids);
-  CgalGraph graph(dt, handle);
+  FlatGraph graph(dt, handle, tmap);
   detail3::find_fourfold_edges(t, pts, graph);
   return t;
 }

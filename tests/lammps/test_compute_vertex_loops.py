@@ -648,5 +648,161 @@ print "G {values} $(c_asum:%.17g)"
                 self.assertAlmostEqual(g[4], corner_gap_area(a, r) if gaps else 0.0, delta=1e-10)
 
 
+def min_image(d, box, periodic, tilt=0.0):
+    """d (N x 2) less whole box vectors in the periodic directions (box: lx, ly)."""
+    d = np.array(d, float)
+    if periodic[1]:
+        m = np.round(d[:, 1] / box[1])
+        d[:, 1] -= m * box[1]
+        d[:, 0] -= m * tilt
+    if periodic[0]:
+        d[:, 0] -= np.round(d[:, 0] / box[0]) * box[0]
+    return d
+
+
+class LoopOfEachAtom(LammpsTestCase):
+    """compute vertex/loops/atom against the geometry of a hexagonal tissue
+    of finite cells (spacing a, radius r, a/sqrt(3) < r < a: no gaps at the
+    three-cell corners) with particles (type 2, no cell parameters) on some
+    sites: each particle's first column is the compute vertex/loops row
+    (dumped by a second compute) whose centroid is the particle's site and
+    whose area is hole_around_a_site's; a particle beyond the tissue (open
+    box, or the open band beside a strip that wraps around a periodic box)
+    gets 0, and so does one the cells cover (r > a).  A cell's first column
+    is its colony's outer loop (0 where the tissue has none: a periodic box
+    or a strip); its second is the hole it borders when it is a particle's
+    neighbour, the outer loop when it is at the patch's edge (fewer than six
+    neighbours), else 0, and the third counts those loops.  One table of
+    cases (open, strip, periodic, tilted, a hole across the box's corner),
+    each on 1 and 2 ranks with identical output; the atom-style variable
+    c_ID[1] equals the dumped column."""
+
+    # name, boundary, (nx, ny), a, r, particle sites (i, j), tilt in spacings, extra particles
+    CASES = [
+        ("open", "f f p", (10, 8), 1.0, 0.7, [(3, 3), (6, 4)], 0, [(-2.0, 1.5)]),
+        ("strip", "p f p", (10, 6), 1.0, 0.8, [(4, 2)], 0, [(2.3, 6.5)]),
+        ("periodic", "p p p", (8, 8), 1.2, 0.9, [(2, 2), (5, 6)], 0, []),
+        ("tilted", "p p p", (8, 8), 1.0, 0.66, [(3, 4)], 1, []),
+        ("corner", "p p p", (8, 8), 1.0, 0.75, [(0, 0)], 0, []),
+        ("covered", "p p p", (6, 6), 1.0, 1.05, [(2, 3)], 0, []),
+    ]
+
+    def build(self, case):
+        name, boundary, (nx, ny), a, r, psites, tilt, extra = case
+        h = a * math.sqrt(3.0) / 2.0
+        periodic = [w == "p" for w in boundary.split()[:2]]
+        sites = hex_sites(nx, ny, a) + np.array([0.05, 0.1]) * a
+        t = tilt * a
+        if name == "corner":
+            sites -= np.array([0.05, 0.1]) * a + np.array([0.02, 0.03]) * a    # the site near (0, 0)
+        if tilt:
+            s = np.floor(sites[:, 1] / (ny * h))
+            sites = sites - np.outer(s, [t, ny * h])
+            sites[:, 0] -= nx * a * np.floor((sites[:, 0] - sites[:, 1] / (ny * h) * t) / (nx * a))
+        lx, ly = nx * a, ny * h
+        lo = [0.0 if periodic[0] else -3.0, 0.0 if periodic[1] else -3.0]
+        hi = [lx if periodic[0] else lx + 3.0, ly if periodic[1] else ly + 3.0]
+        if name == "corner":
+            # wrapped into [0, L): the site at the corner goes to the far side
+            sites = np.mod(sites, [lx, ly])
+        k_part = [j * nx + i for i, j in psites]
+        types = [2 if k in k_part else 1 for k in range(len(sites))]
+        xy = [tuple(p) for p in sites] + [tuple(np.array(e) * a) for e in extra]
+        types += [2] * len(extra)
+        data = data_file(xy, (lo[0], hi[0], lo[1], hi[1]), types=types, tilt=t if tilt else None)
+        return data, sites, k_part, (hi[0] - lo[0], hi[1] - lo[1]), periodic, t
+
+    def run_case(self, case, nprocs):
+        name, boundary, _, a, r, _, _, _ = case
+        data, *_ = self.build(case)
+        text = f"""
+dimension 2
+units lj
+atom_style atomic
+boundary {boundary}
+{"processors 2 1 1" if nprocs == 2 else ""}
+read_data cells.data
+pair_style hybrid/overlay vertex/voronoi {2 * r + 0.1} radius {r} soft {0.4 * a}
+pair_coeff 1 1 vertex/voronoi quadratic 1.0 1.2 0.1 3.9 free 0.2
+pair_coeff * 2 soft 1.0 {0.4 * a}
+compute loops all vertex/loops
+compute la all vertex/loops/atom
+variable hole atom c_la[1]
+variable edge atom c_la[3]
+dump a all custom 1 atoms.dump id type x y c_la[1] c_la[2] c_la[3] v_hole v_edge
+dump_modify a format float %.17g
+dump l all local 1 loops.dump c_loops[*]
+dump_modify l format float %.17g
+run 0
+"""
+        run = self.run_lmp(text, nprocs=nprocs, files={"cells.data": data})
+        return run.dump("atoms.dump")[0], local_rows(run.text("loops.dump"))
+
+    def check(self, case, frame, rows):
+        name, boundary, (nx, ny), a, r, psites, tilt, extra = case
+        _, sites, k_part, box, periodic, t = self.build(case)
+        ids = frame["id"]
+        col1, col2, col3 = frame["c_la[1]"], frame["c_la[2]"], frame["c_la[3]"]
+        np.testing.assert_array_equal(frame["v_hole"], col1)
+        np.testing.assert_array_equal(frame["v_edge"], col3)
+        np.testing.assert_array_equal(rows[:, 0], np.arange(1, len(rows) + 1))
+        holes = {}
+        covered = r >= a
+        for k in k_part:
+            i = int(np.nonzero(ids == k + 1)[0][0])
+            if covered:
+                self.assertEqual(col1[i], 0, f"{name}: particle {k + 1} covered by cells")
+                continue
+            # the hole around the site: the row whose centroid is the site
+            d = min_image(rows[:, 4:6] - sites[k], box, periodic, t)
+            near = int(np.argmin(np.hypot(d[:, 0], d[:, 1])))
+            self.assertLess(np.hypot(*d[near]), 1e-9)
+            area, length, _ = hole_around_a_site(a, r)
+            self.assertAlmostEqual(rows[near, 1], area, delta=1e-10)
+            self.assertEqual(rows[near, 6], 0)
+            self.assertEqual(col1[i], near + 1, f"{name}: particle {k + 1}")
+            self.assertEqual((col2[i], col3[i]), (0, 0))    # a particle has no arcs
+            holes[k] = near + 1
+        for q in range(len(extra)):
+            i = int(np.nonzero(ids == len(sites) + q + 1)[0][0])
+            self.assertEqual((col1[i], col2[i], col3[i]), (0, 0, 0), f"{name}: particle beyond the tissue")
+        # the cells
+        outer = [int(row[0]) for row in rows if row[6] == 1]
+        self.assertEqual(len(outer), 1 if boundary == "f f p" else 0)
+        wrapping = [int(row[0]) for row in rows if row[6] == -1]
+        self.assertEqual(len(wrapping), 2 if boundary == "p f p" else 0)
+        cells = [k for k in range(len(sites)) if k not in k_part]
+        for k in cells:
+            i = int(np.nonzero(ids == k + 1)[0][0])
+            self.assertEqual(col1[i], outer[0] if outer else 0, f"{name}: cell {k + 1}")
+            d = min_image(sites - sites[k], box, periodic, t)
+            dist = np.hypot(d[:, 0], d[:, 1])
+            neighbours = np.nonzero(np.abs(dist - a) < 1e-6 * a)[0]
+            on = sorted({holes[j] for j in neighbours if j in holes})
+            if len(neighbours) < 6:
+                on = sorted(on + (outer if outer else []) + ([int(col2[i])] if wrapping else []))
+                if wrapping:
+                    self.assertIn(int(col2[i]), wrapping)
+            self.assertEqual(col3[i], len(on), f"{name}: cell {k + 1}")
+            self.assertEqual(col2[i], on[0] if on else 0, f"{name}: cell {k + 1}")
+
+    @nprocs(2)
+    def test_cases_on_one_and_two_ranks(self):
+        for case in self.CASES:
+            with self.subTest(case=case[0]):
+                one = self.run_case(case, 1)
+                self.check(case, *one)
+                two = self.run_case(case, 2)
+                for col in ("c_la[1]", "c_la[2]", "c_la[3]"):
+                    np.testing.assert_array_equal(two[0][col], one[0][col], err_msg=col)
+                np.testing.assert_allclose(two[1], one[1], rtol=0, atol=1e-12)    # (round-off)
+
+    def test_errors(self):
+        data = data_file([(0.3, -0.2)], (-2.0, 2.0, -2.0, 2.0))
+        run = self.run_lmp(script("f f p").replace("compute va", "compute bad all vertex/loops/atom 3\ncompute va"),
+                           files={"cells.data": data}, ok=False)
+        self.assertLammpsError(run, "vertex/loops/atom", "unexpected argument '3'")
+
+
 if __name__ == "__main__":
     lmptest.main()

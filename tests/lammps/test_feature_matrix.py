@@ -22,6 +22,7 @@ from feature_outputs import OutputChecks
 from feature_state import StateChecks
 from feature_models import (COEFFS_2D, COEFFS_3D, COEFFS_FINITE, PARTICLE_IDS, SPHERE_C,
                             SPHERE_R, dim_of, local_rows, model_script, printed, read_matrix)
+from feature_cellfix import check_particles_fixes
 from feature_signal import check_signal
 from lmptest import LammpsTestCase
 
@@ -842,6 +843,7 @@ def _make(model, feature, expect):
 
 
 FeatureMatrix.check_signal = check_signal
+FeatureMatrix.check_particles_fixes = check_particles_fixes
 
 for _model, _feature, _expect in read_matrix():
     setattr(FeatureMatrix, f"test_{_model}__{_feature}", _make(_model, _feature, _expect))

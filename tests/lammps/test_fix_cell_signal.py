@@ -485,6 +485,141 @@ run 1
                 self.check(fields, laws)
 
 
+def hill_limit(kind, vmax, K, n, x):
+    """vmax x^n / (K^n + x^n) (hill) or vmax K^n / (K^n + x^n) (hillr) as
+    the logistic function of z = n (ln x - ln K), which overflows for no
+    exponent and no ratio: an implementation independent of the fix's."""
+    if x == 0.0:
+        return 0.0 if kind == "hill" else vmax
+    z = n * (math.log(x) - math.log(K))
+    if kind == "hillr":
+        z = -z
+    if z >= 0:
+        return vmax / (1.0 + math.exp(-z))
+    e = math.exp(z)
+    return vmax * e / (1.0 + e)
+
+
+class HillLaws(LammpsTestCase):
+    """One step of u' = u + dt * law(x) from u = 0, a Hill law of every cell's
+    own x, the cells each given one case: huge exponents and extreme ratios
+    x / K (where (x/K)^n overflows, the law is vmax or 0), against
+    hill_limit().  Rows: (kind, vmax, K, n, x)."""
+
+    CASES = [
+        ("hill", 1.0, 0.01, 200.0, 1.0), ("hillr", 1.0, 0.01, 200.0, 1.0),
+        ("hill", 2.5, 1.0, 200.0, 0.5), ("hillr", 2.5, 1.0, 200.0, 0.5),
+        ("hill", 1.0, 1.0, 200.0, 2.0), ("hillr", 1.0, 1.0, 200.0, 2.0),
+        ("hill", 1.0, 1.0, 1e6, 1.001), ("hillr", 1.0, 1.0, 1e6, 1.001),
+        ("hill", 1.0, 1.0, 1e6, 0.999), ("hillr", 1.0, 1.0, 1e6, 0.999),
+        ("hill", 3.0, 1e-300, 2.0, 1e300), ("hillr", 3.0, 1e-300, 2.0, 1e300),
+        ("hill", 3.0, 1e300, 2.0, 1e-300), ("hillr", 3.0, 1e300, 2.0, 1e-300),
+        ("hill", 1.0, 1.0, 1e300, 1.5), ("hillr", 1.0, 1.0, 1e300, 1.5),
+        ("hill", 1.0, 1.0, 3.0, 0.0), ("hillr", 1.0, 1.0, 3.0, 0.0),
+        ("hill", 1.0, 0.3, 2.0, 0.3), ("hillr", 1.0, 0.3, 2.0, 0.3),
+        ("hill", 0.7, 0.2, 2.5, 0.45), ("hillr", 0.7, 0.2, 2.5, 0.45),
+        ("hill", 1.0, 1.0, 0.5, 1e300), ("hillr", 1.0, 1.0, 0.5, 1e300),
+    ]
+
+    def test_limits(self):
+        n = len(self.CASES)
+        fields = " ".join(f"d_u{k} d_x{k}" for k in range(n))
+        laws = " ".join(f"produce d_u{k} {kind} {vmax!r} {K!r} {e!r} d_x{k}"
+                        for k, (kind, vmax, K, e, x) in enumerate(self.CASES))
+        sets = "".join(f"set group all d_x{k} {x!r}\n" for k, (_, _, _, _, x) in enumerate(self.CASES))
+        cols = " ".join(f"d_u{k}" for k in range(n))
+        run = self.run_lmp(hex_tissue(2, 1) + f"""fix sp all property/atom {fields}
+{sets}fix s all cell/signal {laws} substeps 1
+timestep 1.0
+run 1
+write_dump all custom u.txt id {cols} modify format float %.17g
+""")
+        f = run.dump("u.txt")[0]
+        for k, case in enumerate(self.CASES):
+            want = hill_limit(*case)
+            got = f[f"d_u{k}"]
+            with self.subTest(case=case):
+                np.testing.assert_allclose(got, want, rtol=1e-9, atol=0)
+        # the limits themselves, where (x/K)^n is far beyond double
+        self.assertEqual(f["d_u0"][0], 1.0)
+        self.assertEqual(f["d_u1"][0], 0.0)
+        self.assertEqual(f["d_u10"][0], 3.0)
+
+
+class ImplicitExact(LammpsTestCase):
+    """One backward-Euler step (implicit yes) of exchange and degradation
+    against the exact solution of a small tissue: with uniform degradation
+    the system (1 + dt k) x + dt P L x = u shares the eigenvectors of the
+    junction Laplacian L (built from compute vertex/local's junctions), so
+    x = V diag(1 / (1 + dt k + dt P lambda)) V^T u, the zero eigenvalues of
+    L (one per unconnected patch) set to 0 exactly.  Steps from 0.1 to 1e17
+    exchange times, on one patch (group all) and on two patches (a group of
+    three rows of cells), on 1 and 2 ranks: every new value to 1e-12 of the
+    largest, the total of pure exchange to round-off.  Rows: (dt P, k,
+    group, ranks)."""
+
+    ALL = "group g type 1\n"
+    # rows 0 and 2-3 of the 6 rows: two patches that share no junction
+    PATCHES = "variable gv atom (y<0.5)||(y>1.5&&y<3.0)\ngroup g variable gv\n"
+    CASES = [(0.1, 0.0, ALL, 1), (1e4, 0.0, ALL, 1), (1e8, 0.3, ALL, 1), (1e12, 0.0, ALL, 2),
+             (1e17, 0.0, ALL, 1), (1e17, 1.0, ALL, 2), (1e4, 0.0, PATCHES, 1),
+             (1e12, 0.5, PATCHES, 1), (1e15, 0.0, PATCHES, 2)]
+
+    def script(self, dtP, k, group):
+        return lmptest.tissue(4, 3) + PAIR + f"""displace_atoms all random 0.1 0.1 0 4821 units box
+fix sp all property/atom d_u
+variable u0 atom 1+((id*37)%11)
+set group all d_u v_u0
+{group}fix s g cell/signal exchange d_u 1.0 degrade d_u {k!r} implicit yes
+timestep {dtP!r}
+compute pu all property/atom d_u
+compute loc all vertex/local
+variable in atom gmask(g)
+dump d all custom 1 u.txt id c_pu v_in
+dump_modify d sort id format float %.17g
+dump l all local 1 l.txt c_loc[*]
+dump_modify l format float %.17g
+thermo_style custom step f_s[1]
+thermo_modify format float %.17g
+run 1
+"""
+
+    def exact(self, run, dtP, k):
+        before, after = run.dump("u.txt")[:2]
+        index = {int(t): q for q, t in enumerate(before["id"])}
+        taken = before["v_in"] > 0
+        n = len(index)
+        S = np.zeros((n, n))
+        for r in local_rows(run, "l.txt")[0]:
+            S[index[int(r[0])], index[int(r[1])]] += math.hypot(r[4] - r[2], r[5] - r[3])
+        S = 0.5 * (S + S.T) * np.outer(taken, taken)
+        lam, V = np.linalg.eigh(np.diag(S.sum(axis=1)) - S)
+        lam[np.abs(lam) < 1e-10] = 0.0
+        u = before["c_pu"]
+        x = V @ ((V.T @ u) / (1.0 + dtP * k + dtP * lam))
+        x[~taken] = u[~taken]
+        return u, x, after["c_pu"], taken
+
+    @nprocs(2)
+    def test_against_the_exact_step(self):
+        for dtP, k, group, ranks in self.CASES:
+            with self.subTest(dtP=dtP, k=k, patches=group == self.PATCHES, ranks=ranks):
+                run = self.run_lmp(self.script(dtP, k, group), nprocs=ranks)
+                u, x, got, taken = self.exact(run, dtP, k)
+                self.assertGreater(taken.sum(), 5)
+                self.assertNotIn("WARNING: fix cell/signal", run.output)
+                np.testing.assert_allclose(got, x, rtol=0, atol=1e-12 * np.abs(x).max())
+                if k == 0.0:
+                    self.assertAlmostEqual(got.sum(), u.sum(), delta=1e-13 * u.sum())
+
+    def test_limit_is_named(self):
+        """Two patches of different means 1e17 exchange times apart: beyond
+        double precision, an error that names the step's dt P."""
+        run = self.run_lmp(self.script(1e17, 0.0, self.PATCHES), ok=False)
+        self.assertLammpsError(run, "the implicit step of d_u at step 1", "dt P = 1e+17",
+                               "use a shorter step")
+
+
 class Restart(LammpsTestCase):
     def test_continues_exactly(self):
         body = hex_tissue(4, 4) + """
@@ -633,14 +768,22 @@ class Bath(LammpsTestCase):
         across their free arcs; the steady state against the linear system
         (L + diag(Pb F + k)) u = Pb F cb solved by numpy, with L built from
         compute vertex/local's contact edges and F from its free arcs."""
+        self.steady_state("", 0.05, 1200)
+
+    def test_finite_cells_steady_state_implicit(self):
+        """The same with implicit steps 40 times the exchange time (the
+        steady state of backward Euler is that of the laws)."""
+        self.steady_state(" implicit yes", 40.0, 60)
+
+    def steady_state(self, extra, dt, steps):
         from feature_models import local_rows, model_script
         P, Pb, cb, k = 1.0, 2.0, 1.5, 0.5
         run = self.run_lmp(model_script("finite_open") + f"""
 fix sp all property/atom d_u
 set group all d_u 0.0
-fix s all cell/signal exchange d_u {P} bath d_u {Pb} {cb} degrade d_u {k}
-timestep 0.05
-run 1200
+fix s all cell/signal exchange d_u {P} bath d_u {Pb} {cb} degrade d_u {k}{extra}
+timestep {dt}
+run {steps}
 compute pu all property/atom d_u
 compute l all vertex/local
 dump d all custom 1 u.txt id c_pu

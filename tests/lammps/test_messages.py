@@ -104,6 +104,17 @@ CASES = [
     ("death_default_floor_on_sphere", sphere() + BROWNIAN +
      "fix d all cell/death rate 5.0 seed 7\ntimestep 0.1\nrun 50\n",
      False, ["fix cell/death d:", "the floor 'min 4' (the default)", "at least 4 cells"], []),
+    # a bath of fix cell/signal on cells without free arcs would never act
+    ("bath_on_confluent_cells", BASE + COEFF + "fix sp all property/atom d_u\n"
+     "fix s all cell/signal exchange d_u 1.0 bath d_u 2.0 1.0\nrun 1\n",
+     True, ["fix cell/signal s: bath d_u", "these cells have none", "without 'radius r'",
+            "remove 'bath d_u ...'"], []),
+    # fix cell/divide growth linear overwrites the d_area0 fix cell/adapt sets
+    ("adapt_area0_with_growth_linear", BASE + COEFF + "fix sp all property/atom d_area0\n"
+     "set group all d_area0 1.0\nvariable a atom 1.1\nfix ad all cell/adapt 1 d_area0 v_a\n"
+     "fix div all cell/divide rate 0.1 seed 5 growth linear\nrun 1\n",
+     False, ["fix ad cell/adapt sets d_area0", "fix div cell/divide 'growth linear'",
+             "leave out one of the two"], []),
     # pair_style hybrid (not overlay) giving a pair of cell types to another style alone:
     # their cells would still share junctions
     # an atom that is no cell jumps by the force of another sub-style: the
@@ -123,6 +134,45 @@ CASES = [
      "pair_coeff * 2 soft 1.0 1.0\nrun 0\n",
      True, ["pair_coeff 1 2 gives the type pair 1 2", "if type 2's atoms are no cells",
             "'pair_coeff I I vertex/voronoi ...' instead of '* *'"], []),
+    # one vertex/voronoi for all cells: a second one under hybrid stops at pair_coeff
+    ("hybrid_two_vertex_voronoi", lmptest.tissue(6, 3, ntypes=2) +
+     "set type 1 type/fraction 2 0.5 5\npair_style hybrid vertex/voronoi 3.0 vertex/voronoi 3.0\n"
+     "pair_coeff 1 1 vertex/voronoi 1 1 1 0.1 -0.5\npair_coeff 2 2 vertex/voronoi 2 1 1 0.1 -0.5\n"
+     "run 0\n",
+     True, ["pair_style hybrid: vertex/voronoi is given more than once",
+            "'pair_coeff I I vertex/voronoi ...'"], ["no cell parameters", "junction tension"]),
+    ("hybrid_overlay_two_vertex_voronoi", lmptest.tissue(6, 3) +
+     "pair_style hybrid/overlay vertex/voronoi 3.0 vertex/voronoi 3.0\n"
+     "pair_coeff * * vertex/voronoi 1 1 1 0.1 -0.5\nrun 0\n",
+     True, ["pair_style hybrid/overlay: vertex/voronoi is given more than once"], []),
+    # fix cell/signal's substeps: bounded as 'substeps auto' is
+    ("signal_substeps_1e8", BASE + COEFF + "fix sp all property/atom d_m\nset group all d_m 1.0\n"
+     "fix sig all cell/signal exchange d_m 1.0 substeps 100000000\n",
+     True, ["fix cell/signal: substeps 100000000 is not below 10000000", "'substeps auto'"], []),
+    # a cell that leaves through a fixed boundary: the boundary and the atom
+    # (the box is 6 lattice constants of 1.0745699 wide: 6.44742)
+    ("left_through_fixed_boundary",
+     lmptest.tissue(6, 3).replace("boundary p p p", "boundary f f p") +
+     "region inner block 0.5 5.5 0.5 2.5 -0.5 0.5\ndelete_atoms group all\n"
+     "create_atoms 1 region inner\npair_style vertex/voronoi 1.5 radius 0.7\n"
+     "pair_coeff * * quadratic 1 1 0.1 3.8 free 0.2\n" + BROWNIAN +
+     "fix push all addforce 2.0 0.0 0.0\ntimestep 0.05\nrun 200\n",
+     True, ["left the box through its fixed ('f') upper x boundary at step 8", "past 6.44742",
+            "fix wall", "shrink-wrapped"], ["command or fix that sets positions"]),
+    # area-triggered divisions below the preferred area, with a radius that
+    # follows the preferred areas: they run away, and the message says so
+    # (the sphere's area per cell is the mean preferred area, 1, exactly)
+    ("divisions_run_away_on_sphere", sphere(a0=1.0).replace(
+        "pair_style", "fix sp all property/atom d_area0\nset group all d_area0 1.0\n"
+        "compute pa0 all property/atom d_area0\ncompute a0sum all reduce sum c_pa0\n"
+        "variable R equal sqrt(c_a0sum/(4*PI))\npair_style").replace(
+        "surface sphere 10 10 10 3", "surface sphere 10 10 10 v_R") + BROWNIAN +
+     "fix div all cell/divide area 0.8 seed 3301 axis long separation 0.1\ntimestep 0.02\n"
+     "run 3000\n",
+     True, ["reaches past the box", "since step 0 the atoms grew from 40 to",
+            "the radius from 1.784 to", "fix cell/divide div divides cells whose area exceeds 0.8",
+            "mean area on the sphere is 1 and their mean preferred area 1",
+            "below the preferred area", "the divisions run away"], []),
     ("hybrid_cell_type_own_pair_to_another_style", lmptest.tissue(6, 3, ntypes=2) + "set atom 5 type 2\n"
      "pair_style hybrid vertex/voronoi 3.0 soft 1.0\npair_coeff * * vertex/voronoi 1 1 0.1 -0.5\n"
      "pair_coeff 1 2 vertex/voronoi -0.5\npair_coeff 2 2 soft 1.0 1.0\nrun 0\n",

@@ -70,14 +70,25 @@ group p id""") + "run 0\n"
         self.assertLammpsError(run, "inside pair_style hybrid/overlay the ghost shell cannot grow",
                                "'pair_style hybrid/overlay vertex/voronoi")
 
-    def test_cell_only_fixes_name_a_particle_in_their_group(self):
+    def test_cell_only_fixes_leave_particles_in_their_group_alone(self):
+        """fix cell/divide and cell/death on group all take its cells: the
+        run is that of the same fix on the group of the cells, and the log
+        says once how many atoms of the group are no cells."""
+        end = ("dump d all custom 1 end.dump id type x y\n"
+               "dump_modify d sort id format float %.17g\nrun 0\n")
         for fix in ("cell/divide rate 1.0 seed 5", "cell/death rate 1.0 seed 5"):
             with self.subTest(fix=fix):
-                run = self.run_lmp(mixed() + f"fix d all {fix}\nrun 1\n", ok=False)
-                self.assertLammpsError(run, f"fix {fix.split()[0]}: atom 6 of group 'all' is not a "
-                                       "cell", "type 2")
-                # The group of the cells is fine.
-                self.run_lmp(mixed() + f"fix d cells {fix}\nrun 1\n")
+                runs = [self.run_lmp(mixed() + f"fix d {group} {fix}\ntimestep 0.2\nrun 3\n" + end)
+                        for group in ("all", "cells")]
+                frames = [r.dump("end.dump")[0] for r in runs]
+                self.assertNotEqual(frames[0]["id"].size, 42)    # cells divided or died
+                for col in ("id", "type", "x", "y"):
+                    np.testing.assert_array_equal(frames[0][col], frames[1][col], err_msg=col)
+                self.assertEqual(sorted(frames[0]["id"][frames[0]["type"] == 2]), [6, 40])
+                note = (f"fix d {fix.split()[0]}: group 'all' holds 2 atom(s) that are no cells "
+                        "(type 2")
+                self.assertEqual(runs[0].stdout.count(note), 1)
+                self.assertNotIn("that are no cells", runs[1].stdout)
 
     def test_a_cell_type_also_in_another_sub_style(self):
         # Cells that also repel each other through soft: the energies add up

@@ -9,6 +9,9 @@ Modules:
   logplot       thermo blocks of LAMMPS log files, quantities against time
   junctions     cell polygons from a dump local of compute vertex/local
   vtk           VTK polygon files (.vtu per frame, .pvd time series) for ParaView / OVITO
+  transport     flux through sections, velocity field, drift and MSD of atoms of any type
+  holes         loops of free boundary of finite cells, the hole around each particle
+  divisions     division events of fix cell/divide's log, latitude/longitude on a sphere
 """
 
 __version__ = "0.1.0"

@@ -1,12 +1,13 @@
 # SPDX-License-Identifier: GPL-2.0-or-later
 """Command line: ``tessera-tools COMMAND ...`` (each has --help).  The commands live in one
 module per group: cli_frames (info, render, vtk, traj), cli_log (log), cli_moduli (moduli),
-cli_lineage (lineage), cli_plot (plot ...); this module puts them together."""
+cli_lineage (lineage), cli_plot (plot ...), cli_analyses (flux, velocity, msd, holes,
+divisions); this module puts them together."""
 
 import argparse
 import sys
 
-from . import cli_frames, cli_lineage, cli_log, cli_moduli, cli_plot
+from . import cli_analyses, cli_frames, cli_lineage, cli_log, cli_moduli, cli_plot
 
 
 def cmd_env(args):
@@ -50,6 +51,7 @@ def build_parser():
 
     cli_lineage.add_commands(sub)
     cli_plot.add_commands(sub)
+    cli_analyses.add_commands(sub)
     return p
 
 

@@ -9,7 +9,17 @@ from .cli_common import _matplotlib, _progress, _select_frames, _slice
 
 CELL_TYPES_HELP = ("the atom types that are cells, e.g. 1 or 1,3 or 1*2 (the types with cell parameters in "
                    "pair_coeff I I vertex/voronoi); other atoms are particles, never tessellated. Needs a "
-                   "'type' column. Default: every atom is a cell")
+                   "'type' column. Default: every atom is a cell, and a dump of several types is refused "
+                   "(with --local it is accepted when every atom has rows there)")
+
+
+def add_cell_types(parser, extra=""):
+    """The --cell-types option of a command that reads cells from a dump: without it every atom
+    is a cell and a dump of several types is refused (dump.SINGLE_TYPE)."""
+    from .dump import SINGLE_TYPE
+
+    parser.add_argument("--cell-types", type=_types, metavar="TYPES", default=SINGLE_TYPE,
+                        help=CELL_TYPES_HELP + extra)
 
 
 def _types(text):
@@ -24,11 +34,13 @@ def _types(text):
 
 
 def cmd_info(args):
-    from .dump import iter_dump
+    from .dump import iter_dump, selects
 
     cell_types = args.cell_types
     count, first, last = 0, None, None
-    for frame in iter_dump(args.dump, cell_types):
+    # info says what a dump holds: atoms of several types are counted by type, and only what
+    # takes them for cells (--stats, --local) needs to know which are cells
+    for frame in iter_dump(args.dump, cell_types if selects(cell_types) else None):
         if first is None:
             first = frame
         last = frame
@@ -36,8 +48,16 @@ def cmd_info(args):
     if first is None:
         raise SystemExit(f"tessera-tools: {args.dump} has no frames")
     print(f"{args.dump}: {count} frame(s), timesteps {first.timestep} .. {last.timestep}")
-    if cell_types is None:
-        print(f"atoms: {first.natoms} (last frame {last.natoms})")
+    if not selects(cell_types):
+        def by_type(f):
+            if "type" not in f:
+                return ""
+            t, c = np.unique(np.asarray(f["type"]).astype(int), return_counts=True)
+            return "" if len(t) < 2 else " (" + ", ".join(f"type {a}: {b}" for a, b in zip(t, c)) + ")"
+        print(f"atoms: {first.natoms}{by_type(first)} (last frame {last.natoms}{by_type(last)})")
+        if by_type(first) or by_type(last):
+            print("  several atom types: give --cell-types (e.g. --cell-types 1) to count cells and particles; "
+                  "--stats and --local need it unless every atom is a cell")
     else:
         def kinds(f):
             types = sorted(set(np.asarray(f.particles["type"]).astype(int).tolist()))
@@ -56,7 +76,7 @@ def cmd_info(args):
         print(f"timestep {atoms.timestep}: junction length by type pair "
               + ", ".join(f"{a}-{b} {v:.6g}" for (a, b), v in sorted(contacts.items()))
               + (" (face area, area units)" if len(junction_columns(local)) == 9 else " (length units)"))
-        steps, times, frac, het, tot = demix_series(args.dump, args.local)
+        steps, times, frac, het, tot = demix_series(args.dump, args.local, cell_types=cell_types)
         print(f"heterotypic junction fraction, {len(steps)} frame(s) both dumps hold:")
         print("# timestep " + ("time " if times is not None else "") + "fraction heterotypic_length total_length")
         for k in range(len(steps)):
@@ -79,6 +99,10 @@ def cmd_info(args):
                   f"total {tess.area.sum():.6g}, mean shape index {tess.shape_index.mean():.6g}, "
                   f"neighbours {np.bincount(tess.sides).tolist()}")
             return
+        from .dump import check_one_type
+
+        if not selects(cell_types):
+            check_one_type(last, f"{args.dump} timestep {last.timestep}")
         if not (last.box.periodic[0] and last.box.periodic[1]):
             raise SystemExit(f"tessera-tools info: {args.dump}: --stats re-tessellates the centres, which "
                              "needs a box periodic in x and y; for this box give the cells LAMMPS "
@@ -153,6 +177,7 @@ def cmd_render(args):
 
 
 def cmd_vtk(args):
+    from .dump import selects
     from .vtk import write_vtk
 
     try:
@@ -168,7 +193,7 @@ def cmd_vtk(args):
           (f" .. {written[-1]}" if len(written) > 1 else "") +
           f"; time series {args.output}.pvd and {args.output}.vtu.series"
           + (f"; particles {args.output}_particles_*.vtu ({args.output}_particles.pvd)"
-             if args.cell_types is not None else ""))
+             if selects(args.cell_types) else ""))
 
 
 def cmd_traj(args):
@@ -237,7 +262,7 @@ def add_commands(sub):
                    help="dump local of compute vertex/local: also print the junction length between each pair "
                         "of cell types at the last common timestep, and the heterotypic junction fraction of "
                         "every frame both dumps hold (one line per frame)")
-    q.add_argument("--cell-types", type=_types, metavar="TYPES", help=CELL_TYPES_HELP)
+    add_cell_types(q)
     q.set_defaults(func=cmd_info)
 
     r = sub.add_parser("render", help="picture of the Voronoi tessellation of a frame (PNG), or a series (GIF/MP4)",
@@ -282,8 +307,7 @@ def add_commands(sub):
     r.add_argument("--categorical", action="store_true",
                    help="one colour per distinct value with a legend (default for type, mol, proc)")
     r.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
-    r.add_argument("--cell-types", type=_types, metavar="TYPES",
-                   help=CELL_TYPES_HELP + "; particles are drawn as black discs")
+    add_cell_types(r, "; particles are drawn as black discs")
     r.set_defaults(func=cmd_render)
 
     v = sub.add_parser("vtk", help="VTK cell files (.vtu per frame, .pvd time series) for ParaView/OVITO",
@@ -309,9 +333,8 @@ def add_commands(sub):
     v.add_argument("--dt", type=float,
                    help="timestep, for the time of each frame (default: the dump's TIME item, else the step)")
     v.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
-    v.add_argument("--cell-types", type=_types, metavar="TYPES",
-                   help=CELL_TYPES_HELP + "; particles go to PREFIX_particles_<timestep>.vtu (points with "
-                        "their per-atom columns) and PREFIX_particles.pvd")
+    add_cell_types(v, "; particles go to PREFIX_particles_<timestep>.vtu (points with their per-atom "
+                      "columns) and PREFIX_particles.pvd")
     v.set_defaults(func=cmd_vtk)
 
     t = sub.add_parser("traj", help="trajectories coloured by coordination / orientation, velocity-angle histogram",
@@ -346,6 +369,5 @@ def add_commands(sub):
     t.add_argument("--linewidth", type=float)
     t.add_argument("--title")
     t.add_argument("--dpi", type=int, default=150)
-    t.add_argument("--cell-types", type=_types, metavar="TYPES",
-                   help=CELL_TYPES_HELP + "; only the cells' trajectories are drawn")
+    add_cell_types(t, "; only the cells' trajectories are drawn")
     t.set_defaults(func=cmd_traj)

@@ -13,7 +13,7 @@ def cmd_lineage(args):
     if args.start:
         from .dump import iter_dump
 
-        first = next(iter_dump(args.start), None)
+        first = next(iter_dump(args.start, args.cell_types), None)
         if first is None:
             raise SystemExit(f"tessera-tools lineage: {args.start}: no frame in the dump")
         start_ids, start_step = first.ids, first.timestep
@@ -59,6 +59,8 @@ def cmd_lineage(args):
 
 def add_commands(sub):
     """Add this module's commands to the subparsers ``sub`` of tessera-tools."""
+    from .cli_frames import add_cell_types
+
     li = sub.add_parser("lineage", help="lineage tree from the event logs of fix cell/divide and fix cell/death",
                         description="Build the lineage tree (generations, ancestry, Newick, a drawing) from the "
                                     "event logs that fix cell/divide and fix cell/death write with their keyword "
@@ -70,6 +72,7 @@ def add_commands(sub):
     li.add_argument("--start", metavar="DUMP",
                     help="a dump whose first frame holds the cells at the start of the log (their IDs), so that "
                          "cells without events are in the tree too")
+    add_cell_types(li, "; --start takes the IDs of the cells only (fix cell/divide and cell/death act on cells)")
     li.add_argument("--dt", type=float, help="timestep size, for the start's time when the dump has no TIME")
     li.add_argument("--root", type=int, metavar="ID", help="only the tree of this cell of the start")
     li.add_argument("--ancestry", type=int, nargs="+", metavar="ID",

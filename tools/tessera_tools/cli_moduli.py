@@ -160,6 +160,31 @@ def _particle_contact(m, particles, path, fnorm_max):
             "includes every pair style) and give their qs.dat with --quasistatic")
 
 
+def _written_energy(args, frame, m):
+    """The cells' energy as LAMMPS's pe has it (doc/model.md, "The written energy") and what it
+    holds, in words.  tessera-hessian's energy is the expanded form without the constant
+    KP P0^2 per cell that completes the square of --quadratic; LAMMPS adds it (from each
+    cell's own KP and P0 when the dump has d_kp / d_perim0), so it is added here too."""
+    if args.quadratic:
+        n = m["n"]
+        kp = np.asarray(frame["d_kp"], dtype=float) if "d_kp" in frame else np.full(n, args.quadratic[2])
+        p0 = np.asarray(frame["d_perim0"], dtype=float) if "d_perim0" in frame else np.full(n, args.quadratic[3])
+        constant = float(np.sum(kp * p0 ** 2))
+        own = [c for c in ("d_kp", "d_perim0") if c in frame]
+        what = (f"the written energy sum KA (A - A0)^2 + KP (P - P0)^2, as LAMMPS's pe with 'thermo_modify norm "
+                f"no' (per cell: pe with norm yes, the lj default); it includes the constant sum KP P0^2 = "
+                f"{constant:.12g}" + (f" (each cell's own {' and '.join(own)})" if own else "")
+                + f" of the squares, without it {m['energy']:.12g}")
+        energy = m["energy"] + constant
+    else:
+        energy = m["energy"]
+        what = ("the written energy of the thesis form (K A0 Gamma Lambda has no constant), as LAMMPS's pe with "
+                "'thermo_modify norm no' (per cell: pe with norm yes, the lj default)")
+    if m.get("particles"):
+        what += "; the cells' vertex energy only: pe also holds the particles' pair styles"
+    return energy, what
+
+
 def cmd_moduli(args):
     from .dump import read_dump
     from .moduli import Model, fit_quasistatic, frame_moduli, seed_average
@@ -187,6 +212,7 @@ def cmd_moduli(args):
         state = dict(path=path, frame=frame, hessian=None, qs=None, particles=particles)
         try:
             state["hessian"] = frame_moduli(frame, model, exe=args.exe, use_types=False)
+            state["hessian"]["particles"] = particles is not None
             contact = particles is not None and _particle_contact(state["hessian"], particles, path,
                                                                   args.fnorm_max)
             if contact:
@@ -226,8 +252,11 @@ def cmd_moduli(args):
         label = s["path"]
         m = s["hessian"]
         if m is not None:
-            print(f"{label}: {m['n']} cells, area {m['area']:.10g} length^2, energy {m['energy']:.12g} energy, "
-                  f"fnorm {m['fnorm']:.3g} energy/length (max |force| {m['max_force']:.3g})")
+            energy, note = _written_energy(args, s["frame"], m)
+            print(f"{label}: {m['n']} cells, area {m['area']:.10g} length^2, energy {energy:.12g} energy "
+                  f"({energy / m['n']:.12g} per cell), fnorm {m['fnorm']:.3g} energy/length (max |force| "
+                  f"{m['max_force']:.3g})")
+            print(f"  energy: {note}")
             print(f"  Hessian: G = {red(m['G'])}, B = {red(m['B'])} (affine G {m['G_affine']:.8g}, "
                   f"B {m['B_affine']:.8g} energy/length^2)")
             print(f"  E = {red(m['E'])}, nu = {m['nu']:.8g} (dimensionless); pressure {m['pressure']:.8g}, "

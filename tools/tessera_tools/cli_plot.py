@@ -50,9 +50,10 @@ def cmd_plot_wound(args):
         if value is None:
             raise SystemExit("tessera-tools plot wound: for a dump give --radius R (the open area: box area "
                              "minus the finite cells' area) or --value sum:COLUMN / mean:COLUMN / count")
-        steps, t, y = frame_series(args.input, value, dt=args.dt, radius=args.radius)
+        steps, t, y = frame_series(args.input, value, dt=args.dt, radius=args.radius, cell_types=args.cell_types)
         known = _dump_time_label(args.input, args.dt)
-        what = "open area (box minus cells)" if value == "open" else value
+        what = {"open": "open area (box minus cells)", "holes": "total hole area",
+                "largest": "largest hole area"}.get(value, value)
     else:
         if not args.column:
             raise SystemExit("tessera-tools plot wound: for a log name the thermo column with -c, e.g. -c v_wound "
@@ -60,8 +61,8 @@ def cmd_plot_wound(args):
         t, y, known = _log_series(args.input, args.column, args.x)
         what = args.column
     half = half_time(t, y, args.fraction)
-    ylabel = args.ylabel or (r"wound area ($A_0$)" if not args.column and (args.value or "open") == "open"
-                             else what)
+    ylabel = args.ylabel or (r"wound area ($A_0$)" if not args.column and (args.value or "open") in
+                             ("open", "holes", "largest") else what)
     plot_wound(t, y, args.output, ylabel, xlabel=TIME if known else STEP, half=half if args.fraction == 0.5
                else None, dpi=args.dpi, vector=args.vector, title=args.title)
     unit = "time" if known else "timesteps"
@@ -75,7 +76,7 @@ def cmd_plot_growth(args):
     from .plots import TIME, STEP, plot_growth
 
     if _is_dump(args.input):
-        _, t, n = frame_series(args.input, "count", dt=args.dt)
+        _, t, n = frame_series(args.input, "count", dt=args.dt, cell_types=args.cell_types)
         known = _dump_time_label(args.input, args.dt)
     else:
         t, n, known = _log_series(args.input, args.column, args.x)
@@ -93,7 +94,7 @@ def cmd_plot_shape(args):
     from .measure import shape_samples
     from .plots import plot_shape
 
-    frames = _select_frames(args.dump, args.frames or slice(-1, None))
+    frames = _select_frames(args.dump, args.frames or slice(-1, None), args.cell_types)
     q, z, rim = shape_samples(frames, args.q, args.z, args.edge, args.radius)
     groups = plot_shape(q, z, rim, args.output, dpi=args.dpi, vector=args.vector, title=args.title)
     print(f"wrote {args.output}: {len(frames)} frame(s), {len(q)} cells")
@@ -108,14 +109,14 @@ def cmd_plot_shape(args):
 
 
 def cmd_plot_demix(args):
-    from .dump import iter_dump
+    from .dump import iter_dump, selects
     from .measure import demix_series
     from .plots import TIME, STEP, plot_demix
 
-    steps, times, frac, het, tot = demix_series(args.dump, args.local)
+    steps, times, frac, het, tot = demix_series(args.dump, args.local, cell_types=args.cell_types)
     known = times is not None or bool(args.dt)
     t = times if times is not None else steps * (args.dt or 1.0)
-    first = next(iter_dump(args.dump))
+    first = next(iter_dump(args.dump, args.cell_types if selects(args.cell_types) else None))
     _, counts = np.unique(np.asarray(first["type"]), return_counts=True)
     x = counts / counts.sum()
     reference = None if args.no_reference else float(1.0 - np.sum(x ** 2))
@@ -160,6 +161,8 @@ def cmd_plot_moduli(args):
 
 def add_commands(sub):
     """Add this module's commands to the subparsers ``sub`` of tessera-tools."""
+    from .cli_frames import add_cell_types
+
     pl = sub.add_parser("plot", help="measurement figures: wound area, growth N(t), shapes, demixing, moduli vs p0, kymographs, fields",
                         description="One figure per command, print quality (300 dpi, --vector pdf for a vector "
                                     "copy), axes in the model's reduced units. See doc/howto_measure.md.")
@@ -179,12 +182,15 @@ def add_commands(sub):
     pw.add_argument("input", help="log.lammps or a dump custom file")
     pw.add_argument("-c", "--column", help="thermo column of a log (e.g. v_wound)")
     pw.add_argument("--radius", type=float, help="dump: radius of the finite cells (pair_style ... radius R)")
-    pw.add_argument("--value", help="dump: per-frame value: open (default with --radius), sum:COL, mean:COL, count")
+    pw.add_argument("--value", help="dump: per-frame value: open (default with --radius: box minus cells), holes "
+                                    "(total hole area), largest (largest hole), sum:COL, mean:COL, count")
     pw.add_argument("--dt", type=float, help="dump: timestep size (time = timestep x dt; else the dump's TIME)")
     pw.add_argument("--x", choices=("auto", "step"), default="auto", help="log: time (default) or step")
     pw.add_argument("--fraction", type=float, default=0.5,
                     help="report when the value falls to this fraction of its first value (default 0.5)")
     pw.add_argument("--ylabel")
+    add_cell_types(pw, "; particles cover no area (the open area is then compute vertex/loops' total hole "
+                       "area in a periodic box)")
     common(pw)
     pw.set_defaults(func=cmd_plot_wound)
 
@@ -200,6 +206,7 @@ def add_commands(sub):
                     help="leave out samples with N >= this (the 'max N' of fix cell/divide)")
     pg.add_argument("--dt", type=float, help="dump: timestep size")
     pg.add_argument("--x", choices=("auto", "step"), default="auto", help="log: time (default) or step")
+    add_cell_types(pg, "; dump: only the cells are counted")
     common(pg)
     pg.set_defaults(func=cmd_plot_growth)
 
@@ -214,6 +221,7 @@ def add_commands(sub):
     ps.add_argument("--edge", metavar="COL",
                     help="edge flag column (compute vertex/atom column 9): 1 = rim, 0 = interior")
     ps.add_argument("--radius", type=float, help="finite Voronoi cells of this radius (open tissues)")
+    add_cell_types(ps)
     common(ps)
     ps.set_defaults(func=cmd_plot_shape)
 
@@ -227,6 +235,7 @@ def add_commands(sub):
     pd.add_argument("--label")
     pd.add_argument("--no-reference", action="store_true",
                     help="no line at the random-mixture value 1 - sum_t x_t^2")
+    add_cell_types(pd, "; the type fractions of the reference are the cells'")
     common(pd)
     pd.set_defaults(func=cmd_plot_demix)
 
@@ -240,4 +249,4 @@ def add_commands(sub):
 
     from .cli_signal import add_plot_commands
 
-    add_plot_commands(psub, common)
+    add_plot_commands(psub, common, add_cell_types)

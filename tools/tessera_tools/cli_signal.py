@@ -14,7 +14,7 @@ def cmd_plot_kymograph(args):
     if not (args.output or args.csv or args.npz or args.measure):
         raise SystemExit("tessera-tools plot kymograph: nothing to do: give -o PICTURE, --csv FILE, --npz FILE "
                          "or --measure")
-    frames = _select_frames(args.dump, args.frames or slice(None))
+    frames = _select_frames(args.dump, args.frames or slice(None), args.cell_types)
     kymo = kymograph(frames, args.column, args.axis, args.bins, args.dt)
     unit = "time" if kymo.time_known else "timesteps"
     empty = int(np.sum(kymo.counts == 0))
@@ -51,7 +51,7 @@ def cmd_plot_field(args):
     if args.local:
         from .junctions import junction_columns, junction_tessellation, paired_frames
 
-        pairs = paired_frames(args.dump, args.local)
+        pairs = paired_frames(args.dump, args.local, cell_types=args.cell_types)
         frame, local = pairs[args.frame]
         if len(junction_columns(local)) != 7:
             raise SystemExit(f"tessera-tools plot field: {args.local} holds 3d or sphere cells; draw those with "
@@ -61,7 +61,7 @@ def cmd_plot_field(args):
         from .dump import read_frame
         from .render import tessellate_frame
 
-        frame = read_frame(args.dump, index=args.frame)
+        frame = read_frame(args.dump, index=args.frame, cell_types=args.cell_types)
         if not args.radius and not (frame.box.periodic[0] and frame.box.periodic[1]):
             raise SystemExit(f"tessera-tools plot field: {args.dump}: the box is not periodic in x and y; give "
                              "the cells with --local (a dump local of compute vertex/local) or --radius R")
@@ -72,9 +72,9 @@ def cmd_plot_field(args):
           f"{np.nanmin(values):.6g} to {np.nanmax(values):.6g} (mean {np.nanmean(values):.6g})")
 
 
-def add_plot_commands(psub, common):
+def add_plot_commands(psub, common, add_cell_types):
     """Add 'kymograph' and 'field' to the subparsers of tessera-tools plot; ``common`` adds the
-    picture options."""
+    picture options, ``add_cell_types`` the --cell-types option."""
     pk = psub.add_parser("kymograph", help="a species and the cell density along x or y against time",
                          description="Bin the cells of each frame along the x (or y) axis of the box: the mean "
                                      "of a per-atom column (a species d_NAME, or any column) and the number of "
@@ -90,6 +90,7 @@ def add_plot_commands(psub, common):
     pk.add_argument("--csv", metavar="FILE", help="write the arrays: timestep,time,position,COLUMN,count,density")
     pk.add_argument("--npz", metavar="FILE", help="write the arrays as a numpy .npz")
     pk.add_argument("--measure", action="store_true", help="print the wavelength and period of the patterns")
+    add_cell_types(pk, "; only the cells are binned")
     common(pk, required=False)
     pk.set_defaults(func=cmd_plot_kymograph)
 
@@ -104,5 +105,6 @@ def add_plot_commands(psub, common):
     pf.add_argument("--cmap", help="matplotlib colour map (default viridis)")
     pf.add_argument("--vmin", type=float)
     pf.add_argument("--vmax", type=float)
+    add_cell_types(pf)
     common(pf)
     pf.set_defaults(func=cmd_plot_field)

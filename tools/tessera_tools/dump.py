@@ -292,10 +292,71 @@ def cell_mask(types, cell_types):
     return mask
 
 
+class CellTypesError(ValueError):
+    """A dump of several atom types read without saying which types are cells."""
+
+
+class OneType:
+    """The ``cell_types`` of a reader that was told nothing: every atom is a cell (or, for the
+    commands that follow atoms of any type, every atom is taken), and a frame holding atoms of
+    several types is refused (:class:`CellTypesError`), naming the types found and ``option``,
+    the command-line option that says which to take."""
+
+    def __init__(self, option="--cell-types", what="cells"):
+        self.option, self.what = option, what
+
+    def __repr__(self):
+        return f"OneType({self.option!r})"
+
+
+#: every atom is a cell, and a dump of several types is refused (the tessera-tools commands)
+SINGLE_TYPE = OneType()
+
+
+def selects(cell_types):
+    """True when ``cell_types`` picks some types (a set from :func:`parse_types`), False for
+    None and :data:`SINGLE_TYPE` (every atom)."""
+    return cell_types is not None and not isinstance(cell_types, OneType)
+
+
+def types_text(types, sep=","):
+    """'1,3' (as --cell-types takes them) or '2*' for types from :func:`parse_types`."""
+    return sep.join(f"{t[0]}*" if isinstance(t, tuple) else str(t)
+                    for t in sorted(types, key=lambda t: t[0] if isinstance(t, tuple) else t))
+
+
+def check_one_type(frame, where, one=SINGLE_TYPE):
+    """Raise :class:`CellTypesError` when ``frame`` holds atoms of several types: the message
+    names them (with their counts) and the option ``one.option`` that picks the types."""
+    if "type" not in frame or len(frame) == 0:
+        return
+    present, counts = np.unique(np.asarray(frame["type"]).astype(np.int64), return_counts=True)
+    if len(present) < 2:
+        return
+    listed = ", ".join(f"type {t}: {c} atoms" for t, c in zip(present.tolist(), counts.tolist()))
+    rest = types_text(present[1:].tolist())
+    if one.what == "cells":
+        raise CellTypesError(
+            f"{where}: the dump holds atoms of several types ({listed}) and without {one.option} every "
+            f"atom would be taken for a cell. Give {one.option} with the types that are cells (those with "
+            f"'pair_coeff I I vertex/voronoi' parameters): e.g. {one.option} {present[0]} leaves the atoms "
+            f"of type {rest} out as particles (no cells, never tessellated); {one.option} "
+            f"{types_text(present.tolist())} takes them all for cells")
+    raise CellTypesError(
+        f"{where}: the dump holds atoms of several types ({listed}); say which to follow with "
+        f"{one.option}, e.g. {one.option} {present[0]}, or {one.option} {types_text(present.tolist())} "
+        "for all of them")
+
+
 def split_cells(frame, cell_types, where="dump"):
     """The frame's cells (the atoms of ``cell_types``) as a Frame whose ``particles`` holds every
-    other atom (a Frame, possibly empty).  ``cell_types`` None: every atom is a cell."""
+    other atom (a Frame, possibly empty).  ``cell_types`` None: every atom is a cell;
+    a :class:`OneType` (e.g. :data:`SINGLE_TYPE`): every atom is a cell, and a frame of several
+    types is an error (:class:`CellTypesError`)."""
     if cell_types is None:
+        return frame
+    if isinstance(cell_types, OneType):
+        check_one_type(frame, where, cell_types)
         return frame
     if "type" not in frame:
         raise ValueError(f"{where}: --cell-types needs a 'type' column in the dump "
@@ -311,7 +372,8 @@ def iter_dump(path, cell_types=None):
 
     ``cell_types`` (a set from :func:`parse_types`): each frame holds only the atoms of those
     types (the cells) and its ``particles`` the other atoms, which are never tessellated.  None:
-    every atom is a cell.  Dump local frames (``ITEM: ENTRIES``) are never split."""
+    every atom is a cell; :data:`SINGLE_TYPE`: the same, and a frame of several atom types is
+    an error (:class:`CellTypesError`).  Dump local frames (``ITEM: ENTRIES``) are never split."""
     with _open(path) as f:
         lineno = 0
 

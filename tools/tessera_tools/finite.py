@@ -170,7 +170,13 @@ class FiniteTessellation:
         allp = np.vstack(allp)
         owner = np.concatenate(owner)
         tree = cKDTree(allp)
+        # images and their cells, for chaining free arcs across the periodic boundary
+        self.image_points, self.image_owner = allp, owner
         self.polygons, self.arcs = [], []
+        #: every free arc as (cell, start angle, span, image index of the next contact's neighbour
+        #: or -1 for a whole disc): counter-clockwise around its cell, so the arc ends where the
+        #: contact edge with that neighbour begins (tessera_tools.holes chains them into loops)
+        self.free_arcs = []
         area, per, free, cells, others, lengths = [], [], [], [], [], []
         for i in range(n):
             near = [(int(k), tuple(allp[k])) for k in tree.query_ball_point(points[i], 2 * r)
@@ -194,6 +200,8 @@ class FiniteTessellation:
                     lengths.append(length)
                 else:
                     length = r * th
+                    following = pieces[(k + 1) % m][0] if m > 1 else -1
+                    self.free_arcs.append((i, phi, th, int(following)))
                     A += 0.5 * r * r * th
                     L += length
                     ang = phi + np.linspace(0.0, th, max(2, int(math.ceil(th / arc_step)) + 1))

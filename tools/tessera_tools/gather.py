@@ -61,7 +61,15 @@ def gather_local(lmp, compute_id, ncols, directory=".", keep=False):
 
     LAMMPS writes them with ``write_dump all local`` to a file in ``directory`` (default: the
     working directory, which every rank must see; the name holds the step and a call count,
-    the file is removed afterwards unless keep=True)."""
+    the file is removed afterwards unless keep=True).
+
+    No dump needs to use the compute: the compute is invoked first through the library
+    (``extract_compute``, which runs it when it is not current at this step), because a
+    ``write_dump`` between runs of a compute that nothing invoked at the last step is an
+    error of LAMMPS ("not current"), which under ``-screen none`` ends the process with
+    status 1 and no message.  The compute still needs the cells of a run: call this after
+    ``run`` (``run 0`` is enough), not before the first one."""
+    _invoke_local(lmp, compute_id, ncols)
     step = int(lmp.extract_global("ntimestep"))
     nranks = int(lmp.extract_setting("world_size"))
     me = int(lmp.extract_setting("world_rank"))
@@ -86,6 +94,34 @@ def gather_local(lmp, compute_id, ncols, directory=".", keep=False):
         os.remove(path)
     a = np.array(rows, dtype=float).reshape(-1, ncols)
     return a[np.lexsort(a.T[::-1])] if len(a) else a
+
+
+# lammps.LMP_STYLE_LOCAL, LMP_SIZE_ROWS, LMP_SIZE_COLS (the same numbers in every version)
+_LOCAL, _ROWS, _COLS = 2, 4, 5
+
+
+def _invoke_local(lmp, compute_id, ncols):
+    """Run the local compute at the current step (if nothing did) through the library, so that
+    write_dump finds it current, and check its column count.  Collective: compute
+    vertex/loops gathers to rank 0 inside."""
+    why = "there is no compute of that ID with local data"
+    try:
+        rows = lmp.extract_compute(compute_id, _LOCAL, _ROWS)
+        cols = lmp.extract_compute(compute_id, _LOCAL, _COLS)
+    except Exception as err:
+        # a LAMMPS built with exceptions raises its own message; older python modules read the
+        # NULL of a missing compute (ValueError "NULL pointer access")
+        rows = None
+        if "NULL" not in str(err):
+            why = str(err).strip()
+    if rows is None:
+        raise ValueError(f"gather_local: compute '{compute_id}': {why}. Define a local compute before gathering "
+                         f"(e.g. 'compute {compute_id} all vertex/local' or vertex/loops) and gather after a run "
+                         "('run 0' is enough)")
+    have = max(int(cols), 1)      # 0 columns: a local vector
+    if have != ncols:
+        raise ValueError(f"gather_local: compute '{compute_id}' has {have} local column(s), not ncols={ncols}; "
+                         f"pass {have} (compute vertex/local: 7 in 2d, 9 in 3d; vertex/loops: 7)")
 
 
 def _barrier(lmp):

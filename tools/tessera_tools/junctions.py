@@ -225,14 +225,56 @@ def face_areas(local, compute=None):
 def paired_frames(atoms_path, local_path, frames=None, cell_types=None):
     """(atom frame, local frame) pairs of the timesteps both dumps hold, in order;
     ``frames`` an optional slice over those pairs; ``cell_types``: the atom frames hold the
-    cells only (their ``particles`` the other atoms), as the local dump does."""
+    cells only (their ``particles`` the other atoms), as the local dump does;
+    :data:`tessera_tools.dump.SINGLE_TYPE`: every atom is a cell, which atoms of several types
+    may be when every atom has rows in the local dump (its rows are the cells'); otherwise
+    the atoms without rows are refused (:class:`tessera_tools.dump.CellTypesError`) with the
+    types found and the option that leaves particles out."""
+    from .dump import OneType
+
     local = {}
     for f in iter_dump(local_path):
         local[f.timestep] = f
-    pairs = [(a, local[a.timestep]) for a in iter_dump(atoms_path, cell_types) if a.timestep in local]
+    one = cell_types if isinstance(cell_types, OneType) else None
+    pairs = [(a, local[a.timestep]) for a in iter_dump(atoms_path, None if one else cell_types)
+             if a.timestep in local]
+    if one is not None:
+        for a, l in pairs:
+            _check_rows_cover(a, l, f"{atoms_path} timestep {a.timestep}", one)
     if not pairs:
         raise ValueError(f"{atoms_path} and {local_path} have no timestep in common")
     return pairs[frames] if frames is not None else pairs
+
+
+def _check_rows_cover(atoms, local, where, one):
+    """Atoms of several types read without --cell-types are all cells when each has rows in
+    the local dump; raise CellTypesError naming the types when some have none (particles,
+    for which compute vertex/local writes no rows)."""
+    from .dump import CellTypesError, types_text
+
+    if "type" not in atoms or len(atoms) == 0:
+        return
+    types = np.asarray(atoms["type"]).astype(np.int64)
+    if len(np.unique(types)) < 2:
+        return
+    try:
+        first = junction_columns(local)[0]
+    except KeyError:
+        return
+    rows = set(np.asarray(local[first]).astype(np.int64).tolist())
+    without = np.array([int(i) not in rows for i in np.asarray(atoms.ids).astype(np.int64)])
+    if not without.any():
+        return
+    present, counts = np.unique(types, return_counts=True)
+    listed = ", ".join(f"type {t}: {c} atoms" for t, c in zip(present.tolist(), counts.tolist()))
+    bare = np.unique(types[without]).tolist()
+    cells = sorted(set(present.tolist()) - set(bare))
+    raise CellTypesError(
+        f"{where}: the dump holds atoms of several types ({listed}) and {int(without.sum())} atoms (of type "
+        f"{types_text(bare)}) have no rows in the local dump, so they are no cells; without {one.option} every "
+        f"atom would be taken for a cell. Give {one.option} with the cell types"
+        + (f", e.g. {one.option} {types_text(cells)}" if cells else "")
+        + ", to leave the others out as particles")
 
 
 def contact_lengths(atoms, local, compute=None, column="type"):

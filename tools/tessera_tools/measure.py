@@ -21,14 +21,15 @@ import numpy as np
 from .dump import iter_dump
 
 
-def demix_series(atoms_path, local_path, compute=None, column="type"):
+def demix_series(atoms_path, local_path, compute=None, column="type", cell_types=None):
     """For each timestep both dumps hold: (timesteps, times or None, heterotypic fraction,
     heterotypic length, total length).  The fraction is the junction length between cells of
-    different ``column`` values over the total junction length (each junction counted once)."""
+    different ``column`` values over the total junction length (each junction counted once).
+    ``cell_types``: as for :func:`tessera_tools.junctions.paired_frames`."""
     from .junctions import contact_lengths, paired_frames
 
     steps, times, frac, het, tot = [], [], [], [], []
-    for atoms, local in paired_frames(atoms_path, local_path):
+    for atoms, local in paired_frames(atoms_path, local_path, cell_types=cell_types):
         if column not in atoms:
             raise KeyError(f"{atoms_path} has no '{column}' column: dump the cell type, e.g. "
                            "'dump ... custom N cells.dump id type x y'")
@@ -104,29 +105,42 @@ def frame_time(frame, dt):
     return frame.timestep * dt if dt else float(frame.timestep)
 
 
-def frame_series(path, value, dt=None, radius=None):
+def frame_series(path, value, dt=None, radius=None, cell_types=None):
     """(timesteps, times, values) of a per-frame value of a dump.
 
     value: 'count' (cells in the frame), 'open' (box area minus the area of the finite Voronoi
-    cells of radius ``radius``: holes and wounds), 'sum:COL' or 'mean:COL' (a per-atom column)."""
+    cells of radius ``radius``: holes and wounds), 'holes' (the total area of the holes of those
+    cells, compute vertex/loops' value 2 with min_area 0, in any box), 'largest' (the largest
+    hole, its value 5), 'sum:COL' or 'mean:COL' (a per-atom column over the cells).  ``cell_types`` (see :func:`tessera_tools.dump.iter_dump`): the atoms of
+    other types are no cells: they cover no area (as for compute vertex/loops, whose total
+    hole area is the open area of a periodic box) and are not counted."""
     steps, times, vals = [], [], []
     kind, _, col = value.partition(":")
-    if kind not in ("count", "open", "sum", "mean") or (kind in ("sum", "mean") and not col):
-        raise ValueError(f"per-frame value '{value}': use count, open (needs --radius), sum:COLUMN or "
-                         "mean:COLUMN, e.g. sum:c_cell[8]")
-    if kind == "open" and not radius:
-        raise ValueError("per-frame value 'open' (box area minus the cells' area) needs --radius R, the "
+    if kind not in ("count", "open", "holes", "largest", "sum", "mean") or (kind in ("sum", "mean") and not col):
+        raise ValueError(f"per-frame value '{value}': use count, open, holes or largest (these need --radius), "
+                         "sum:COLUMN or mean:COLUMN, e.g. sum:c_cell[8]")
+    if kind in ("open", "holes", "largest") and not radius:
+        raise ValueError(f"per-frame value '{kind}' (of the finite cells) needs --radius R, the "
                          "radius of pair_style vertex/voronoi ... radius R")
-    for frame in iter_dump(path):
+    for frame in iter_dump(path, cell_types):
         steps.append(frame.timestep)
         times.append(frame_time(frame, dt))
         if kind == "count":
             vals.append(float(frame.natoms))
-        elif kind == "open":
+        elif kind in ("open", "holes", "largest"):
             from .finite import finite_voronoi
 
+            if frame.natoms == 0:
+                vals.append(frame.box.area if kind == "open" else 0.0)
+                continue
             tess = finite_voronoi(frame.positions(), frame.box, radius, frame.ids)
-            vals.append(frame.box.area - float(tess.area.sum()))
+            if kind == "open":
+                vals.append(frame.box.area - float(tess.area.sum()))
+            else:
+                from .holes import free_loops
+
+                holes = [lp.area for lp in free_loops(tess) if lp.kind == 0]
+                vals.append(float(sum(holes)) if kind == "holes" else float(max(holes, default=0.0)))
         else:
             v = np.asarray(frame[col], dtype=float)
             vals.append(float(v.sum() if kind == "sum" else v.mean()))

@@ -163,7 +163,8 @@ def load_trajectory(path, start=None, stop=None, every=None, velocity=("vx", "vy
     the unwrapped position of its nearest neighbour, e.g. its mother).
     Velocities come from the ``velocity`` columns; failing that from finite
     differences of the unwrapped positions (only their direction matters here;
-    NaN where a cell is not in the neighbouring frames).  ``cell_types`` (a set from
+    NaN where a cell is not in the neighbouring frames; ``velocity`` None: no velocities).
+    ``cell_types`` (a set from
     :func:`tessera_tools.dump.parse_types`): only the atoms of these types are followed, the
     others (particles that are no cells) are left out.
     """
@@ -180,7 +181,7 @@ def load_trajectory(path, start=None, stop=None, every=None, velocity=("vx", "vy
     vel = np.full((F, N, 2), np.nan)
     extras = {name: np.full((F, N), np.nan) for name in extra}
     have_unwrapped = all(f.has_unwrapped() for f in frames)
-    have_velocity = all(velocity[0] in f and velocity[1] in f for f in frames)
+    have_velocity = velocity is not None and all(velocity[0] in f and velocity[1] in f for f in frames)
     timesteps = np.array([f.timestep for f in frames])
     boxes = [f.box for f in frames]
     for k, frame in enumerate(frames):
@@ -205,6 +206,8 @@ def load_trajectory(path, start=None, stop=None, every=None, velocity=("vx", "vy
         positions = _unwrap_by_continuity(wrapped, present, boxes)
     if have_velocity:
         velocities = vel
+    elif velocity is None:      # not wanted (displacements only)
+        velocities = None
     else:
         if F < 2:
             raise ValueError(f"{path}: no {' '.join(velocity)} columns and a single frame: no velocities")
@@ -217,7 +220,12 @@ def load_trajectory(path, start=None, stop=None, every=None, velocity=("vx", "vy
         _warn(f"{path}: the frames hold different atom IDs ({N} in all, {int(present[0].sum())} in the first "
               f"frame, {int(present[-1].sum())} in the last; {born} appear, {gone} of the first are gone): "
               "each cell is followed while it is present")
-    return Trajectory(timesteps, ids, positions, wrapped, velocities, boxes, extras, present)
+    traj = Trajectory(timesteps, ids, positions, wrapped, velocities, boxes, extras, present)
+    #: the dump's TIME of each frame, or None when a frame lacks it
+    traj.times = (np.array([f.time for f in frames], dtype=float) if all(f.time is not None for f in frames)
+                  else None)
+    traj.unwrapped_columns = have_unwrapped
+    return traj
 
 
 def _unwrap_by_continuity(wrapped, present, boxes):

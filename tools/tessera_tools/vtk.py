@@ -44,7 +44,7 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
-from .dump import iter_dump
+from .dump import iter_dump, selects
 from .junctions import face_cycles, junction_columns, junction_tessellation, paired_frames
 from .voronoi import tessellate_frame
 
@@ -332,7 +332,7 @@ def write_vtk(atoms_path, out_prefix, local_path=None, frames=None, dt=None, com
             particles_mesh(frame.particles, time).write(ppath)
             particle_entries.append((time, os.path.basename(ppath)))
     _write_series(out_prefix, entries)
-    if cell_types is not None:
+    if selects(cell_types):
         _write_series(out_prefix + "_particles", particle_entries)
     return written
 

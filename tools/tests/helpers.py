@@ -45,3 +45,33 @@ def is_png(path):
     with open(path, "rb") as f:
         head = f.read(8)
     return head == b"\x89PNG\r\n\x1a\n" and os.path.getsize(path) > 1000
+
+
+def find_lmp():
+    """tessera-lmp of $TESSERA_LMP, else of the build ($TESSERA_BUILD or build/), else None."""
+    repo = os.path.dirname(TOOLS)
+    build = os.environ.get("TESSERA_BUILD") or os.path.join(repo, "build")
+    for path in (os.environ.get("TESSERA_LMP"), os.path.join(build, "lammps", "tessera-lmp")):
+        if path and os.access(path, os.X_OK):
+            return path
+    return None
+
+
+def run_lmp(script, directory, timeout=120):
+    """Run tessera-lmp on the text ``script`` in ``directory``; returns its stdout (the log's
+    'print' lines are there).  Raises AssertionError with the log's tail when it fails."""
+    import subprocess
+
+    path = os.path.join(directory, "in.test")
+    with open(path, "w") as f:
+        f.write(script)
+    proc = subprocess.run([find_lmp(), "-in", "in.test", "-log", "log.lammps", "-nocite"], cwd=directory,
+                          capture_output=True, text=True, timeout=timeout)
+    if proc.returncode != 0:
+        raise AssertionError("tessera-lmp failed:\n" + proc.stdout[-3000:] + proc.stderr[-2000:])
+    return proc.stdout
+
+
+def printed(stdout, key):
+    """The numbers of the lines 'key v1 v2 ...' of a LAMMPS run's output."""
+    return [[float(v) for v in line.split()[1:]] for line in stdout.splitlines() if line.startswith(key + " ")]

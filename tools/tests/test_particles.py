@@ -49,6 +49,9 @@ def run(argv):
             code = main(argv)
         except SystemExit as stop:
             code = stop.code
+    if isinstance(code, str):       # SystemExit("message"): Python prints it and exits with 1
+        err.write(code + "\n")
+        code = 1
     return code, out.getvalue(), err.getvalue()
 
 
@@ -102,15 +105,24 @@ class Particles(unittest.TestCase):
         self.assertIn(f"atoms: {self.n} cells, {self.m} particles (types 2,3)", out)
         mean = float(out.split("mean area ")[1].split()[0])
         self.assertAlmostEqual(mean, self.hex_area, places=5)
-        # without --cell-types the particles are tessellated: the one at a cell centre is refused
+        # without --cell-types a dump of several types is refused, naming the types and the option
         code, out, err = run(["info", self.dump, "--stats"])
+        self.assertNotEqual(code, 0)
+        self.assertIn("type 1: 24 atoms, type 2: 3 atoms, type 3: 2 atoms", err)
+        self.assertIn("--cell-types 1 ", err)
+        # info alone says what the dump holds, by type
+        code, out, err = run(["info", self.dump])
+        self.assertEqual(code, 0, err)
+        self.assertIn("(type 1: 24, type 2: 3, type 3: 2)", out)
+        # all taken for cells, the particles are tessellated: the one at a cell centre is refused
+        code, out, err = run(["info", self.dump, "--stats", "--cell-types", "1*3"])
         self.assertNotEqual(code, 0)
         self.assertIn("coincident cell centres", err)
         # and without that one the areas are not the hexagons'
         dump = os.path.join(self.dir, "other.dump")
         frame = self.frames[0]
         write_dump(dump, [frame.subset(frame["id"] != 5)])
-        code, out, _ = run(["info", dump, "--stats"])
+        code, out, _ = run(["info", dump, "--stats", "--cell-types", "1,2,3"])
         self.assertGreater(abs(float(out.split("mean area ")[1].split()[0]) - self.hex_area), 0.1)
 
     def test_cell_types_need_a_type_column(self):

@@ -174,8 +174,10 @@ class VTK(unittest.TestCase):
             cells, junc = os.path.join(d, "cells.dump"), os.path.join(d, "junctions.dump")
             self.assertEqual(main(["vtk", cells, "--local", junc, "-o", os.path.join(d, "v"), "-q"]), 0)
             self.assertTrue(os.path.exists(os.path.join(d, "v_10.vtu")))
-            # without the local dump: the Voronoi tessellation of the centres, same hexagons
-            self.assertEqual(main(["vtk", cells, "-o", os.path.join(d, "w"), "-q", "--frames", "0"]), 0)
+            # without the local dump: the Voronoi tessellation of the centres, same hexagons; the
+            # dump has two types, so they are named as cells (the local dump's rows said so above)
+            self.assertEqual(main(["vtk", cells, "-o", os.path.join(d, "w"), "-q", "--frames", "0",
+                                   "--cell-types", "1,2"]), 0)
             mesh = meshio.read(os.path.join(d, "w_0.vtu"))
             np.testing.assert_allclose(np.concatenate(mesh.cell_data["area"]), math.sqrt(3) / 2, rtol=1e-9)
             png = os.path.join(d, "types.png")

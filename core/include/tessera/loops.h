@@ -47,6 +47,11 @@ struct FreeLoop {
   int n_cells = 0;          // distinct cells with an arc on the loop
   int n_arcs = 0;
   double cx = 0.0, cy = 0.0;  // centroid of the enclosed region (wrapping: mean of the arc midpoints)
+  // Its arcs in walking order (indices into the arcs given to free_loops),
+  // and for each the shift (2 values: whole box vectors, 0 in an open box)
+  // that puts it on the loop unwrapped from its first arc.
+  std::vector<int> arcs;
+  std::vector<double> shift;
 };
 
 // Maps a difference vector (2 values) to its minimum image in place; an
@@ -59,5 +64,60 @@ using MinimumImage = std::function<void(double *)>;
 // consistent tessellation), and each such chain is closed where it stopped.
 std::vector<FreeLoop> free_loops(const std::vector<FreeArc> &arcs, const MinimumImage &image,
                                  double tol, int *unmatched = nullptr);
+
+// A loop's arcs in walking order with their centres shifted onto the loop
+// (arcs: those given to free_loops).
+std::vector<FreeArc> unwrapped_arcs(const std::vector<FreeArc> &arcs, const FreeLoop &loop);
+
+// The winding number about p of the closed chain of n arcs given unwrapped
+// (each arc's centre already shifted onto the chain) in walking order, the
+// last ending where the first begins: +1 inside an outer loop, -1 inside a
+// hole, 0 outside (p on the chain itself: either).  The chain is its
+// polygon of arc ends plus, for each arc, the region between the arc and
+// its chord, which the arc runs around counter-clockwise.
+int loop_winding(const FreeArc *arcs, int n, const double *p);
+
+// A 2d box for the periodic images of a point: the lower corner lo, edge
+// lengths len and the xy tilt (the second edge vector is (xy, len[1])).
+struct LoopBox {
+  double lo[2] = {0.0, 0.0};
+  double len[2] = {1.0, 1.0};
+  double xy = 0.0;
+  bool periodic[2] = {false, false};
+};
+
+// Which loop encloses a point.  Loops are added in their numbering order
+// (1, 2, ...) as unwrapped chains of arcs (see loop_winding) with their
+// enclosed area; a wrapping loop encloses no point.  innermost(p) is the
+// loop of smallest area (the lowest number on a tie) whose region holds p
+// or one of its periodic images, 0 if none does.  A bin grid over the box
+// finds a point's candidate loops, and each loop bins its arcs in bands of
+// y, so that a query reads the few arcs near the point.
+class LoopLocator {
+public:
+  explicit LoopLocator(const LoopBox &box) : box_(box) {}
+  void add(const FreeArc *arcs, int n, double area, bool wrapping);
+  void finish();  // after the last add, before the first query
+  int innermost(const double *p) const;
+  int size() const { return static_cast<int>(loops_.size()); }
+  // The winding number of loop l (1-based) about p itself (no image).
+  int winding(int l, const double *p) const;
+
+private:
+  struct Loop {
+    std::vector<FreeArc> arcs;
+    double area = 0.0;
+    bool wrapping = false;
+    double lo[2] = {0.0, 0.0}, hi[2] = {0.0, 0.0};  // bounding box
+    int nband = 1;
+    std::vector<int> band_start, band_arcs;  // arcs touching each band of y
+  };
+  LoopBox box_;
+  std::vector<Loop> loops_;
+  int nbin_[2] = {1, 1};
+  std::vector<int> bin_start_, bin_loops_;
+  void fraction(const double *p, double *s) const;
+  void bin_range(double s0, double s1, int d, std::vector<int> &out) const;
+};
 
 }  // namespace tessera

@@ -6,16 +6,18 @@
 // step n is almost always the triangulation of step n+1, or a few edge flips
 // away from it.  update() checks every edge with exact (filtered) in-circle
 // tests and restores the Delaunay property by Lawson flips, in O(N) with a
-// small constant; only when a triangle folds over (a point crossed an edge)
-// does the caller need build() again, which triangulates from scratch with
-// CGAL.  The point at infinity closes the convex hull, so hull changes are
-// flips too.  A triangle that folds over (a point crossed an edge) is
-// repaired locally: the folded region and its ring are re-triangulated
-// (exact predicates), and the flips then restore the Delaunay property
-// there; only when that fails (the region touches the hull or a frozen
-// triangle, or grows past a bound) does the caller need build() again,
-// which triangulates from scratch with CGAL.  CGAL stays inside the
-// mesh_*.cpp sources.
+// small constant.  The point at infinity closes the convex hull, so hull
+// changes are flips too.  A triangle that folds over (a point crossed an
+// edge) is repaired locally: the folded region and its ring are
+// re-triangulated (exact predicates), and the flips then restore the
+// Delaunay property there; only when that fails (the region touches the hull
+// or a frozen triangle, or grows past a bound) does the caller need build()
+// again, which triangulates from scratch (mesh_build.cpp: points in a
+// multiscale Hilbert order, each located by a walk from the last and
+// inserted by Lawson flips).  Co-circular points are ordinary input: their
+// tie is broken by a symbolic perturbation (doc/model.md, "Exact geometry"),
+// so the triangulation is unique, and build() and update() give the same
+// triangles, each with its smallest point index first.
 #pragma once
 
 #include "tessera/tessellation.h"
@@ -93,6 +95,9 @@ private:
   static constexpr int kInfinite = -1;
   bool valid_ = false;
   bool collinear_ = false;
+  // Some coordinate is nonzero and below kTinyCoordinate (mesh_detail.h):
+  // the in-circle tests skip their floating-point filter.
+  bool tiny_ = false;
   int n_points_ = 0;
   long flips_ = 0;
   long repairs_ = 0;
@@ -122,6 +127,12 @@ private:
   [[noreturn]] static void throw_too_close(const Points &pts, int i, int j, double scale,
                                            const long *ids, const int *report);
   void flip(int t, int k, int u, int j);
+  // Rotates triangle t's corners (and neighbours) so that its smallest
+  // point index comes first (-1, the point at infinity, in an infinite one):
+  // a triangle's corners are then in the same order however it was made,
+  // and so are the bits of its circumcentre.
+  void canonical(int t);
+  int corner(int t, int p) const { return (v_[3 * t + 1] == p) + 2 * (v_[3 * t + 2] == p); }
   void mark_dirty(int p) {
     if (p >= 0 && !dirty_[p]) {
       dirty_[p] = 1;
@@ -145,12 +156,13 @@ private:
   bool flip_needed(const Points &pts, int p, int q, int r, int s) const;
 };
 
-// The benchmarks' yardstick: a plain CGAL Delaunay_triangulation_2 (default
-// kernel and data structure, no info, no periodic images) of points 0..n-1,
-// inserted by CGAL's range insert, which sorts them spatially first.  Returns
-// the wall time of the insert alone in seconds (the copy into CGAL's point
-// type comes before the clock starts) and, in *faces when given, the number of
-// finite triangles (2 n - 2 - hull vertices for n points in general position).
+// The pair style's 'reference' yardstick: the plain Delaunay triangulation of
+// points 0..n-1 by build()'s triangulator alone (the spatial sort, the
+// insertion and nothing else: no input checks, no separation test, no
+// renumbering for the cells).  Returns its wall time in seconds and, in
+// *faces when given, the number of finite triangles (2 n - 2 - hull
+// vertices for n points in general position).  The benchmarks compare it
+// with CGAL's Delaunay_triangulation_2 (bench/bench_core.cpp).
 double time_plain_delaunay(const Points &pts, int n, long *faces = nullptr);
 
 }  // namespace tessera

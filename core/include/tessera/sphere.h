@@ -2,7 +2,7 @@
 //
 // The Voronoi model on a sphere (doc/sphere.md): cell centres on the sphere
 // of centre c and radius R, their spherical Delaunay triangulation (the
-// convex hull of the points, CGAL in the .cpp only) and its dual, the
+// convex hull of the points) and its dual, the
 // spherical Voronoi diagram; each cell a spherical polygon with geodesic
 // (great-circle) edges.  The energy has the flat model's form
 //
@@ -83,12 +83,15 @@ struct SphereTessellation {
 // precision cannot triangulate them), all points on one circle of the
 // sphere (one plane: a great circle or a small one; also when the rounding
 // of their directions lifts them off it).
-// The triangulation is CGAL's Delaunay triangulation on the sphere, or, when
-// that does not cover the whole sphere (all points in one hemisphere), or
-// with reference_hull, CGAL's convex hull of the directions (about eight
-// times slower at N = 1e5; the tests' oracle for the first).  Both give the same
-// triangles except where four or more points are co-circular (then the
-// choice of diagonals may differ; the cells do not).
+// The triangulation is the exact convex hull of the directions as rounded to
+// doubles (core/src/sphere_hull.cpp: inserted along a Hilbert curve on the
+// sphere, exact predicates), on the sphere or on any part of it (all points
+// in one hemisphere included).  With reference_hull, the same hull built by a
+// different route (seeded random order, each point keeping a facet it sees;
+// slower, the tests' oracle for the first).  Both give the same triangles
+// except where four or more points are co-circular (co-planar: the face is a
+// polygon, which each route splits into triangles its own way; the cells do
+// not depend on the split).
 SphereTessellation tessellate_sphere(const Vec3 &centre, double R, const Points3 &pts,
                                      const long *ids = nullptr, bool reference_hull = false);
 
@@ -126,7 +129,7 @@ struct SphereForceOutput {
 // Geometry), the force is the mean of the energy's branch gradients over the
 // fan triangulations of the vertex's ring, each zero-length edge taking the
 // direction it has on its branch's side (for a four-fold vertex: the central
-// difference); it does not depend on how CGAL broke the tie.
+// difference); it does not depend on how the triangulation split the polygon.
 SphereForceOutput sphere_forces(const SphereTessellation &t, const Points3 &pts, const int *type,
                                 const Model &model, double *f, int f_stride,
                                 double *cell_energy = nullptr, double *cell_virial = nullptr);

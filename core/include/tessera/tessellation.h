@@ -1,9 +1,10 @@
 // Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
 //
 // Voronoi tessellation of 2D cell centres, as the dual of their Delaunay
-// triangulation.  This header is free of CGAL and of LAMMPS on purpose: CGAL
-// lives only in the core's .cpp files, so LAMMPS-side code (whose pointers.h
-// defines MIN/MAX macros) can include it and builds stay fast.
+// triangulation.  This header is free of LAMMPS and of the geometry's
+// internals on purpose: they live only in the core's .cpp files, so
+// LAMMPS-side code (whose pointers.h defines MIN/MAX macros) can include it
+// and builds stay fast.
 #pragma once
 
 #include <array>

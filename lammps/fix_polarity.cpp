@@ -167,14 +167,6 @@ void FixPolarity::init()
     error->all(FLERR,
                "fix polarity: 'neighbor' alignment needs pair_style vertex/voronoi or "
                "vertex/polygon, whose cells give the neighbours");
-  // The vertex model's cell atoms sit at their polygons' centroids and have
-  // no velocity of their own.
-  if (pair && pair->cells_are_vertices() && params.J_V != 0.0)
-    error->all(FLERR,
-               "fix polarity {}: 'velocity' alignment reads each cell's velocity, which the cell "
-               "atoms of pair_style vertex/polygon do not have (they sit at their polygons' "
-               "centroids); leave out 'velocity'",
-               id);
   if (domain->dimension == 3)
     init_angles_3d();
   else

@@ -94,6 +94,7 @@ void FixVertexPolygon::setup(int vflag)
 {
   post_force(vflag);
   request_steps();
+  cell_velocities();
 }
 
 void FixVertexPolygon::pre_exchange()
@@ -115,6 +116,33 @@ void FixVertexPolygon::min_pre_neighbor()
 void FixVertexPolygon::end_of_step()
 {
   request_steps();
+  cell_velocities();
+}
+
+/* A cell atom has no integrator: its velocity is the mean of its vertices'
+   velocities (which the integrators set to dr/dt of the step), i.e. the
+   velocity of the mean of its corners. */
+
+void FixVertexPolygon::cell_velocities()
+{
+  if (pair->cache_epoch != pair->epoch) return;    // no force computation yet
+  mode = VELOCITY;
+  tessera_compat::forward_comm(comm, this);
+  double **v = atom->v;
+  const int *type = atom->type;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (pair->role(type[i]) != PairVertexPolygon::CELL) continue;
+    const int n = pair->off[i + 1] - pair->off[i];
+    if (n == 0) continue;
+    double vx = 0.0, vy = 0.0;
+    for (int k = pair->off[i]; k < pair->off[i + 1]; k++) {
+      vx += v[pair->ring_local[k]][0];
+      vy += v[pair->ring_local[k]][1];
+    }
+    v[i][0] = vx / n;
+    v[i][1] = vy / n;
+    v[i][2] = 0.0;
+  }
 }
 
 /* A topology step at the next step if some rank saw a candidate. */
@@ -183,6 +211,12 @@ int FixVertexPolygon::pack_forward_comm(int n, int *list, double *buf, int /*pbc
     const int w = pair->ring_width;
     for (int k = 0; k < n; k++)
       for (int c = 0; c < w; c++) buf[m++] = ring[list[k]][c];
+  } else if (mode == VELOCITY) {
+    double **v = atom->v;
+    for (int k = 0; k < n; k++) {
+      buf[m++] = v[list[k]][0];
+      buf[m++] = v[list[k]][1];
+    }
   } else {
     // The owner's coordinates, without the periodic shift of the copy.
     for (int k = 0; k < n; k++) {
@@ -201,6 +235,12 @@ void FixVertexPolygon::unpack_forward_comm(int n, int first, double *buf)
     const int w = pair->ring_width;
     for (int i = first; i < first + n; i++)
       for (int c = 0; c < w; c++) ring[i][c] = static_cast<int>(buf[m++]);
+  } else if (mode == VELOCITY) {
+    double **v = atom->v;
+    for (int i = first; i < first + n; i++) {
+      v[i][0] = buf[m++];
+      v[i][1] = buf[m++];
+    }
   } else {
     for (int i = first; i < first + n; i++) {
       canon[2 * i] = buf[m++];

@@ -32,7 +32,9 @@ class PairVertexPolygon;
      - post_force: hands each cell atom's force to its vertices (each vertex
        gets a third of each of its cells'), then zeroes it;
      - end_of_step: asks for a topology step at the next step when some owned
-       cell is a candidate (one MPI_Allreduce). */
+       cell is a candidate (one MPI_Allreduce), and gives each cell atom the
+       mean velocity of its vertices (the cell's velocity for fix polarity's
+       velocity alignment and compute vertex/atom). */
 
 class FixVertexPolygon : public Fix {
  public:
@@ -62,11 +64,12 @@ class FixVertexPolygon : public Fix {
   void reverse_counts(std::vector<double> &count);
 
  private:
-  enum Mode { RINGS, CANONICAL, SHARE, COUNT };
+  enum Mode { RINGS, CANONICAL, SHARE, COUNT, VELOCITY };
   int mode = RINGS;
   std::vector<double> canon, share, *counts = nullptr;
   int transfer = 1;    // some fix or pair style may put forces on cell atoms
   void request_steps();
+  void cell_velocities();
   // One pass of the rule; returns the number of events carried out (all ranks).
   bigint run_topology();
   void delete_removed();

@@ -678,11 +678,41 @@ write_dump all custom end.dump id xu yu mux muy modify format float %.17g sort i
         for col in ("xu", "yu", "mux", "muy"):
             np.testing.assert_allclose(ends[0][1][col], ends[1][1][col], rtol=0, atol=1e-9)
 
-    def test_velocity_alignment_is_refused(self):
-        script = start().replace("atom_style atomic", "atom_style hybrid dipole sphere") + \
-            coeffs() + "group cells type 1 2\nfix act cells polarity 0.3 1.0 velocity 1.0\nrun 0\n"
-        self.assertLammpsError(self.run_lmp(script, ok=False), "'velocity' alignment",
-                               "pair_style vertex/polygon")
+    def test_cell_velocity_and_velocity_alignment(self):
+        # A cell atom's velocity is the mean of its vertices' (fix brownian
+        # sets theirs to dr/dt): against the rings of the data file; compute
+        # vertex/atom's orientation reads it; one Euler step of velocity
+        # alignment, theta += -dt / gamma_R * J_V * sin(theta - psi), with
+        # psi the direction of that velocity at the step before.
+        jv, gr, dt = 1.5, 1.2, 0.01
+        run = self.polarity_run(f"fix act cells polarity 0.3 {gr} velocity {jv} seed 5\n", f"""
+fix move vertices brownian 1.0 1 gamma_t 1.0 rng none
+compute a all vertex/atom
+timestep {dt}
+dump d all custom 1 v1.dump id vx vy mux muy c_a[7]
+dump_modify d format float %.17g sort id
+run 1
+undump d
+write_data end.data
+run 1
+write_dump all custom v2.dump id mux muy modify format float %.17g sort id
+""")
+        a, b = run.dump("v1.dump")[-1], run.dump("v2.dump")[0]
+        _, _, rings, _ = read_data(run.text("end.data"))
+        index = {int(i): k for k, i in enumerate(a["id"])}
+        for c, r in rings.items():
+            k = index[c]
+            want = [np.mean([a[col][index[v]] for v in r]) for col in ("vx", "vy")]
+            np.testing.assert_allclose([a["vx"][k], a["vy"][k]], want, rtol=0, atol=1e-12)
+            speed = math.hypot(*want)
+            self.assertGreater(speed, 1e-3)
+            self.assertAlmostEqual(a["c_a[7]"][k], math.acos(want[0] / speed), delta=1e-9)
+            theta = math.atan2(a["muy"][k], a["mux"][k])
+            psi = math.atan2(want[1], want[0])
+            expect = theta - dt / gr * jv * math.sin(theta - psi)
+            got = math.atan2(b["muy"][k], b["mux"][k])
+            d = (got - expect + math.pi) % (2 * math.pi) - math.pi
+            self.assertAlmostEqual(d, 0.0, delta=1e-12, msg="cell %d" % c)
 
 
 if __name__ == "__main__":

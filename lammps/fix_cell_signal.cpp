@@ -228,6 +228,17 @@ int FixCellSignal::setmask()
 
 void FixCellSignal::init()
 {
+  {
+    // The vertex model's cells are rings of vertex atoms (pair_style
+    // vertex/polygon): this fix does not know them yet.
+    CellSource *source = CellSource::find(lmp);
+    if (source && source->cells_are_vertices())
+      error->all(FLERR,
+                 "fix cell/signal {}: signalling between vertex-model cells (pair_style "
+                 "vertex/polygon) is not implemented yet: it exchanges across the junctions and "
+                 "reads the per-cell state of pair_style vertex/voronoi only",
+                 id);
+  }
   pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
   if (!pair)
     error->all(FLERR,

@@ -111,7 +111,20 @@ void PairVertexPolygon::init_style()
                "pair_style vertex/polygon needs an atom map (rings name their vertices by ID): "
                "add 'atom_modify map yes' before the box is created");
   if (force->pair != this)
-    error->all(FLERR, "pair_style vertex/polygon cannot be a sub-style of pair_style hybrid yet");
+    error->all(FLERR,
+               "pair_style vertex/polygon cannot be a sub-style of pair_style hybrid yet: atoms "
+               "that are no cells (particles) among the vertex model's cells, and other pair "
+               "styles beside it, are not implemented");
+  // Atoms added during a run would be cells without rings or vertices in no
+  // cell: new cells come from division (not implemented yet for this model).
+  for (int k = 0; k < modify->nfix; k++)
+    if (utils::strmatch(modify->fix[k]->style, "^deposit") ||
+        utils::strmatch(modify->fix[k]->style, "^pour"))
+      error->all(FLERR,
+                 "pair_style vertex/polygon: fix {} ({}) adds atoms during the run, but a cell "
+                 "of the vertex model is a ring of vertex atoms that an added atom does not "
+                 "have; adding cells is not implemented for this model",
+                 modify->fix[k]->id, modify->fix[k]->style);
   int ncell = 0, nvertex = 0;
   for (int t = 1; t <= atom->ntypes; t++) {
     if (role(t) == NONE)
@@ -426,12 +439,17 @@ void PairVertexPolygon::compute(int eflag, int vflag)
     if (d != tessera::PolygonDefect::None || !std::isfinite(e)) {
       std::string vs;
       for (int k = 0; k < n; k++) vs += fmt::format(" {}", ring[i][k]);
-      error->one(FLERR,
-                 "pair_style vertex/polygon at step {}: cell {} {} (vertices{}; area {:.6g}); "
-                 "a smaller timestep, or T1s ('t1 l_T1 l_new') before its edges shrink to "
-                 "nothing, keep cells valid",
-                 update->ntimestep, tag[i],
-                 std::isfinite(e) ? tessera::describe(d) : "has a non-finite energy", vs, m.area);
+      // During minimize the topology is fixed: an edge that the minimum at
+      // this topology shrinks to nothing goes through zero instead of a T1.
+      const char *fix_it = update->whichflag == 2
+          ? "minimize keeps the topology fixed (no T1s), and the minimum at this topology "
+            "has an edge of zero length: relax with a run with T1s ('t1 l_T1 l_new') first"
+          : "a smaller timestep, or T1s ('t1 l_T1 l_new') before its edges shrink to "
+            "nothing, keep cells valid";
+      error->one(
+          FLERR, "pair_style vertex/polygon at step {}: cell {} {} (vertices{}; area {:.6g}); {}",
+          update->ntimestep, tag[i],
+          std::isfinite(e) ? tessera::describe(d) : "has a non-finite energy", vs, m.area, fix_it);
     }
     for (int k = 0; k < n; k++) {
       f[loc[k]][0] -= g[2 * k];
@@ -475,9 +493,36 @@ void PairVertexPolygon::compute(int eflag, int vflag)
   view.energy = cell_energy.data();
   view_step = update->ntimestep;
   view_natoms = atom->natoms;
+  for (int k = 0; k < 6; k++) view_box[k] = domain->h[k];
+  view_box[6] = domain->boxlo[0];
+  view_box[7] = domain->boxlo[1];
   if (eflag_global) eng_vdwl += energy;
   if (vflag_fdotr) virial_fdotr_compute();
   publish_stats();
+}
+
+bool PairVertexPolygon::box_changed() const
+{
+  for (int k = 0; k < 6; k++)
+    if (view_box[k] != domain->h[k]) return true;
+  return view_box[6] != domain->boxlo[0] || view_box[7] != domain->boxlo[1];
+}
+
+/* fix adapt reads type-pair arrays of the parameters; this style keeps its
+   parameters per type only, so it says what to use instead (called by fix
+   adapt at its init: an error at setup). */
+
+void *PairVertexPolygon::extract(const char *str, int &dim)
+{
+  dim = 2;
+  for (const char *name : {"kappa", "area0", "gamma", "lambda"})
+    if (strcmp(str, name) == 0)
+      error->all(FLERR,
+                 "pair_style vertex/polygon: fix adapt of '{}' is not implemented for the vertex "
+                 "model yet; change per-cell values instead (fix property/atom d_area0, d_ka, "
+                 "d_kp, d_perim0, set by 'set' or fix cell/adapt), or pair_coeff between runs",
+                 str);
+  return nullptr;
 }
 
 /* The cells are those of the last force computation: at this timestep, for
@@ -492,6 +537,10 @@ void PairVertexPolygon::require_current_cells(const std::string &who)
     why = "its cells are those of another step";
   else if (view_natoms != atom->natoms || view.n_owned() != atom->nlocal)
     why = "the atoms changed since (atoms created or deleted)";
+  else if (box_changed())
+    why = "the box changed after the forces of this step (fix deform, change_box): the cells "
+          "of the changed box are not computed for the vertex model yet; output on steps "
+          "where the box stays, or after a 'run 0'";
   int bad = why ? 1 : 0, any = 0;
   MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_MAX, world);
   if (any)

@@ -51,6 +51,7 @@ class PairVertexPolygon : public Pair, public CellSource {
   void write_restart_settings(FILE *) override;
   void read_restart_settings(FILE *) override;
   double memory_usage() override;
+  void *extract(const char *, int &) override;
 
   // The cells for the computes and fixes that read them (CellSource): owned
   // cell c is local atom c, vertex atoms are empty cells; neighbours are the
@@ -120,9 +121,11 @@ class PairVertexPolygon : public Pair, public CellSource {
   std::vector<double> cell_energy;    // per local atom, for the view
   bigint view_step = -1, nforce = 0;
   bigint view_natoms = -1;    // atom count of the view's step
+  double view_box[8] = {};    // the box (h, boxlo) of the view
   std::string fix_id;
   FixVertexPolygon *fix = nullptr;
   void check_integrators() const;
+  bool box_changed() const;
   void missing_atom(int i, tagint id, const char *what) const;
 };
 

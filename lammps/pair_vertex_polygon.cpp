@@ -416,6 +416,7 @@ void PairVertexPolygon::compute(int eflag, int vflag)
   const double l2 = topo.t1_length * topo.t1_length;
   const bool percell = model.has_cell_params();
   nforce++;
+  show_shown = false;
   view.clear(nlocal, nlocal + atom->nghost, tessera::Points{&x[0][0], nlocal + atom->nghost, 3});
   cell_energy.assign(nlocal, 0.0);
   for (int i = 0; i < nlocal; i++) {
@@ -501,6 +502,54 @@ void PairVertexPolygon::compute(int eflag, int vflag)
   publish_stats();
 }
 
+/* fix deform (or change_box) changed the box after this step's forces: the
+   cells of the positions and box shown, computed again (no forces) from the
+   ghosts sent again in the changed box (collective), into a view of their
+   own: the neighbours and junctions that the next step integrates (fix
+   polarity) stay those of the force computation.  The cell atoms go to
+   their polygons' centroids as at a force computation. */
+
+void PairVertexPolygon::cells_of_changed_box()
+{
+  comm->forward_comm();
+  const int nlocal = atom->nlocal;
+  double **x = atom->x;
+  const int *type = atom->type;
+  int **ring = atom->iarray[ring_index];
+  std::vector<double> xy, g;
+  std::vector<int> nt;
+  const bool percell = model.has_cell_params();
+  shown.clear(nlocal, nlocal + atom->nghost, tessera::Points{&x[0][0], nlocal + atom->nghost, 3});
+  shown_energy.assign(nlocal, 0.0);
+  for (int i = 0; i < nlocal; i++) {
+    if (role(type[i]) != CELL || ring[i][0] < 0) continue;
+    const int n = off[i + 1] - off[i];
+    const int *loc = &ring_local[off[i]];
+    xy.resize(2 * n);
+    g.resize(2 * n);
+    nt.resize(n);
+    for (int k = 0; k < n; k++) {
+      xy[2 * k] = x[loc[k]][0];
+      xy[2 * k + 1] = x[loc[k]][1];
+      nt[k] = type[nbr_local[off[i] + k]] - 1;
+    }
+    const int tc = type[i] - 1;
+    double e = tessera::polygon_energy(xy.data(), n, model, i, tc, nt.data(), g.data());
+    if (quad[type[i]]) e += percell ? model.quadratic_constant(i, tc) : energy0[type[i]];
+    shown_energy[i] = e;
+    const tessera::PolygonMeasures m = tessera::polygon_measures(xy.data(), n);
+    shown.add_cell(i, xy.data(), n, &nbr_local[off[i]], m.area, m.perimeter);
+    x[i][0] = m.centroid.x;
+    x[i][1] = m.centroid.y;
+  }
+  shown.finish();
+  shown.energy = shown_energy.data();
+  show_shown = true;
+  for (int k = 0; k < 6; k++) view_box[k] = domain->h[k];
+  view_box[6] = domain->boxlo[0];
+  view_box[7] = domain->boxlo[1];
+}
+
 bool PairVertexPolygon::box_changed() const
 {
   for (int k = 0; k < 6; k++)
@@ -537,12 +586,10 @@ void PairVertexPolygon::require_current_cells(const std::string &who)
     why = "its cells are those of another step";
   else if (view_natoms != atom->natoms || view.n_owned() != atom->nlocal)
     why = "the atoms changed since (atoms created or deleted)";
-  else if (box_changed())
-    why = "the box changed after the forces of this step (fix deform, change_box): the cells "
-          "of the changed box are not computed for the vertex model yet; output on steps "
-          "where the box stays, or after a 'run 0'";
-  int bad = why ? 1 : 0, any = 0;
+  int bad = why ? 1 : 0, any = 0, moved = box_changed() ? 1 : 0, box = 0;
   MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_MAX, world);
+  MPI_Allreduce(&moved, &box, 1, MPI_INT, MPI_MAX, world);
+  if (!any && box) cells_of_changed_box();
   if (any)
     error->all(FLERR,
                "{} reads the cells of pair_style vertex/polygon at step {}, but {}; invoke it on "

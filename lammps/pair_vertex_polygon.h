@@ -57,7 +57,10 @@ class PairVertexPolygon : public Pair, public CellSource {
   // cell c is local atom c, vertex atoms are empty cells; neighbours are the
   // local copies of the cell atoms across each edge, closest to the cell.
   // Filled at each force computation.
-  const tessera::CellView &cells() const override { return view; }
+  const tessera::CellView &cells() const override
+  {
+    return show_shown ? static_cast<const tessera::CellView &>(shown) : view;
+  }
   bigint cells_step() const override { return view_step; }
   void require_current_cells(const std::string &who) override;
   tessera::Contacts force_contacts() const override { return view.contacts(); }
@@ -121,11 +124,16 @@ class PairVertexPolygon : public Pair, public CellSource {
   std::vector<double> cell_energy;    // per local atom, for the view
   bigint view_step = -1, nforce = 0;
   bigint view_natoms = -1;    // atom count of the view's step
-  double view_box[8] = {};    // the box (h, boxlo) of the view
+  double view_box[8] = {};    // the box (h, boxlo) of the cells shown
+  // The cells of a box changed after the forces (fix deform), for output.
+  tessera::PolygonCells shown;
+  std::vector<double> shown_energy;
+  bool show_shown = false;
   std::string fix_id;
   FixVertexPolygon *fix = nullptr;
   void check_integrators() const;
   bool box_changed() const;
+  void cells_of_changed_box();
   void missing_atom(int i, tagint id, const char *what) const;
 };
 

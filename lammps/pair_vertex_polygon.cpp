@@ -48,6 +48,11 @@ PairVertexPolygon::~PairVertexPolygon()
     memory->destroy(setflag);
     memory->destroy(cutsq);
   }
+  memory->destroy(adapt_kappa);
+  memory->destroy(adapt_area0);
+  memory->destroy(adapt_gamma);
+  memory->destroy(adapt_lambda);
+  memory->destroy(built_lambda);
 }
 
 int PairVertexPolygon::ring_length(int i) const
@@ -557,21 +562,51 @@ bool PairVertexPolygon::box_changed() const
   return view_box[6] != domain->boxlo[0] || view_box[7] != domain->boxlo[1];
 }
 
-/* fix adapt reads type-pair arrays of the parameters; this style keeps its
-   parameters per type only, so it says what to use instead (called by fix
-   adapt at its init: an error at setup). */
+/* fix adapt's arrays (type pairs, the values in use; build_model fills them). */
 
 void *PairVertexPolygon::extract(const char *str, int &dim)
 {
   dim = 2;
-  for (const char *name : {"kappa", "area0", "gamma", "lambda"})
-    if (strcmp(str, name) == 0)
-      error->all(FLERR,
-                 "pair_style vertex/polygon: fix adapt of '{}' is not implemented for the vertex "
-                 "model yet; change per-cell values instead (fix property/atom d_area0, d_ka, "
-                 "d_kp, d_perim0, set by 'set' or fix cell/adapt), or pair_coeff between runs",
-                 str);
+  if (strcmp(str, "kappa") == 0) return adapt_kappa;
+  if (strcmp(str, "area0") == 0) return adapt_area0;
+  if (strcmp(str, "gamma") == 0) return adapt_gamma;
+  if (strcmp(str, "lambda") == 0) return adapt_lambda;
   return nullptr;
+}
+
+/* fix adapt changed extract()'s arrays: the per-type values from the
+   diagonal, a junction tension it changed becomes given, and the model is
+   built again for the next force computation. */
+
+void PairVertexPolygon::reinit()
+{
+  Pair::reinit();
+  if (!adapt_kappa) return;
+  const int n = atom->ntypes;
+  for (int i = 1; i <= n; i++) {
+    if (roles[i] != CELL) continue;
+    for (auto [name, v] : {std::pair<const char *, double>{"kappa", adapt_kappa[i][i]},
+                           {"area0", adapt_area0[i][i]}})
+      if (!(v > 0.0) || !std::isfinite(v))
+        error->all(FLERR,
+                   "pair_style vertex/polygon (fix adapt): {} of type {} must be > 0, got {}", name,
+                   i, v);
+    if (!(adapt_gamma[i][i] >= 0.0) || !std::isfinite(adapt_gamma[i][i]))
+      error->all(FLERR,
+                 "pair_style vertex/polygon (fix adapt): gamma of type {} must be >= 0, got {}", i,
+                 adapt_gamma[i][i]);
+    kappa[i] = adapt_kappa[i][i];
+    area0[i] = adapt_area0[i][i];
+    gamma[i] = adapt_gamma[i][i];
+  }
+  // fix adapt writes the upper triangle (j >= i).
+  for (int i = 1; i <= n; i++)
+    for (int j = i; j <= n; j++)
+      if (adapt_lambda[i][j] != built_lambda[i][j]) {
+        lambda[i][j] = lambda[j][i] = adapt_lambda[i][j];
+        if (i != j) lambda_set[i][j] = lambda_set[j][i] = 1;
+      }
+  build_model();
 }
 
 /* The cells are those of the last force computation: at this timestep, for

@@ -52,6 +52,7 @@ class PairVertexPolygon : public Pair, public CellSource {
   void read_restart_settings(FILE *) override;
   double memory_usage() override;
   void *extract(const char *, int &) override;
+  void reinit() override;
 
   // The cells for the computes and fixes that read them (CellSource): owned
   // cell c is local atom c, vertex atoms are empty cells; neighbours are the
@@ -88,6 +89,10 @@ class PairVertexPolygon : public Pair, public CellSource {
   // same-type values, 1: given, 2: the mean plus a quadratic sigma).
   std::vector<std::vector<double>> lambda, sigma;
   std::vector<std::vector<int>> lambda_set;
+  // Type-pair arrays for fix adapt (extract): the values in use, filled by
+  // build_model, read back by reinit (per-type values from the diagonal).
+  double **adapt_kappa = nullptr, **adapt_area0 = nullptr, **adapt_gamma = nullptr;
+  double **adapt_lambda = nullptr, **built_lambda = nullptr;
   void allocate();
   void build_model();
   void print_model() const;

@@ -204,6 +204,23 @@ void PairVertexPolygon::build_model()
       }
       model.set_lambda(i - 1, j - 1, lam);
     }
+  // fix adapt's arrays: the values in use (reinit tells what it changed).
+  if (!adapt_kappa) {
+    memory->create(adapt_kappa, n + 1, n + 1, "pair:adapt_kappa");
+    memory->create(adapt_area0, n + 1, n + 1, "pair:adapt_area0");
+    memory->create(adapt_gamma, n + 1, n + 1, "pair:adapt_gamma");
+    memory->create(adapt_lambda, n + 1, n + 1, "pair:adapt_lambda");
+    memory->create(built_lambda, n + 1, n + 1, "pair:built_lambda");
+  }
+  for (int i = 0; i <= n; i++)
+    for (int j = 0; j <= n; j++) {
+      const int t = i <= j ? i : j;
+      const bool cells = i > 0 && j > 0;
+      adapt_kappa[i][j] = cells ? kappa[t] : 0.0;
+      adapt_area0[i][j] = cells ? area0[t] : 0.0;
+      adapt_gamma[i][j] = cells ? gamma[t] : 0.0;
+      adapt_lambda[i][j] = built_lambda[i][j] = cells ? model.lambda_of(i - 1, j - 1) : 0.0;
+    }
   const double w = model.tension_weight();
   for (int i = 1; i <= n; i++) {
     const double wl = w * model.lambda_of(i - 1, i - 1);

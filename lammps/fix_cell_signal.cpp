@@ -228,22 +228,11 @@ int FixCellSignal::setmask()
 
 void FixCellSignal::init()
 {
-  {
-    // The vertex model's cells are rings of vertex atoms (pair_style
-    // vertex/polygon): this fix does not know them yet.
-    CellSource *source = CellSource::find(lmp);
-    if (source && source->cells_are_vertices())
-      error->all(FLERR,
-                 "fix cell/signal {}: signalling between vertex-model cells (pair_style "
-                 "vertex/polygon) is not implemented yet: it exchanges across the junctions and "
-                 "reads the per-cell state of pair_style vertex/voronoi only",
-                 id);
-  }
-  pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  pair = CellSource::find(lmp);
   if (!pair)
     error->all(FLERR,
-               "fix cell/signal {} exchanges across the junctions of pair_style vertex/voronoi, "
-               "but the pair style is '{}'; define 'pair_style vertex/voronoi'",
+               "fix cell/signal {} exchanges across the junctions of pair_style vertex/voronoi "
+               "or vertex/polygon, but the pair style is '{}'; define one of them",
                id, force->pair_style ? force->pair_style : "none");
   all_taken = igroup == 0 && !cell_group::any_particle_type(pair, atom->ntypes);
   // Only finite cells have free arcs: elsewhere a bath would never act.

@@ -655,6 +655,38 @@ write_dump all custom g.dump id mux muy modify format float %.17g sort id
             d = (got - want + math.pi) % (2 * math.pi) - math.pi
             self.assertAlmostEqual(d, 0.0, delta=1e-12, msg="cell %d" % c)
 
+    def test_signal_exchange_one_step(self):
+        # fix cell/signal between the cells (vertex atoms are no cells): one
+        # explicit step of du_i/dt = P sum_j s_ij (u_j - u_i), s_ij the
+        # length of the edge cells i and j share (from the rings and
+        # positions of the data file; nothing moves).
+        P, dt = 0.3, 0.05
+        run = self.run_lmp(start() + coeffs() + f"""fix sp all property/atom d_u
+variable u0 atom (type<3)*(1+((id*37)%11))
+set group all d_u v_u0
+fix s all cell/signal exchange d_u {P}
+timestep {dt}
+run 0
+write_data cfg.data
+run 1
+write_dump all custom u.dump id d_u modify format float %.17g sort id
+""")
+        box, atoms, rings, _ = read_data(run.text("cfg.data"))
+        got = {int(i): u for i, u in zip(*(run.dump("u.dump")[0][c] for c in ("id", "d_u")))}
+        u0 = {c: 1 + (c * 37) % 11 for c in rings}
+        owner, length = {}, {}
+        for c, r in rings.items():
+            pts = polygon(box, atoms, r)
+            for k in range(len(r)):
+                owner[(r[k], r[(k + 1) % len(r)])] = c
+                length[(r[k], r[(k + 1) % len(r)])] = np.linalg.norm(pts[(k + 1) % len(r)] - pts[k])
+        for c, r in rings.items():
+            flux = sum(length[(r[k], r[(k + 1) % len(r)])] *
+                       (u0[owner[(r[(k + 1) % len(r)], r[k])]] - u0[c]) for k in range(len(r)))
+            self.assertAlmostEqual(got[c], u0[c] + dt * P * flux, delta=1e-12, msg="cell %d" % c)
+        self.assertAlmostEqual(sum(got[c] for c in rings), sum(u0.values()), delta=1e-10)
+        self.assertTrue(all(got[v] == 0.0 for v in got if v not in rings))
+
     @nprocs(2)
     def test_polarity_flocks_alike_on_two_ranks(self):
         # fix polarity on the cell atoms (active force, neighbour alignment

@@ -3,10 +3,10 @@
 // A 3D Delaunay tetrahedralisation kept between time steps in flat arrays.
 //
 // The 3D counterpart of tessera::Mesh.  build() triangulates from scratch with
-// CGAL; afterwards the points move by a small fraction of a cell per step and
+// the core's own builder (mesh3d_delaunay); afterwards the points move by a small fraction of a cell per step and
 // update() checks every tetrahedron's orientation and every interior
-// triangle's in-sphere test (a floating-point filter, CGAL's exact predicates
-// where it cannot decide) and restores the Delaunay property by 2-3, 3-2 and
+// triangle's in-sphere test (a floating-point filter, the exact predicates
+// of exact_predicates.h where it cannot decide) and restores the Delaunay property by 2-3, 3-2 and
 // 4-4 flips.  Ties (co-spherical points: BCC, FCC, SC lattices) are broken by
 // the same symbolic perturbation as CGAL's Delaunay_triangulation_3 (points
 // ranked in lexicographic xyz order), so the triangulation is the one a
@@ -53,8 +53,7 @@
 // update() returns false (the caller calls build() again) when an inverted
 // tetrahedron or a non-Delaunay triangle that matters has no repairing flip,
 // the flips do not end (more flips than tetrahedra), or the input is bad
-// (point count changed, non-finite coordinates).  CGAL stays inside the .cpp
-// files.
+// (point count changed, non-finite coordinates).
 #pragma once
 
 #include "tessera/voronoi3d.h"
@@ -117,7 +116,7 @@ public:
   long flips32() const { return f32_; }
   long flips44() const { return f44_; }
   // In-sphere and orientation tests the filter could not decide in the last
-  // update() (decided by CGAL's exact predicates).
+  // update() (decided by the exact predicates).
   long exact_tests() const { return exact_; }
   // Inverted or flat tetrahedra repaired by a flip in the last update().
   long untangled() const { return untangled_; }
@@ -205,10 +204,9 @@ private:
   void unbounded(int i, const long *ids, bool throw_if_unbounded, Tessellation3 &t) const;
 };
 
-// The benchmarks' yardstick: a plain CGAL Delaunay_triangulation_3 (default
-// kernel and data structure, no info) of points 0..n-1, inserted by CGAL's
-// range insert (which sorts them spatially first).  Returns the wall time of
-// the insert alone in seconds and, in *cells when given, the number of finite
+// The plain Delaunay tetrahedralisation of points 0..n-1 by Mesh3::build's
+// own builder alone (what bench/ times beside CGAL's Delaunay_triangulation_3
+// on the same points).  Returns the wall time of the build alone in seconds and, in *cells when given, the number of finite
 // tetrahedra.
 double time_plain_delaunay_3d(const Points3 &pts, int n, long *cells = nullptr);
 

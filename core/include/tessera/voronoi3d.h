@@ -1,7 +1,7 @@
 // Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
 //
 // Three dimensions: the Voronoi cells of 3D cell centres, as the dual of their
-// Delaunay tetrahedralisation (CGAL, exact predicates; CGAL only in the .cpp),
+// Delaunay tetrahedralisation (the core's own, with exact predicates),
 // their volumes, surfaces and faces, and the energy
 //
 //   E = sum_i [ K_i/2 (V_i - V0_i)^2 + Gamma_i/2 S_i^2 ] + sum_faces Lambda_IJ a_f

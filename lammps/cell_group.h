@@ -5,9 +5,10 @@
    Which atoms the cell-only fixes (cell/signal, cell/adapt, cell/divide,
    cell/death) act on: the cells of their group, that is the atoms whose
    type has cell parameters of pair_style vertex/voronoi or vertex/polygon
-   (every atom when there is no such pair style; vertex atoms are no cells).  Other atoms of the group (particles
-   under pair_style hybrid/overlay) are left alone, so that 'all' means
-   every cell; the fix says once in the log how many it leaves out.
+   (every atom when there is no such pair style; vertex atoms are no
+   cells).  Other atoms of the group (particles under pair_style
+   hybrid/overlay) are left alone, so that 'all' means every cell; the fix
+   says once in the log how many it leaves out.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_TESSERA_CELL_GROUP_H

@@ -4,10 +4,11 @@
 
    Which atoms the cell-only fixes (cell/signal, cell/adapt, cell/divide,
    cell/death) act on: the cells of their group, that is the atoms whose
-   type has cell parameters of pair_style vertex/voronoi (every atom when
-   there is no such pair style).  Other atoms of the group (particles
-   under pair_style hybrid/overlay) are left alone, so that 'all' means
-   every cell; the fix says once in the log how many it leaves out.
+   type has cell parameters of pair_style vertex/voronoi or vertex/polygon
+   (every atom when there is no such pair style; vertex atoms are no
+   cells).  Other atoms of the group (particles under pair_style
+   hybrid/overlay) are left alone, so that 'all' means every cell; the fix
+   says once in the log how many it leaves out.
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_TESSERA_CELL_GROUP_H
@@ -17,6 +18,7 @@
 #include "comm.h"
 #include "group.h"
 #include "lammps.h"
+#include "cell_source.h"
 #include "pair_vertex_voronoi.h"
 #include "utils.h"
 
@@ -28,13 +30,13 @@
 namespace LAMMPS_NS {
 namespace cell_group {
 
-inline bool is_cell(const PairVertexVoronoi *pair, int type)
+inline bool is_cell(const CellSource *pair, int type)
 {
   return !pair || pair->is_cell_type(type);
 }
 
 // Some atom type has no cell parameters (whether or not it has atoms).
-inline bool any_particle_type(const PairVertexVoronoi *pair, int ntypes)
+inline bool any_particle_type(const CellSource *pair, int ntypes)
 {
   if (!pair) return false;
   for (int t = 1; t <= ntypes; t++)
@@ -43,7 +45,7 @@ inline bool any_particle_type(const PairVertexVoronoi *pair, int ntypes)
 }
 
 // The number of cells in the whole system (every group).  Collective.
-inline bigint count_cells(LAMMPS *lmp, const PairVertexVoronoi *pair)
+inline bigint count_cells(LAMMPS *lmp, const CellSource *pair)
 {
   Atom *atom = lmp->atom;
   if (!pair) return atom->natoms;
@@ -57,7 +59,7 @@ inline bigint count_cells(LAMMPS *lmp, const PairVertexVoronoi *pair)
 // Says once (noted) in the screen and log how many atoms of group igroup
 // are no cells, and of which types: 'who' (e.g. "fix s cell/signal") leaves
 // them alone, 'what' says how.  Collective.
-inline void note_particles(LAMMPS *lmp, const PairVertexVoronoi *pair, int igroup,
+inline void note_particles(LAMMPS *lmp, const CellSource *pair, int igroup,
                            const std::string &who, const std::string &what, bool &noted)
 {
   if (noted || !pair) return;

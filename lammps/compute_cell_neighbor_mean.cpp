@@ -21,7 +21,7 @@
 #include "junction_mean.h"
 #include "memory.h"
 #include "modify.h"
-#include "pair_vertex_voronoi.h"
+#include "cell_source.h"
 #include "tessera_compat.h"
 #include "update.h"
 #include "variable.h"
@@ -141,11 +141,12 @@ void ComputeCellNeighborMean::resolve(Input &in)
 
 void ComputeCellNeighborMean::init()
 {
-  pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  pair = CellSource::find(lmp);
   if (!pair)
     error->all(FLERR,
-               "compute cell/neighbor/mean {} reads the cells of pair_style vertex/voronoi, but "
-               "the pair style is '{}'; define 'pair_style vertex/voronoi' (alone or in hybrid)",
+               "compute cell/neighbor/mean {} reads the cells of pair_style vertex/voronoi or "
+               "vertex/polygon, but the pair style is '{}'; define one of them (vertex/voronoi "
+               "alone or in hybrid)",
                id, force->pair_style ? force->pair_style : "none");
   for (Input &in : inputs) resolve(in);
 }
@@ -189,7 +190,7 @@ void ComputeCellNeighborMean::compute_peratom()
   if (!pair)
     error->all(FLERR,
                "compute cell/neighbor/mean {}: no cells yet: it reads the cells of pair_style "
-               "vertex/voronoi, which exist after a run (e.g. 'run 0')",
+               "vertex/voronoi or vertex/polygon, which exist after a run (e.g. 'run 0')",
                id);
   pair->require_current_cells(fmt::format("compute cell/neighbor/mean {}", id));
   if (atom->nmax > nmax) {

@@ -43,7 +43,7 @@ class ComputeCellNeighborMean : public Compute {
   double *vout;
   double **aout;
   std::vector<double> work;    // one input's values on owned and ghost atoms
-  class PairVertexVoronoi *pair;
+  class CellSource *pair;
 
   void resolve(Input &);
   void owned_values(Input &, double *);

@@ -20,7 +20,7 @@
 #include "error.h"
 #include "force.h"
 #include "memory.h"
-#include "pair_vertex_voronoi.h"
+#include "cell_source.h"
 #include "tessera_compat.h"
 #include "update.h"
 #include "vertex_pieces.h"
@@ -75,12 +75,12 @@ ComputeVertexAtom::~ComputeVertexAtom()
 
 void ComputeVertexAtom::init()
 {
-  pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  pair = CellSource::find(lmp);
   if (!pair)
     error->all(FLERR,
-               "compute vertex/atom {} reads the tessellation of pair_style vertex/voronoi, "
-               "but the pair style is '{}'; define 'pair_style vertex/voronoi' (alone or as "
-               "one sub-style of hybrid)",
+               "compute vertex/atom {} reads the cells of pair_style vertex/voronoi or "
+               "vertex/polygon, but the pair style is '{}'; define one of them (vertex/voronoi "
+               "alone or as one sub-style of hybrid)",
                id, force->pair_style ? force->pair_style : "none");
 }
 
@@ -90,7 +90,7 @@ void ComputeVertexAtom::check_cells()
   if (!pair)
     error->all(FLERR,
                "compute vertex/atom {}: no cells yet: it reads the cells of pair_style "
-               "vertex/voronoi, which exist after a run (e.g. 'run 0')",
+               "vertex/voronoi or vertex/polygon, which exist after a run (e.g. 'run 0')",
                id);
   pair->require_current_cells(fmt::format("compute vertex/atom {}", id));
 }

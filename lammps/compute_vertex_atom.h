@@ -33,7 +33,7 @@ class ComputeVertexAtom : public Compute {
   double **values;            // per-atom output, nmax x NCOLS
   std::vector<double> vel;    // stride-3 velocities of owned and ghost atoms
   std::vector<double> coordination, orientation;
-  class PairVertexVoronoi *pair;
+  class CellSource *pair;
 
   void check_cells();
   void communicate_velocities();

@@ -19,7 +19,7 @@
 #include "error.h"
 #include "force.h"
 #include "memory.h"
-#include "pair_vertex_voronoi.h"
+#include "cell_source.h"
 #include "update.h"
 
 #include "tessera/cells.h"
@@ -62,12 +62,12 @@ ComputeVertexLocal::~ComputeVertexLocal()
 
 void ComputeVertexLocal::init()
 {
-  pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  pair = CellSource::find(lmp);
   if (!pair)
     error->all(FLERR,
-               "compute vertex/local {} reads the tessellation of pair_style vertex/voronoi, "
-               "but the pair style is '{}'; define 'pair_style vertex/voronoi' (alone or as "
-               "one sub-style of hybrid)",
+               "compute vertex/local {} reads the cells of pair_style vertex/voronoi or "
+               "vertex/polygon, but the pair style is '{}'; define one of them (vertex/voronoi "
+               "alone or as one sub-style of hybrid)",
                id, force->pair_style ? force->pair_style : "none");
 }
 
@@ -81,7 +81,7 @@ void ComputeVertexLocal::compute_local()
   if (!pair)
     error->all(FLERR,
                "compute vertex/local {}: no cells yet: it reads the cells of pair_style "
-               "vertex/voronoi, which exist after a run (e.g. 'run 0')",
+               "vertex/voronoi or vertex/polygon, which exist after a run (e.g. 'run 0')",
                id);
   pair->require_current_cells(fmt::format("compute vertex/local {}", id));
 

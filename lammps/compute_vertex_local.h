@@ -29,7 +29,7 @@ class ComputeVertexLocal : public Compute {
  protected:
   int nmax;          // rows allocated
   double **rows;     // nmax x 7: cell ID, neighbour ID, x1 y1 x2 y2, length
-  class PairVertexVoronoi *pair;
+  class CellSource *pair;
   std::vector<double> flat;    // the rows of this step, row-major
 };
 

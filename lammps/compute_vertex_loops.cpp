@@ -25,7 +25,7 @@
 #include "force.h"
 #include "group.h"
 #include "memory.h"
-#include "pair_vertex_voronoi.h"
+#include "cell_source.h"
 #include "update.h"
 
 #include "tessera/cells.h"
@@ -92,7 +92,7 @@ ComputeVertexLoops::ComputeVertexLoops(LAMMPS *lmp, int narg, char **arg, bool p
   if (atom->tag_enable == 0)
     error->all(FLERR, "compute {} requires atom IDs (atom_modify id yes)", style);
   if (domain->dimension != 2) {
-    auto *p = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+    auto *p = CellSource::find(lmp);
     if (p && p->on_sphere()) sphere_error();
     error->all(FLERR,
                "compute {} is for 2d finite cells; a 3d tissue has no free boundary loops (nor "
@@ -119,7 +119,7 @@ ComputeVertexLoops::~ComputeVertexLoops()
 
 void ComputeVertexLoops::init()
 {
-  pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  pair = CellSource::find(lmp);
   if (!pair)
     error->all(FLERR,
                "compute {} {} reads the cells of pair_style vertex/voronoi, but the pair style "

@@ -33,7 +33,7 @@ class ComputeVertexLoops : public Compute {
   ComputeVertexLoops(class LAMMPS *, int, char **, bool per_atom);
   int nmax;          // rows allocated
   double **rows;     // one row per loop (on rank 0)
-  class PairVertexVoronoi *pair;
+  class CellSource *pair;
   bigint loops_of;   // pair's compute_count() of the loops found last
   int warned;
   double min_area;    // holes below this area are left out of the global values

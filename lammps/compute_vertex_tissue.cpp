@@ -20,7 +20,7 @@
 #include "group.h"
 #include "memory.h"
 #include "modify.h"
-#include "pair_vertex_voronoi.h"
+#include "cell_source.h"
 #include "tessera_compat.h"
 #include "update.h"
 #include "vertex_pieces.h"
@@ -105,12 +105,12 @@ ComputeVertexTissue::~ComputeVertexTissue()
 
 void ComputeVertexTissue::init()
 {
-  pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  pair = CellSource::find(lmp);
   if (!pair)
     error->all(FLERR,
-               "compute vertex/tissue {} reads the tessellation of pair_style vertex/voronoi, "
-               "but the pair style is '{}'; define 'pair_style vertex/voronoi' (alone or as "
-               "one sub-style of hybrid)",
+               "compute vertex/tissue {} reads the cells of pair_style vertex/voronoi or "
+               "vertex/polygon, but the pair style is '{}'; define one of them (vertex/voronoi "
+               "alone or as one sub-style of hybrid)",
                id, force->pair_style ? force->pair_style : "none");
   const int ifix = modify->find_fix(id_fix);
   if (ifix < 0)
@@ -123,6 +123,12 @@ void ComputeVertexTissue::init()
     error->all(FLERR,
                "compute vertex/tissue {}: 'rosette' needs the confluent tessellation; finite "
                "cells (pair_style vertex/voronoi ... radius r) have no Voronoi vertex clusters",
+               id);
+  if (rosette > 0.0 && pair->cells_are_vertices())
+    error->all(FLERR,
+               "compute vertex/tissue {}: 'rosette' clusters Voronoi vertices joined by short "
+               "junctions; the vertex model's vertices are three-fold and its short edges go "
+               "by T1s (pair_style vertex/polygon t1)",
                id);
   if (domain->dimension == 3 && rosette > 0.0 && !pair->on_sphere())
     error->all(FLERR, "compute vertex/tissue: keyword 'rosette' is for 2d tissues only");
@@ -142,7 +148,7 @@ void ComputeVertexTissue::check_cells()
   if (!pair)
     error->all(FLERR,
                "compute vertex/tissue {}: no cells yet: it reads the cells of pair_style "
-               "vertex/voronoi, which exist after a run (e.g. 'run 0')",
+               "vertex/voronoi or vertex/polygon, which exist after a run (e.g. 'run 0')",
                id);
   pair->require_current_cells(fmt::format("compute vertex/tissue {}", id));
 }

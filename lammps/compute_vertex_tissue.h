@@ -36,7 +36,7 @@ class ComputeVertexTissue : public Compute {
  protected:
   char *id_fix;
   tessera_compat::FixStorePerAtom *fix;
-  class PairVertexVoronoi *pair;
+  class CellSource *pair;
   int warned_overflow;
 
   void check_cells();

@@ -118,6 +118,17 @@ int FixCellDeath::setmask()
 
 void FixCellDeath::init()
 {
+  {
+    // The vertex model's cells are rings of vertex atoms (pair_style
+    // vertex/polygon): this fix does not know them yet.
+    CellSource *source = CellSource::find(lmp);
+    if (source && source->cells_are_vertices())
+      error->all(FLERR,
+                 "fix cell/death {}: death of vertex-model cells (pair_style vertex/polygon) is "
+                 "not implemented yet: a dying cell must shrink to a triangle and leave by a T2 "
+                 "(extrusion), not be deleted with its ring",
+                 id);
+  }
   log.open();
   region = nullptr;
   if (!region_id.empty()) {

@@ -248,6 +248,17 @@ int FixCellDivide::setmask()
 
 void FixCellDivide::init()
 {
+  {
+    // The vertex model's cells are rings of vertex atoms (pair_style
+    // vertex/polygon): this fix does not know them yet.
+    CellSource *source = CellSource::find(lmp);
+    if (source && source->cells_are_vertices())
+      error->all(FLERR,
+                 "fix cell/divide {}: division of vertex-model cells (pair_style vertex/polygon) "
+                 "is not implemented yet: a daughter needs a new cell atom, two new vertex atoms "
+                 "and new rings for the mother, the daughter and the two neighbours across the cut",
+                 id);
+  }
   log.open();
   region = nullptr;
   if (!region_id.empty()) {

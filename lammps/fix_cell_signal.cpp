@@ -228,11 +228,11 @@ int FixCellSignal::setmask()
 
 void FixCellSignal::init()
 {
-  pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  pair = CellSource::find(lmp);
   if (!pair)
     error->all(FLERR,
-               "fix cell/signal {} exchanges across the junctions of pair_style vertex/voronoi, "
-               "but the pair style is '{}'; define 'pair_style vertex/voronoi'",
+               "fix cell/signal {} exchanges across the junctions of pair_style vertex/voronoi "
+               "or vertex/polygon, but the pair style is '{}'; define one of them",
                id, force->pair_style ? force->pair_style : "none");
   all_taken = igroup == 0 && !cell_group::any_particle_type(pair, atom->ntypes);
   // Only finite cells have free arcs: elsewhere a bath would never act.

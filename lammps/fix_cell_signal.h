@@ -55,7 +55,7 @@ class FixCellSignal : public Fix {
   std::vector<Production> laws;
   int nsub_fixed;    // substeps N (0: auto)
   int nsub_last;     // substeps of the last step
-  class PairVertexVoronoi *pair;
+  class CellSource *pair;
   std::vector<int> species;    // the fields that are species
   bool any_bath = false;       // some species has a bath (Pb > 0)
   // The atoms the fix takes: the cells of its group (cell_group.h).  taken:

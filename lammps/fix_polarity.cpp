@@ -17,8 +17,8 @@
 #include "force.h"
 #include "math_const.h"
 #include "modify.h"
+#include "cell_source.h"
 #include "citeme.h"
-#include "pair_vertex_voronoi.h"
 #include "tessera_citations.h"
 #include "update.h"
 
@@ -162,11 +162,11 @@ void FixPolarity::init()
                  id, fa_name, fa_name);
   }
 
-  pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  pair = CellSource::find(lmp);
   if (!pair && params.J_S != 0.0)
     error->all(FLERR,
-               "fix polarity: 'neighbor' alignment needs pair_style vertex/voronoi, whose "
-               "tessellation gives the Voronoi neighbours");
+               "fix polarity: 'neighbor' alignment needs pair_style vertex/voronoi or "
+               "vertex/polygon, whose cells give the neighbours");
   if (domain->dimension == 3)
     init_angles_3d();
   else
@@ -453,7 +453,7 @@ void FixPolarity::initial_integrate(int /*vflag*/)
 /* Notes which force computation's cells the next step's alignment reads
    (only 'neighbor' alignment reads them).  The pair style keeps their
    neighbour lists even when it computes the cells again for output after
-   the end of the step (fix deform): PairVertexVoronoi::force_contacts(). */
+   the end of the step (fix deform): CellSource::force_contacts(). */
 
 void FixPolarity::record_contacts()
 {
@@ -471,7 +471,7 @@ tessera::Contacts FixPolarity::recorded_contacts(bigint state_step)
   const int n = rec_force == pair->force_count() ? rec_n : -1;
   if (rec_step != state_step || n != atom->nlocal)
     error->one(FLERR,
-               "fix polarity: the tessellation of pair vertex/voronoi is from step {} with {} "
+               "fix polarity: the cells of the pair style are from step {} with {} "
                "cells, the polarities need it for step {} with {}",
                rec_step, n, state_step, atom->nlocal);
   return pair->force_contacts();

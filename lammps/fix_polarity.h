@@ -42,7 +42,7 @@ class FixPolarity : public Fix, public CoupledDof {
   tessera::PolarityParams params;
   double d_rot;
   int seed;
-  class PairVertexVoronoi *pair;
+  class CellSource *pair;
   std::vector<double> tau, vhat, unit;
   tessera::Tessellation none;  // an empty tessellation when no neighbours are needed
   std::vector<unsigned char> has_v;

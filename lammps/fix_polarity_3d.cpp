@@ -12,7 +12,7 @@
 #include "domain.h"
 #include "error.h"
 #include "math_const.h"
-#include "pair_vertex_voronoi.h"
+#include "cell_source.h"
 #include "update.h"
 
 #include "tessera/counter_rng.h"

@@ -12,6 +12,7 @@ PairStyle(vertex/voronoi,PairVertexVoronoi);
 #ifndef LMP_PAIR_VERTEX_VORONOI_H
 #define LMP_PAIR_VERTEX_VORONOI_H
 
+#include "cell_source.h"
 #include "pair.h"
 
 #include "tessera/cells.h"
@@ -35,7 +36,7 @@ class VertexModel;
    the dimension and the 'radius' keyword.  Every consumer reads the cells
    through cells(), the model-independent view (tessera/cells.h). */
 
-class PairVertexVoronoi : public Pair {
+class PairVertexVoronoi : public Pair, public CellSource {
   friend class VertexModel;
   friend class VertexConfluent;
   friend class VertexFinite;

@@ -14,6 +14,7 @@
 #include "comm.h"
 #include "error.h"
 #include "force.h"
+#include "input.h"
 #include "lammps.h"
 #include "modify.h"
 
@@ -36,6 +37,7 @@ bool served(LAMMPS *lmp, const lammpsplugin_t *plugin)
   if (style == "pair") return lmp->force->pair_map->count(plugin->name) > 0;
   if (style == "fix") return lmp->modify->fix_map->count(plugin->name) > 0;
   if (style == "compute") return lmp->modify->compute_map->count(plugin->name) > 0;
+  if (style == "command") return lmp->input->command_map->count(plugin->name) > 0;
   return false;
 }
 

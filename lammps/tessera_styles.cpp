@@ -7,6 +7,7 @@
 #include "comm.h"
 #include "error.h"
 #include "force.h"
+#include "input.h"
 #include "lammps.h"
 #include "lammpsplugin.h"
 #include "modify.h"
@@ -20,6 +21,7 @@
 #include "compute_vertex_loops.h"
 #include "compute_vertex_loops_atom.h"
 #include "compute_vertex_tissue.h"
+#include "create_vertices.h"
 #include "fix_cell_adapt.h"
 #include "fix_clock.h"
 #include "fix_cell_death.h"
@@ -28,6 +30,7 @@
 #include "fix_brownian.h"
 #include "fix_brownian_heun.h"
 #include "fix_polarity.h"
+#include "pair_vertex_polygon.h"
 #include "pair_vertex_voronoi.h"
 
 #include <string>
@@ -58,28 +61,40 @@ template <class T> Compute *create_compute(LAMMPS *lmp, int narg, char **arg)
   return new T(lmp, narg, arg);
 }
 
+template <class T> Command *create_command(LAMMPS *lmp)
+{
+  return new T(lmp);
+}
+
 struct Entry {
-  const char *command;    // "pair_style", "fix" or "compute"
+  const char *command;    // "pair_style", "fix", "compute" or "command"
   const char *name;
   Policy policy;
   Force::PairCreator pair;
   Modify::FixCreator fix;
   Modify::ComputeCreator compute;
+  Input::CommandCreator cmd;
 };
 
 template <class T> Entry pair_style(const char *name, Policy policy = Policy::REPLACE)
 {
-  return {"pair_style", name, policy, &create_pair<T>, nullptr, nullptr};
+  return {"pair_style", name, policy, &create_pair<T>, nullptr, nullptr, nullptr};
 }
 
 template <class T> Entry fix_style(const char *name, Policy policy = Policy::REPLACE)
 {
-  return {"fix", name, policy, nullptr, &create_fix<T>, nullptr};
+  return {"fix", name, policy, nullptr, &create_fix<T>, nullptr, nullptr};
 }
 
 template <class T> Entry compute_style(const char *name, Policy policy = Policy::REPLACE)
 {
-  return {"compute", name, policy, nullptr, nullptr, &create_compute<T>};
+  return {"compute", name, policy, nullptr, nullptr, &create_compute<T>, nullptr};
+}
+
+// An input-script command (such as create_atoms), not a style.
+template <class T> Entry command_style(const char *name, Policy policy = Policy::REPLACE)
+{
+  return {"command", name, policy, nullptr, nullptr, nullptr, &create_command<T>};
 }
 
 /* ----------------------------------------------------------------------
@@ -87,6 +102,7 @@ template <class T> Entry compute_style(const char *name, Policy policy = Policy:
      pair_style<PairClass>("name")
      fix_style<FixClass>("name")
      compute_style<ComputeClass>("name")
+     command_style<CommandClass>("name")
    Policy::IF_MISSING only for re-implementations of upstream LAMMPS styles.
 ------------------------------------------------------------------------- */
 
@@ -107,6 +123,8 @@ const std::vector<Entry> &style_table()
       fix_style<FixCellSignal>("cell/signal"),
       fix_style<FixCellAdapt>("cell/adapt"),
       compute_style<ComputeCellNeighborMean>("cell/neighbor/mean"),
+      pair_style<PairVertexPolygon>("vertex/polygon"),
+      command_style<CreateVertices>("create_vertices"),
       fix_style<FixClock>("clock"),
   };
   return table;
@@ -168,7 +186,7 @@ template <class Map, class Creator> bool is_ours(Map *map, const char *name, Cre
 // The LAMMPS plugin API's name of a command ("pair_style" -> "pair").
 const char *plugin_style(const Entry &entry)
 {
-  return entry.pair ? "pair" : entry.fix ? "fix" : "compute";
+  return entry.pair ? "pair" : entry.fix ? "fix" : entry.compute ? "compute" : "command";
 }
 
 }    // namespace
@@ -184,8 +202,10 @@ std::vector<TesseraStyle> LAMMPS_NS::tessera_register_styles(LAMMPS *lmp)
       insert(lmp->force->pair_map, entry, entry.pair, result);
     else if (entry.fix)
       insert(lmp->modify->fix_map, entry, entry.fix, result);
-    else
+    else if (entry.compute)
       insert(lmp->modify->compute_map, entry, entry.compute, result);
+    else
+      insert(lmp->input->command_map, entry, entry.cmd, result);
 
     if (result.replaced_host && lmp->comm->me == 0)
       lmp->error->warning(FLERR, "Tessera's {} replaces the host LAMMPS's style of that name",
@@ -222,6 +242,8 @@ std::vector<TesseraStyle> LAMMPS_NS::tessera_register_plugin(LAMMPS *lmp, void *
     // Modify::ComputeCreator before calling them, i.e. to their own types.
     if (entry.pair) {
       plugin.creator.v1 = reinterpret_cast<lammpsplugin_factory1 *>(entry.pair);
+    } else if (entry.cmd) {
+      plugin.creator.v1 = reinterpret_cast<lammpsplugin_factory1 *>(entry.cmd);
     } else {
       plugin.creator.v2 = entry.fix ? reinterpret_cast<lammpsplugin_factory2 *>(entry.fix)
                                     : reinterpret_cast<lammpsplugin_factory2 *>(entry.compute);
@@ -232,13 +254,21 @@ std::vector<TesseraStyle> LAMMPS_NS::tessera_register_plugin(LAMMPS *lmp, void *
         result.provided = !host_has(lmp->force->pair_map, entry.name, entry.pair);
       else if (entry.fix)
         result.provided = !host_has(lmp->modify->fix_map, entry.name, entry.fix);
-      else
+      else if (entry.compute)
         result.provided = !host_has(lmp->modify->compute_map, entry.name, entry.compute);
+      else
+        result.provided = !host_has(lmp->input->command_map, entry.name, entry.cmd);
     }
     // a second `plugin load` of the same file: those entries are ours already
-    const bool loaded = entry.pair      ? is_ours(lmp->force->pair_map, entry.name, entry.pair)
-                        : entry.fix     ? is_ours(lmp->modify->fix_map, entry.name, entry.fix)
-                                        : is_ours(lmp->modify->compute_map, entry.name, entry.compute);
+    bool loaded;
+    if (entry.pair)
+      loaded = is_ours(lmp->force->pair_map, entry.name, entry.pair);
+    else if (entry.fix)
+      loaded = is_ours(lmp->modify->fix_map, entry.name, entry.fix);
+    else if (entry.compute)
+      loaded = is_ours(lmp->modify->compute_map, entry.name, entry.compute);
+    else
+      loaded = is_ours(lmp->input->command_map, entry.name, entry.cmd);
     if (result.provided && !loaded) {
       reg(&plugin, lmp);
       fresh++;

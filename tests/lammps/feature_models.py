@@ -36,6 +36,8 @@ SOFT_CUT = {"3d": 1.3, "3d_tri": 1.3, "sphere": 1.7}
 
 def with_particles(model, script):
     """A model's script with three of its atoms turned into particles."""
+    if is_polygon(model):
+        return polygon_particles(script)
     script = script.replace("create_box 2 box", "create_box 3 box")
     ids = " ".join(str(i) for i in PARTICLE_IDS)
     if "read_data" not in script:
@@ -58,6 +60,79 @@ def with_particles(model, script):
                           "thermo_modify norm no", 1)
 
 
+# The vertex model (pair_style vertex/polygon): cells 1 to 84 (types 1 and
+# 2, atoms at their polygons' centroids, carrying polarity and per-cell
+# values), vertices 85 to 252 (type 3, the degrees of freedom).  Fixes and
+# outputs given 'all' in the checks take the groups that have a meaning
+# (polygon_groups); the probes of forces are vertices.
+POLYGON_CELLS = 84
+PROBES = {"vertex_polygon": (93, 170), "vertex_polygon_tri": (93, 170)}
+
+
+def polygon_script(head, data=None, tilt=False):
+    head += "boundary p p p\n"
+    region = ("region box prism 0 7 0 6 -0.5 0.5 1.5 0 0" if tilt
+              else "region box block 0 7 0 6 -0.5 0.5")
+    if data:
+        body = f"fix vring all property/atom i2_vring 16\nread_data {data} fix vring NULL vring\n"
+    else:
+        body = f"""lattice hex 1.0
+{region}
+create_box 3 box
+create_atoms 1 box
+set type 1 type/fraction 2 0.4 7731
+displace_atoms all random 0.1 0.1 0 4821 units box
+set group all dipole/random 3313 1.0
+create_vertices all 3
+"""
+    body += "mass * 1.0\ngroup cells type 1 2\ngroup vertices type 3\n"
+    pair = ("pair_style vertex/polygon 4.0 t1 0.04 0.06\n" + COEFFS_2D +
+            "pair_coeff 3 3 vertex\n")
+    return head + body + pair + "thermo_modify norm no format float %.17g\n"
+
+
+def polygon_groups(script):
+    """A check's script for the vertex model: polarity and cell fixes on the
+    cells, integrators on the vertices (an integrator on a cell atom is an
+    error: it sits at its polygon's centroid)."""
+    out = []
+    for line in script.split("\n"):
+        w = line.split()
+        if len(w) > 3 and w[0] == "fix" and w[2] == "all":
+            if w[3] in ("brownian", "brownian/heun"):
+                w[2] = "vertices"
+            elif w[3] == "polarity":
+                w[2] = "cells"
+            line = " ".join(w)
+        out.append(line)
+    return "\n".join(out)
+
+
+def polygon_particles(script):
+    """Three cells made particles (type 4) under pair_style hybrid/overlay
+    vertex/polygon ... soft: the vertex model with atoms that are no cells."""
+    ids = " ".join(str(i) for i in PARTICLE_IDS)
+    script = script.replace("create_box 3 box", "create_box 4 box")
+    if "read_data" not in script:
+        script = script.replace("mass * 1.0\n", f"group p id {ids}\nset group p type 4\n"
+                                "group p delete\nmass * 1.0\n")
+    script = script.replace("mass * 1.0\n", "mass * 1.0\ngroup particles type 4\n")
+    out = []
+    for line in script.split("\n"):
+        if line.startswith("pair_style vertex/polygon"):
+            line = line.replace("pair_style", "pair_style hybrid/overlay") + " soft 1.0"
+        elif line.startswith("pair_coeff"):
+            w = line.split()
+            line = " ".join(w[:3] + ["vertex/polygon"] + w[3:])
+        out.append(line)
+    return "\n".join(out).replace("thermo_modify norm no", "pair_coeff * 4 soft 2.0 1.0\n"
+                                   "pair_coeff 4 4 vertex/polygon vertex\nthermo_modify norm no", 1)
+
+
+def is_polygon(model):
+    return model.startswith("vertex_polygon")
+
+
 def model_script(model, data=None, particles=False):
     """The input script of a model's tissue up to the pair style; from a
     data file if given (the same atom IDs on any number of ranks); with
@@ -69,6 +144,8 @@ def model_script(model, data=None, particles=False):
     head = "units lj\natom_style dipole\natom_modify map array\n"
     if model == "sphere":
         return sphere_script(head, data)
+    if is_polygon(model):
+        return polygon_script("dimension 2\n" + head, data, tilt=model.endswith("_tri"))
     if not three:
         head = "dimension 2\n" + head
     if model == "finite_open":

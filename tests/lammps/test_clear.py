@@ -86,14 +86,17 @@ class Clear(LammpsTestCase):
             self.assertLess(abs(a[column] - b[column]).max(), 1e-10, column)
 
     def test_every_style_after_clear(self):
-        run = self.run_lmp("clear\ninfo styles pair\ninfo styles fix\ninfo styles compute\n")
+        run = self.run_lmp("clear\ninfo styles pair\ninfo styles fix\ninfo styles compute\n"
+                           "info styles command\n")
         listed = {"pair_style": listed_styles(run.stdout, "Pair styles"),
                   "fix": listed_styles(run.stdout, "Fix styles"),
-                  "compute": listed_styles(run.stdout, "Compute styles")}
+                  "compute": listed_styles(run.stdout, "Compute styles"),
+                  "command": listed_styles(run.stdout, "Command styles")}
         entries = table_entries()
         self.assertGreaterEqual(len(entries), 7)
         for command, name, _, _ in entries:
-            command = {"fix_style": "fix", "compute_style": "compute"}.get(command, command)
+            command = {"fix_style": "fix", "compute_style": "compute",
+                       "command_style": "command"}.get(command, command)
             self.assertIn(name, listed[command], "%s %s is gone after clear" % (command, name))
 
 

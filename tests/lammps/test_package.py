@@ -30,7 +30,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
 LAMMPS_DIR = os.path.join(REPO, "lammps")
 SCRIPT = os.path.join(REPO, "scripts", "lammps-package")
-MACRO = {"pair_style": "PairStyle", "fix": "FixStyle", "compute": "ComputeStyle"}
+MACRO = {"pair_style": "PairStyle", "fix": "FixStyle", "compute": "ComputeStyle",
+         "command": "CommandStyle"}
 
 
 def lammps_source():
@@ -65,7 +66,8 @@ def table_entries():
     body = text[text.index("static const std::vector<Entry> table"):]
     body = body[:body.index("};")]
     return [(m.group(1), m.group(3), m.group(2), m.group(4) or "REPLACE") for m in re.finditer(
-        r'(pair_style|fix_style|compute_style)<(\w+)>\("([^"]+)"(?:,\s*Policy::(\w+))?\)', body)]
+        r'(pair_style|fix_style|compute_style|command_style)<(\w+)>\("([^"]+)"(?:,\s*Policy::(\w+))?\)',
+        body)]
 
 
 def header_styles():
@@ -74,7 +76,7 @@ def header_styles():
     for name in os.listdir(LAMMPS_DIR):
         if name.endswith(".h"):
             with open(os.path.join(LAMMPS_DIR, name)) as f:
-                for m in re.finditer(r"^(PairStyle|FixStyle|ComputeStyle)\(([^,]+),(\w+)\);",
+                for m in re.finditer(r"^(PairStyle|FixStyle|ComputeStyle|CommandStyle)\(([^,]+),(\w+)\);",
                                      f.read(), re.M):
                     found[(m.group(1), m.group(2).strip())] = m.group(3)
     return found

@@ -7,6 +7,7 @@
 #include "tessera_styles.h"
 
 #include "force.h"
+#include "input.h"
 #include "lammps.h"
 #include "lammpsplugin.h"
 #include "modify.h"
@@ -41,6 +42,7 @@ bool in_map(LAMMPS *lmp, const TesseraStyle &style)
   if (style.command == "pair_style") return lmp->force->pair_map->count(style.name) == 1;
   if (style.command == "fix") return lmp->modify->fix_map->count(style.name) == 1;
   if (style.command == "compute") return lmp->modify->compute_map->count(style.name) == 1;
+  if (style.command == "command") return lmp->input->command_map->count(style.name) == 1;
   return false;
 }
 
@@ -113,6 +115,8 @@ void fake_plugin_register(lammpsplugin_t *plugin, void *ptr)
     (*lmp->modify->fix_map)[plugin->name] = (Modify::FixCreator) plugin->creator.v2;
   else if (style == "compute")
     (*lmp->modify->compute_map)[plugin->name] = (Modify::ComputeCreator) plugin->creator.v2;
+  else if (style == "command")
+    (*lmp->input->command_map)[plugin->name] = (Input::CommandCreator) plugin->creator.v1;
 }
 
 std::vector<std::string> registered_names()
@@ -134,7 +138,7 @@ TEST(PluginRegistration, EveryTableStyleWithTheLammpsVersion)
   ASSERT_EQ(registered.size(), styles.size());    // the packaged LAMMPS lacks fix brownian
   const std::vector<std::string> names = registered_names();
   for (const char *want : {"pair vertex/voronoi", "fix polarity", "fix brownian",
-                           "compute vertex/atom"})
+                           "compute vertex/atom", "pair vertex/polygon", "command create_vertices"})
     EXPECT_NE(std::find(names.begin(), names.end(), want), names.end()) << want;
   for (const lammpsplugin_t &p : registered) {
     EXPECT_STREQ(p.version, lmp->version) << p.name;    // LAMMPS compares these

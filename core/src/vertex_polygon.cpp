@@ -1,0 +1,194 @@
+// Tessera: active Voronoi vertex model.  SPDX-License-Identifier: GPL-2.0-or-later
+//
+// The vertex model's single polygon: measures, the cell's energy and its exact
+// gradient with respect to the corners, and the validity test.
+
+#include "tessera/vertex_model.h"
+
+#include <cmath>
+
+namespace tessera {
+
+PolygonMeasures polygon_measures(const double *xy, int n) {
+  PolygonMeasures m;
+  if (n <= 0)
+    return m;
+  // Relative to the first corner: the shoelace sums then cancel less.
+  const double x0 = xy[0], y0 = xy[1];
+  double a2 = 0.0, cx = 0.0, cy = 0.0, mx = 0.0, my = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const int k1 = k + 1 == n ? 0 : k + 1;
+    const double xa = xy[2 * k] - x0, ya = xy[2 * k + 1] - y0;
+    const double xb = xy[2 * k1] - x0, yb = xy[2 * k1 + 1] - y0;
+    const double cr = xa * yb - xb * ya;
+    a2 += cr;
+    cx += (xa + xb) * cr;
+    cy += (ya + yb) * cr;
+    mx += xa;
+    my += ya;
+    m.perimeter += std::hypot(xb - xa, yb - ya);
+  }
+  m.area = 0.5 * a2;
+  if (a2 != 0.0) {
+    m.centroid.x = x0 + cx / (3.0 * a2);
+    m.centroid.y = y0 + cy / (3.0 * a2);
+  } else {
+    m.centroid.x = x0 + mx / n;
+    m.centroid.y = y0 + my / n;
+  }
+  return m;
+}
+
+double polygon_energy(const double *xy, int n, const Model &model, int c, int tc,
+                      const int *nbr_type, double *grad) {
+  const double x0 = xy[0], y0 = xy[1];
+  double a2 = 0.0, P = 0.0, tension = 0.0;
+  const double w = model.tension_weight();
+  for (int k = 0; k < n; ++k) {
+    const int k1 = k + 1 == n ? 0 : k + 1;
+    const double xa = xy[2 * k] - x0, ya = xy[2 * k + 1] - y0;
+    const double xb = xy[2 * k1] - x0, yb = xy[2 * k1 + 1] - y0;
+    a2 += xa * yb - xb * ya;
+    const double l = std::hypot(xb - xa, yb - ya);
+    P += l;
+    tension += model.lambda_of(tc, nbr_type ? nbr_type[k] : tc) * l;
+  }
+  const double A = 0.5 * a2;
+  const Model::CellParams p = model.cell_params(c, tc);
+  const double dA = A - p.A0;
+  const double e = 0.5 * p.K * dA * dA + 0.5 * p.Gamma * P * P + p.shift * P + w * tension;
+  if (!grad)
+    return e;
+  const double eA = p.K * dA, eP = p.Gamma * P + p.shift;
+  // Edge k's coefficient t_k = dE/dl_k, and its unit vector u_k; corner k
+  // gets t_{k-1} u_{k-1} - t_k u_k from the lengths.
+  double tp = 0.0, upx = 0.0, upy = 0.0; // of edge n-1, the one before corner 0
+  {
+    const int k = n - 1;
+    const double dx = xy[0] - xy[2 * k], dy = xy[1] - xy[2 * k + 1];
+    const double l = std::hypot(dx, dy);
+    tp = eP + w * model.lambda_of(tc, nbr_type ? nbr_type[k] : tc);
+    if (l > 0.0) {
+      upx = dx / l;
+      upy = dy / l;
+    }
+  }
+  for (int k = 0; k < n; ++k) {
+    const int k1 = k + 1 == n ? 0 : k + 1;
+    const int km = k == 0 ? n - 1 : k - 1;
+    const double dx = xy[2 * k1] - xy[2 * k], dy = xy[2 * k1 + 1] - xy[2 * k + 1];
+    const double l = std::hypot(dx, dy);
+    const double t = eP + w * model.lambda_of(tc, nbr_type ? nbr_type[k] : tc);
+    double ux = 0.0, uy = 0.0;
+    if (l > 0.0) {
+      ux = dx / l;
+      uy = dy / l;
+    }
+    grad[2 * k] = eA * 0.5 * (xy[2 * k1 + 1] - xy[2 * km + 1]) + tp * upx - t * ux;
+    grad[2 * k + 1] = eA * 0.5 * (xy[2 * km] - xy[2 * k1]) + tp * upy - t * uy;
+    tp = t;
+    upx = ux;
+    upy = uy;
+  }
+  return e;
+}
+
+const char *describe(PolygonDefect d) {
+  switch (d) {
+  case PolygonDefect::None:
+    return "valid";
+  case PolygonDefect::TooFewSides:
+    return "has fewer than three vertices";
+  case PolygonDefect::RepeatedVertex:
+    return "lists a vertex twice";
+  case PolygonDefect::NotFinite:
+    return "has a vertex at a non-finite position";
+  case PolygonDefect::NotPositive:
+    return "has zero or negative area (clockwise: inverted)";
+  case PolygonDefect::SelfIntersecting:
+    return "crosses itself";
+  }
+  return "?";
+}
+
+namespace {
+
+inline double orient(double ax, double ay, double bx, double by, double cx, double cy) {
+  return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+}
+
+// Whether c lies strictly inside segment ab, given that a, b, c are collinear.
+inline bool strictly_between(double ax, double ay, double bx, double by, double cx, double cy) {
+  const double d = (cx - ax) * (bx - ax) + (cy - ay) * (by - ay);
+  const double l2 = (bx - ax) * (bx - ax) + (by - ay) * (by - ay);
+  const bool at_end = (cx == ax && cy == ay) || (cx == bx && cy == by);
+  return !at_end && d > 0.0 && d < l2;
+}
+
+// Segments pq and rs cross at interior points, or one's end lies inside the
+// other (collinear overlap); ends that coincide do not count.
+bool segments_meet(const double *p, const double *q, const double *r, const double *s) {
+  const double o1 = orient(p[0], p[1], q[0], q[1], r[0], r[1]);
+  const double o2 = orient(p[0], p[1], q[0], q[1], s[0], s[1]);
+  const double o3 = orient(r[0], r[1], s[0], s[1], p[0], p[1]);
+  const double o4 = orient(r[0], r[1], s[0], s[1], q[0], q[1]);
+  if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0)))
+    return true;
+  if (o1 == 0 && strictly_between(p[0], p[1], q[0], q[1], r[0], r[1]))
+    return true;
+  if (o2 == 0 && strictly_between(p[0], p[1], q[0], q[1], s[0], s[1]))
+    return true;
+  if (o3 == 0 && strictly_between(r[0], r[1], s[0], s[1], p[0], p[1]))
+    return true;
+  if (o4 == 0 && strictly_between(r[0], r[1], s[0], s[1], q[0], q[1]))
+    return true;
+  return false;
+}
+
+} // namespace
+
+PolygonDefect polygon_defect(const double *xy, int n, const long *ids) {
+  if (n < 3)
+    return PolygonDefect::TooFewSides;
+  for (int k = 0; k < 2 * n; ++k)
+    if (!std::isfinite(xy[k]))
+      return PolygonDefect::NotFinite;
+  if (ids)
+    for (int i = 0; i < n; ++i)
+      for (int j = i + 1; j < n; ++j)
+        if (ids[i] == ids[j])
+          return PolygonDefect::RepeatedVertex;
+  if (!(polygon_measures(xy, n).area > 0.0))
+    return PolygonDefect::NotPositive;
+  // Adjacent edges that fold back onto each other (a spike of zero width).
+  for (int k = 0; k < n; ++k) {
+    const int km = k == 0 ? n - 1 : k - 1, k1 = k + 1 == n ? 0 : k + 1;
+    const double *a = &xy[2 * km], *b = &xy[2 * k], *c = &xy[2 * k1];
+    if (orient(a[0], a[1], b[0], b[1], c[0], c[1]) == 0.0 &&
+        (strictly_between(a[0], a[1], b[0], b[1], c[0], c[1]) ||
+         strictly_between(b[0], b[1], c[0], c[1], a[0], a[1])))
+      return PolygonDefect::SelfIntersecting;
+  }
+  // Non-adjacent edge pairs (i, j), j > i + 1, not the pair (0, n-1).
+  for (int i = 0; i < n; ++i) {
+    const int i1 = i + 1 == n ? 0 : i + 1;
+    // Bounding box of edge i, to skip most pairs cheaply.
+    const double ax = xy[2 * i], ay = xy[2 * i + 1], bx = xy[2 * i1], by = xy[2 * i1 + 1];
+    const double xlo = std::fmin(ax, bx), xhi = std::fmax(ax, bx);
+    const double ylo = std::fmin(ay, by), yhi = std::fmax(ay, by);
+    for (int j = i + 2; j < n; ++j) {
+      if (i == 0 && j == n - 1)
+        continue;
+      const int j1 = j + 1 == n ? 0 : j + 1;
+      const double cx = xy[2 * j], cy = xy[2 * j + 1], dx = xy[2 * j1], dy = xy[2 * j1 + 1];
+      if (std::fmax(cx, dx) < xlo || std::fmin(cx, dx) > xhi || std::fmax(cy, dy) < ylo ||
+          std::fmin(cy, dy) > yhi)
+        continue;
+      if (segments_meet(&xy[2 * i], &xy[2 * i1], &xy[2 * j], &xy[2 * j1]))
+        return PolygonDefect::SelfIntersecting;
+    }
+  }
+  return PolygonDefect::None;
+}
+
+} // namespace tessera

@@ -1,0 +1,81 @@
+/* -*- c++ -*- ----------------------------------------------------------
+   Tessera: active Voronoi vertex model in LAMMPS.
+   SPDX-License-Identifier: GPL-2.0-or-later
+------------------------------------------------------------------------- */
+
+#ifdef FIX_CLASS
+// clang-format off
+FixStyle(VERTEX_POLYGON,FixVertexPolygon);
+// clang-format on
+#else
+
+#ifndef LMP_FIX_VERTEX_POLYGON_H
+#define LMP_FIX_VERTEX_POLYGON_H
+
+#include "fix.h"
+
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class PairVertexPolygon;
+
+/* The internal fix of pair_style vertex/polygon (style VERTEX_POLYGON, added by
+   the pair style, not for input scripts).  It keeps no per-atom state (the
+   rings are in fix property/atom 'vring'), so the pair style may define it
+   again to keep it last among the fixes with post_force (the steps it has
+   scheduled are the pair style's, which restart files carry).
+     - pre_neighbor of a step the previous one asked for: the topology step
+       (T1, T2) by the rule every rank evaluates alike (doc/model.md, "Topology
+       in parallel"); after every re-neighbouring, the ghosts' rings;
+     - pre_exchange of the step after a T2: deletes the atoms it removed;
+     - post_force: hands each cell atom's force to its vertices (each vertex
+       gets a third of each of its cells'), then zeroes it;
+     - end_of_step: asks for a topology step at the next step when some owned
+       cell is a candidate (one MPI_Allreduce), and gives each cell atom the
+       mean velocity of its vertices (the cell's velocity for fix polarity's
+       velocity alignment and compute vertex/atom). */
+
+class FixVertexPolygon : public Fix {
+ public:
+  FixVertexPolygon(class LAMMPS *, int, char **);
+  int setmask() override;
+  void init() override;
+  void setup_pre_exchange() override;
+  void setup_pre_neighbor() override;
+  void setup(int) override;
+  void pre_exchange() override;
+  void pre_neighbor() override;
+  void min_pre_neighbor() override;
+  void post_force(int) override;
+  void end_of_step() override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
+
+  static const char *style_name() { return "VERTEX_POLYGON"; }
+  static Fix *creator(class LAMMPS *, int, char **);
+  PairVertexPolygon *pair = nullptr;
+
+  // Forward communication of the rings to the ghosts (collective).
+  void forward_rings();
+  // Sums per-atom counts (one double per local atom) from ghosts onto owners.
+  void reverse_counts(std::vector<double> &count);
+
+ private:
+  enum Mode { RINGS, CANONICAL, SHARE, COUNT, VELOCITY };
+  int mode = RINGS;
+  std::vector<double> canon, share, *counts = nullptr;
+  int transfer = 1;    // some fix or pair style may put forces on cell atoms
+  void request_steps();
+  void cell_velocities();
+  // One pass of the rule; returns the number of events carried out (all ranks).
+  bigint run_topology();
+  void delete_removed();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

@@ -1,0 +1,410 @@
+// Tessera tests.  SPDX-License-Identifier: GPL-2.0-or-later
+//
+// The vertex model's polygons and tissues: measures against closed forms,
+// forces against central differences of the energy (every energy term,
+// heterotypic tensions, per-cell values, tilted boxes), the virial against
+// a finite deformation of the box, zero force on regular hexagons, the
+// validity test on bad polygons and the tissue check on broken tissues.
+#include "test_util.h"
+#include "vertex_test_util.h"
+#include "tessera/vertex_model.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+using tessera::Model;
+using tessera::PolygonDefect;
+using tessera::VertexTissue;
+
+namespace {
+
+TEST(VertexPolygon, RegularHexagonAndRectangle) {
+  const double s = 0.7, pi = std::acos(-1.0);
+  std::vector<double> xy;
+  for (int k = 0; k < 6; ++k) {
+    xy.push_back(3.0 + s * std::cos(pi / 3 * k));
+    xy.push_back(-2.0 + s * std::sin(pi / 3 * k));
+  }
+  const tessera::PolygonMeasures m = tessera::polygon_measures(xy.data(), 6);
+  EXPECT_NEAR(m.area, 1.5 * std::sqrt(3.0) * s * s, 1e-14);
+  EXPECT_NEAR(m.perimeter, 6 * s, 1e-14);
+  EXPECT_NEAR(m.centroid.x, 3.0, 1e-14);
+  EXPECT_NEAR(m.centroid.y, -2.0, 1e-14);
+  // q = P / sqrt(A) of a regular hexagon
+  EXPECT_NEAR(m.perimeter / std::sqrt(m.area), std::sqrt(8 * std::sqrt(3.0)), 1e-13);
+  const double rect[] = {0, 0, 2, 0, 2, 1, 0, 1};
+  const tessera::PolygonMeasures r = tessera::polygon_measures(rect, 4);
+  EXPECT_DOUBLE_EQ(r.area, 2.0);
+  EXPECT_DOUBLE_EQ(r.perimeter, 6.0);
+  EXPECT_DOUBLE_EQ(r.centroid.x, 1.0);
+  EXPECT_DOUBLE_EQ(r.centroid.y, 0.5);
+  const double cw[] = {0, 0, 0, 1, 2, 1, 2, 0};
+  EXPECT_DOUBLE_EQ(tessera::polygon_measures(cw, 4).area, -2.0);
+}
+
+// A model of two types with every term: different K, A0, Gamma, homotypic and
+// heterotypic tensions of both signs.
+Model two_type_model() {
+  Model m(2);
+  m.types[0] = tessera::CellType{1.3, 1.1, 0.4};
+  m.types[1] = tessera::CellType{0.8, 0.9, 0.25};
+  m.set_lambda(0, 0, -1.6);
+  m.set_lambda(1, 1, -0.9);
+  m.set_lambda(0, 1, 0.35);
+  return m;
+}
+
+// Polygon energy's gradient against central differences, for random
+// polygons (star-shaped around a centre) with neighbour types.
+TEST(VertexPolygon, GradientIsCentralDifference) {
+  testutil::Rng rng(11);
+  const Model m = two_type_model();
+  for (int trial = 0; trial < 50; ++trial) {
+    const int n = 3 + rng.below(8);
+    std::vector<double> xy;
+    const double pi = std::acos(-1.0);
+    for (int k = 0; k < n; ++k) {
+      const double phi = 2 * pi * (k + rng.uniform(0.1, 0.9)) / n, r = rng.uniform(0.4, 0.9);
+      xy.push_back(5.0 + r * std::cos(phi));
+      xy.push_back(7.0 + r * std::sin(phi));
+    }
+    std::vector<int> nt(n);
+    for (int &t : nt)
+      t = rng.below(2);
+    const int tc = rng.below(2);
+    std::vector<double> g(2 * n);
+    tessera::polygon_energy(xy.data(), n, m, 0, tc, nt.data(), g.data());
+    const double h = 1e-6;
+    for (int k = 0; k < 2 * n; ++k) {
+      std::vector<double> p = xy, q = xy;
+      p[k] += h;
+      q[k] -= h;
+      const double fd = (tessera::polygon_energy(p.data(), n, m, 0, tc, nt.data(), nullptr) -
+                         tessera::polygon_energy(q.data(), n, m, 0, tc, nt.data(), nullptr)) /
+                        (2 * h);
+      EXPECT_NEAR(g[k], fd, 1e-7 * (1.0 + std::fabs(fd))) << "trial " << trial << " k " << k;
+    }
+  }
+}
+
+// The energy of a polygon written out: K/2 (A - A0)^2 + Gamma/2 P^2 + w
+// sum Lambda l, with w = 1/2 (each junction once between two cells).
+TEST(VertexPolygon, EnergyIsTheWrittenFormula) {
+  const Model m = two_type_model();
+  const double xy[] = {0, 0, 1.2, 0.1, 1.0, 0.9, 0.1, 1.1};
+  const int nt[] = {1, 0, 1, 1};
+  const tessera::PolygonMeasures pm = tessera::polygon_measures(xy, 4);
+  double lam = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const int k1 = (k + 1) % 4;
+    lam +=
+        m.lambda_of(0, nt[k]) * std::hypot(xy[2 * k1] - xy[2 * k], xy[2 * k1 + 1] - xy[2 * k + 1]);
+  }
+  const double want = 0.5 * 1.3 * (pm.area - 1.1) * (pm.area - 1.1) +
+                      0.5 * 0.4 * pm.perimeter * pm.perimeter + 0.5 * lam;
+  EXPECT_NEAR(tessera::polygon_energy(xy, 4, m, 0, 0, nt, nullptr), want, 1e-14);
+}
+
+// Forces on a disordered vertex tissue against central differences of the
+// tissue's energy, for the types-only model and with every per-cell value.
+void check_tissue_forces(VertexTissue t, Model m, uint64_t seed) {
+  testutil::Rng rng(seed);
+  // Disorder the vertices, halving the disorder until every cell is valid
+  // (random Voronoi polygons have short edges).
+  std::vector<double> kick(2 * t.n_vertices());
+  for (double &k : kick)
+    k = rng.uniform(-0.06, 0.06);
+  const std::vector<tessera::Vec2> start = t.pos;
+  for (int tries = 0; tries < 20; ++tries) {
+    for (int v = 0; v < t.n_vertices(); ++v) {
+      t.pos[v].x = start[v].x + kick[2 * v];
+      t.pos[v].y = start[v].y + kick[2 * v + 1];
+    }
+    try {
+      tessera::check_tissue(t);
+      break;
+    } catch (const tessera::Error &) {
+      for (double &k : kick)
+        k *= 0.5;
+    }
+  }
+  ASSERT_NO_THROW(tessera::check_tissue(t));
+  std::vector<double> f;
+  double w[4];
+  const double e = tessera::tissue_forces(t, m, f, w);
+  EXPECT_NEAR(e, tessera::tissue_energy(t, m), 1e-12 * std::fabs(e));
+  double fx = 0.0, fy = 0.0, scale = 0.0;
+  for (int v = 0; v < t.n_vertices(); ++v) {
+    fx += f[2 * v];
+    fy += f[2 * v + 1];
+    scale = std::max(scale, std::fabs(f[2 * v]) + std::fabs(f[2 * v + 1]));
+  }
+  ASSERT_GT(scale, 1e-3);
+  EXPECT_NEAR(fx, 0.0, 1e-11 * scale * t.n_vertices());
+  EXPECT_NEAR(fy, 0.0, 1e-11 * scale * t.n_vertices());
+  const double h = 1e-6;
+  double worst = 0.0;
+  for (int v = 0; v < t.n_vertices(); ++v)
+    for (int d = 0; d < 2; ++d) {
+      VertexTissue p = t, q = t;
+      (d ? p.pos[v].y : p.pos[v].x) += h;
+      (d ? q.pos[v].y : q.pos[v].x) -= h;
+      const double fd = -(tessera::tissue_energy(p, m) - tessera::tissue_energy(q, m)) / (2 * h);
+      worst = std::max(worst, std::fabs(fd - f[2 * v + d]));
+    }
+  EXPECT_LT(worst, 1e-7 * scale);
+  // Virial: dE/d(strain_ab) = -W_ab, by deforming box and vertices.
+  const double eps = 1e-6;
+  struct Strain {
+    double f11, f12, f22;
+    int component; // 0: xx, 1: yy, 2: xy
+  };
+  for (const Strain &s :
+       {Strain{1 + eps, 0, 1, 0}, Strain{1, 0, 1 + eps, 1}, Strain{1, eps, 1, 2}}) {
+    VertexTissue p = t, q = t;
+    vtest::deform(p, s.f11, s.f12, s.f22);
+    vtest::deform(q, 2 - s.f11, -s.f12, 2 - s.f22);
+    const double dE = (tessera::tissue_energy(p, m) - tessera::tissue_energy(q, m)) / (2 * eps);
+    EXPECT_NEAR(dE, -w[s.component], 1e-6 * (1.0 + std::fabs(dE))) << "strain " << s.component;
+  }
+}
+
+TEST(VertexTissue, ForcesAreCentralDifferencesTypes) {
+  VertexTissue t = vtest::random_tissue(3, 30, 5.5, 2);
+  check_tissue_forces(t, two_type_model(), 4);
+}
+
+TEST(VertexTissue, ForcesAreCentralDifferencesTilted) {
+  VertexTissue t = vtest::random_tissue(5, 30, 5.5, 2, 1.7);
+  check_tissue_forces(t, two_type_model(), 6);
+}
+
+TEST(VertexTissue, ForcesAreCentralDifferencesPerCell) {
+  VertexTissue t = vtest::random_tissue(7, 30, 5.5, 2);
+  Model m = two_type_model();
+  testutil::Rng rng(8);
+  std::vector<double> a0(t.n_cells()), ka(t.n_cells()), kp(t.n_cells()), p0(t.n_cells());
+  for (int c = 0; c < t.n_cells(); ++c) {
+    a0[c] = rng.uniform(0.7, 1.3);
+    ka[c] = rng.uniform(0.5, 1.5);
+    kp[c] = rng.uniform(0.05, 0.5);
+    p0[c] = rng.uniform(3.4, 4.2);
+  }
+  m.cell_area0 = a0.data();
+  m.cell_KA = ka.data();
+  m.cell_KP = kp.data();
+  m.cell_P0 = p0.data();
+  check_tissue_forces(t, m, 9);
+  // Each cell's energy is then KA (A - A0)^2 + KP (P - P0)^2 less KP P0^2,
+  // plus the heterotypic junctions' excess over the same-type tension.
+  std::vector<double> ce;
+  tessera::tissue_energy(t, m, &ce);
+  const tessera::EdgeMap em(t);
+  for (int c = 0; c < t.n_cells(); ++c) {
+    const tessera::PolygonMeasures pm = t.measures(c);
+    std::vector<double> xy;
+    t.polygon(c, xy);
+    double excess = 0.0;
+    const int n = static_cast<int>(t.rings[c].size());
+    for (int k = 0; k < n; ++k) {
+      const int o = tessera::twin_cell(t, em, c, k);
+      const int k1 = (k + 1) % n;
+      const double l = std::hypot(xy[2 * k1] - xy[2 * k], xy[2 * k1 + 1] - xy[2 * k + 1]);
+      excess += 0.5 * (m.lambda_of(t.type[c], t.type[o]) - m.lambda_of(t.type[c], t.type[c])) * l;
+    }
+    const double want = ka[c] * (pm.area - a0[c]) * (pm.area - a0[c]) +
+                        kp[c] * (pm.perimeter - p0[c]) * (pm.perimeter - p0[c]) -
+                        kp[c] * p0[c] * p0[c] + excess;
+    EXPECT_NEAR(ce[c], want, 1e-12 * (1.0 + std::fabs(want))) << "cell " << c;
+  }
+}
+
+// Regular hexagons: zero force whatever the parameters (every vertex sees
+// three equal cells), and the areas add up to the box.
+TEST(VertexTissue, RegularHexagonsHaveZeroForce) {
+  for (double A : {0.8, 1.0, 1.3}) {
+    const VertexTissue t = vtest::honeycomb(6, 4, A);
+    ASSERT_EQ(t.n_vertices(), 2 * t.n_cells());
+    ASSERT_NO_THROW(tessera::check_tissue(t));
+    for (int c = 0; c < t.n_cells(); ++c) {
+      ASSERT_EQ(t.rings[c].size(), 6u);
+      EXPECT_NEAR(t.measures(c).area, A, 1e-12);
+      EXPECT_NEAR(t.measures(c).perimeter, std::sqrt(8 * std::sqrt(3.0) * A), 1e-12);
+    }
+    for (double p0 : {3.5, 3.7224, 4.0}) {
+      std::vector<double> f;
+      tessera::tissue_forces(t, vtest::quadratic_model(1.0, 1.0, 0.5, p0), f);
+      for (double v : f)
+        EXPECT_NEAR(v, 0.0, 1e-12);
+    }
+  }
+}
+
+TEST(VertexPolygon, Defects) {
+  const double ok[] = {0, 0, 1, 0, 0, 1};
+  EXPECT_EQ(tessera::polygon_defect(ok, 3), PolygonDefect::None);
+  const double cw[] = {0, 0, 0, 1, 1, 0};
+  EXPECT_EQ(tessera::polygon_defect(cw, 3), PolygonDefect::NotPositive);
+  EXPECT_EQ(tessera::polygon_defect(ok, 2), PolygonDefect::TooFewSides);
+  // A bow tie with a positive net area: its edges cross.
+  const double bow[] = {0, 0, 2, 0, 2, 1, 1.5, -0.3, 0, 1};
+  EXPECT_GT(tessera::polygon_measures(bow, 5).area, 0.0);
+  EXPECT_EQ(tessera::polygon_defect(bow, 5), PolygonDefect::SelfIntersecting);
+  const long ids[] = {4, 7, 4};
+  EXPECT_EQ(tessera::polygon_defect(ok, 3, ids), PolygonDefect::RepeatedVertex);
+  const double nan[] = {0, 0, 1, 0, std::nan(""), 1};
+  EXPECT_EQ(tessera::polygon_defect(nan, 3), PolygonDefect::NotFinite);
+  // A spike: an edge folds back onto the one before it.
+  const double spike[] = {0, 0, 2, 0, 2, 1, 2, 2.5, 2, 1.5, 0, 1};
+  EXPECT_EQ(tessera::polygon_defect(spike, 6), PolygonDefect::SelfIntersecting);
+  // Two corners at one point (a zero-length edge) are allowed.
+  const double zero[] = {0, 0, 1, 0, 1, 0, 1, 1, 0, 1};
+  EXPECT_EQ(tessera::polygon_defect(zero, 5), PolygonDefect::None);
+  // A corner inside a non-adjacent edge (touching): not allowed.
+  const double touch[] = {0, 0, 2, 0, 2, 2, 1, 0, 0, 2};
+  EXPECT_NE(tessera::polygon_defect(touch, 5), PolygonDefect::None);
+}
+
+// The force of a zero-length edge's tension is the mean of its one-sided
+// derivatives: nothing from that edge.
+TEST(VertexPolygon, ZeroLengthEdgeIsFinite) {
+  const Model m = two_type_model();
+  const double xy[] = {0, 0, 1, 0, 1, 0, 1, 1, 0, 1};
+  std::vector<double> g(10);
+  tessera::polygon_energy(xy, 5, m, 0, 0, nullptr, g.data());
+  for (double v : g)
+    EXPECT_TRUE(std::isfinite(v));
+}
+
+std::string check_message(const VertexTissue &t) {
+  try {
+    tessera::check_tissue(t);
+  } catch (const tessera::Error &e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(VertexTissue, CheckNamesWhatIsBroken) {
+  const VertexTissue good = vtest::random_tissue(13, 20, 4.5);
+  EXPECT_EQ(check_message(good), "");
+  {
+    VertexTissue t = good; // a clockwise ring
+    std::reverse(t.rings[3].begin(), t.rings[3].end());
+    EXPECT_NE(check_message(t).find("same direction"), std::string::npos) << check_message(t);
+  }
+  {
+    VertexTissue t = good; // a vertex dropped from one ring: the ring does not close
+    t.rings[5].erase(t.rings[5].begin());
+    EXPECT_NE(check_message(t).find("no cell on its other side"), std::string::npos)
+        << check_message(t);
+  }
+  {
+    VertexTissue t = good; // a vertex pulled across its cell: an inverted or crossing cell
+    const int v = t.rings[2][0];
+    const tessera::Vec2 c = t.measures(2).centroid;
+    const tessera::Vec2 d = t.image(c.x - t.pos[v].x, c.y - t.pos[v].y);
+    t.pos[v].x += 2.5 * d.x;
+    t.pos[v].y += 2.5 * d.y;
+    const std::string msg = check_message(t);
+    EXPECT_TRUE(msg.find("crosses itself") != std::string::npos ||
+                msg.find("negative area") != std::string::npos)
+        << msg;
+  }
+  {
+    VertexTissue t = good; // a two-sided cell
+    t.rings[1].resize(2);
+    EXPECT_NE(check_message(t).find("three"), std::string::npos);
+  }
+}
+
+// Co-circular centres (a square lattice): several vertices at one point,
+// joined by zero-length edges; still a consistent tissue with finite forces.
+TEST(VertexTissue, SquareLatticeGivesZeroLengthEdges) {
+  std::vector<double> pts;
+  std::vector<int> type;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      pts.push_back(i + 0.5);
+      pts.push_back(j + 0.5);
+      type.push_back(0);
+    }
+  const tessera::Box box = tessera::Box::rect(0, 4, 0, 4);
+  const VertexTissue t =
+      tessera::vertex_tissue_from_voronoi(box, tessera::Points{pts.data(), 16, 2}, type.data());
+  EXPECT_EQ(t.n_vertices(), 32);
+  EXPECT_NO_THROW(tessera::check_tissue(t));
+  std::vector<double> f;
+  tessera::tissue_forces(t, vtest::quadratic_model(1, 1, 0.3, 3.8), f);
+  for (double v : f)
+    EXPECT_TRUE(std::isfinite(v));
+  int zero = 0;
+  const tessera::EdgeMap m(t);
+  for (int c = 0; c < t.n_cells(); ++c) {
+    EXPECT_NEAR(t.measures(c).area, 1.0, 1e-12);
+    for (size_t k = 0; k < t.rings[c].size(); ++k) {
+      const tessera::Vec2 d = t.delta(t.rings[c][k], t.rings[c][(k + 1) % t.rings[c].size()]);
+      if (d.x == 0.0 && d.y == 0.0)
+        ++zero;
+    }
+  }
+  EXPECT_EQ(zero, 32); // one zero-length edge per four-fold vertex, seen from two cells
+}
+
+} // namespace
+
+namespace {
+
+// The vertex model's cells in the consumers' view: every cell a slot, the
+// pieces its edges, the neighbours the cells across, the derived quantities
+// (neighbour count, centroid, principal axis) those of the polygons.
+TEST(VertexCells, ViewOfAStretchedHoneycomb) {
+  VertexTissue t = vtest::honeycomb(6, 4);
+  vtest::deform(t, 1.2, 0.0, 1.0 / 1.2);
+  const tessera::EdgeMap m(t);
+  std::vector<double> centres;
+  for (int c = 0; c < t.n_cells(); ++c) {
+    const tessera::Vec2 cm = t.measures(c).centroid;
+    centres.push_back(cm.x);
+    centres.push_back(cm.y);
+  }
+  tessera::PolygonCells view;
+  // Slots 0 .. n-1 hold the cells, one more slot stays empty.
+  view.clear(t.n_cells() + 1, t.n_cells(), tessera::Points{centres.data(), t.n_cells(), 2});
+  std::vector<double> xy;
+  for (int c = 0; c < t.n_cells(); ++c) {
+    t.polygon(c, xy);
+    std::vector<int> nbr;
+    for (size_t k = 0; k < t.rings[c].size(); ++k)
+      nbr.push_back(tessera::twin_cell(t, m, c, static_cast<int>(k)));
+    const tessera::PolygonMeasures pm = t.measures(c);
+    view.add_cell(c, xy.data(), static_cast<int>(nbr.size()), nbr.data(), pm.area, pm.perimeter);
+  }
+  view.finish();
+  const int n = t.n_cells();
+  EXPECT_EQ(view.piece_begin(n), view.piece_end(n)); // the empty slot
+  const tessera::Contacts con = view.contacts();
+  for (int c = 0; c < n; ++c) {
+    EXPECT_NEAR(view.measure(c), 1.0, 1e-12);
+    EXPECT_EQ(view.coordination_number(c), 6);
+    double x[2];
+    view.centroid(c, x);
+    EXPECT_NEAR(x[0], centres[2 * c], 1e-12);
+    EXPECT_NEAR(x[1], centres[2 * c + 1], 1e-12);
+    ASSERT_TRUE(view.principal_axis(c, true, x));
+    EXPECT_NEAR(std::fabs(x[0]), 1.0, 1e-9);
+    // Each neighbour lists this cell back.
+    for (int k = con.offset[c]; k < con.offset[c + 1]; ++k) {
+      const int o = con.neighbor[k];
+      bool back = false;
+      for (int j = con.offset[o]; j < con.offset[o + 1]; ++j)
+        back = back || con.neighbor[j] == c;
+      EXPECT_TRUE(back);
+    }
+  }
+}
+
+} // namespace

@@ -24,6 +24,8 @@
 // repair against the rebuild from scratch that every fold cost before.
 //
 //   bench_core [max_N] [--steps-only]     (default 1000000)
+//   bench_core [max_N] --build-only       the from-scratch triangulation table
+//       alone (own plain and Mesh::build against CGAL's Delaunay_triangulation_2)
 //   bench_core --triangulate WHAT KIND N  (one triangulation, for instruction
 //       counts under valgrind --tool=callgrind: WHAT = none (the points
 //       only), plain, build or cgal; KIND = random or tissue)
@@ -363,16 +365,19 @@ int main(int argc, char **argv) {
   if (argc == 5 && std::string(argv[1]) == "--triangulate")
     return triangulate_once(argv[2], argv[3], std::strtol(argv[4], nullptr, 10));
   long max_n = 1000000;
-  bool steps_only = false;
+  bool steps_only = false, build_only = false;
   if (argc > 1 && std::string(argv[argc - 1]) == "--steps-only") {
     steps_only = true;
+    --argc;
+  } else if (argc > 1 && std::string(argv[argc - 1]) == "--build-only") {
+    build_only = true;
     --argc;
   }
   if (argc > 1) {
     char *end = nullptr;
     max_n = std::strtol(argv[1], &end, 10);
     if (argc > 2 || end == argv[1] || *end != '\0' || max_n < 3) {
-      std::fprintf(stderr, "usage: %s [max_N >= 3] [--steps-only]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [max_N >= 3] [--steps-only | --build-only]\n", argv[0]);
       return 2;
     }
   }
@@ -384,6 +389,10 @@ int main(int argc, char **argv) {
   model.set_lambda(0, 0, -0.1);
 
   double checksum = 0;
+  if (build_only) {
+    std::printf("\n(checksum %.6g)\n", build_table(max_n));
+    return 0;
+  }
   if (!steps_only) {
   std::printf("Tessera core benchmark: random points, density 1, periodic square box\n");
   std::printf("times in microseconds per cell, median of the repeats\n\n");

@@ -69,6 +69,15 @@ def headers_of(depfile):
     return deps.split()
 
 
+def source_path(depfile, source):
+    """The source named first in a dependency file: a relative path is relative to the
+    directory the compiler ran in, the one that holds the target's CMakeFiles/."""
+    if os.path.isabs(source):
+        return source
+    cut = depfile.find(os.sep + "CMakeFiles" + os.sep)
+    return os.path.join(depfile[:cut] if cut >= 0 else os.path.dirname(depfile), source)
+
+
 def check_includes(builds):
     problems, nobjects, stale = [], 0, []
     for build in builds:
@@ -77,7 +86,7 @@ def check_includes(builds):
             deps = headers_of(d)
             # An object whose source is gone (a file removed since this tree was built) is in
             # no artefact any more: CMake rebuilds the library from the sources it has.
-            if deps and not os.path.exists(deps[0]):
+            if deps and not os.path.exists(source_path(d, deps[0])):
                 stale.append(os.path.relpath(d, build)[: -len(".d")])
                 continue
             nobjects += 1
@@ -181,6 +190,17 @@ def self_test():
             print("self-test: an object whose source is gone was checked:", problems)
             ok = False
         os.rename(src + ".gone", src)
+        # a source named relative to the directory the compiler ran in (the in-tree build's
+        # Makefiles do so) is found there and checked
+        with open(dep) as f:
+            text = f.read()
+        with open(dep, "w") as f:
+            f.write(text.replace(src, os.path.join("..", "planted.cpp"), 1))
+        problems, n = check_includes([tmp])
+        if n != 1 or not any("CGAL" in p for p in problems):
+            print("self-test: an object whose source is named by a relative path was not checked:",
+                  problems)
+            ok = False
         # an object of another target (a test's oracle) may include CGAL
         other = os.path.join(tmp, "tests", "CMakeFiles", "test_core.dir")
         os.makedirs(other)

@@ -403,6 +403,28 @@ void PairVertexPolygon::refresh()
   cache_epoch = epoch;
 }
 
+/* ----------------------------------------------------------------------
+   Cell atom i's polygon: its vertices' coordinates (the closest copies, as
+   ring_local holds them) into xy and the 0-based types of the cells across
+   its edges into nt.  Returns the vertex count.
+------------------------------------------------------------------------- */
+
+int PairVertexPolygon::gather_ring(int i, std::vector<double> &xy, std::vector<int> &nt) const
+{
+  double **x = atom->x;
+  const int *type = atom->type;
+  const int n = off[i + 1] - off[i];
+  const int *loc = &ring_local[off[i]];
+  xy.resize(2 * n);
+  nt.resize(n);
+  for (int k = 0; k < n; k++) {
+    xy[2 * k] = x[loc[k]][0];
+    xy[2 * k + 1] = x[loc[k]][1];
+    nt[k] = type[nbr_local[off[i] + k]] - 1;
+  }
+  return n;
+}
+
 void PairVertexPolygon::compute(int eflag, int vflag)
 {
   ev_init(eflag, vflag);
@@ -426,16 +448,8 @@ void PairVertexPolygon::compute(int eflag, int vflag)
   cell_energy.assign(nlocal, 0.0);
   for (int i = 0; i < nlocal; i++) {
     if (role(type[i]) != CELL || ring[i][0] < 0) continue;
-    const int n = off[i + 1] - off[i];
-    const int *loc = &ring_local[off[i]];
-    xy.resize(2 * n);
+    const int n = gather_ring(i, xy, nt);
     g.resize(2 * n);
-    nt.resize(n);
-    for (int k = 0; k < n; k++) {
-      xy[2 * k] = x[loc[k]][0];
-      xy[2 * k + 1] = x[loc[k]][1];
-      nt[k] = type[nbr_local[off[i] + k]] - 1;
-    }
     const int tc = type[i] - 1;
     double e = tessera::polygon_energy(xy.data(), n, model, i, tc, nt.data(), g.data());
     const tessera::PolygonMeasures m = tessera::polygon_measures(xy.data(), n);
@@ -457,6 +471,7 @@ void PairVertexPolygon::compute(int eflag, int vflag)
           update->ntimestep, tag[i],
           std::isfinite(e) ? tessera::describe(d) : "has a non-finite energy", vs, m.area, fix_it);
     }
+    const int *loc = &ring_local[off[i]];
     for (int k = 0; k < n; k++) {
       f[loc[k]][0] -= g[2 * k];
       f[loc[k]][1] -= g[2 * k + 1];
@@ -528,16 +543,8 @@ void PairVertexPolygon::cells_of_changed_box()
   shown_energy.assign(nlocal, 0.0);
   for (int i = 0; i < nlocal; i++) {
     if (role(type[i]) != CELL || ring[i][0] < 0) continue;
-    const int n = off[i + 1] - off[i];
-    const int *loc = &ring_local[off[i]];
-    xy.resize(2 * n);
+    const int n = gather_ring(i, xy, nt);
     g.resize(2 * n);
-    nt.resize(n);
-    for (int k = 0; k < n; k++) {
-      xy[2 * k] = x[loc[k]][0];
-      xy[2 * k + 1] = x[loc[k]][1];
-      nt[k] = type[nbr_local[off[i] + k]] - 1;
-    }
     const int tc = type[i] - 1;
     double e = tessera::polygon_energy(xy.data(), n, model, i, tc, nt.data(), g.data());
     if (quad[type[i]]) e += percell ? model.quadratic_constant(i, tc) : energy0[type[i]];

@@ -108,6 +108,7 @@ class PairVertexPolygon : public Pair, public CellSource {
   // offsets off[i] .. off[i+1]; rebuilt after every re-neighbouring
   // (refresh()), valid until the next one.
   std::vector<int> off, ring_local, nbr_local;
+  int gather_ring(int i, std::vector<double> &xy, std::vector<int> &nt) const;
   bigint epoch = 0, cache_epoch = -1;    // re-neighbourings seen / the caches'
   void refresh();
   // The largest distance from a cell atom to one of its vertices (global),

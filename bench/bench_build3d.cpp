@@ -44,13 +44,11 @@
 #include <string>
 #include <vector>
 
+#include "bench_util.h"
+
 namespace {
 
-double cpu_seconds() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+using namespace bench_util;
 
 uint64_t mix(uint64_t &s) {
   uint64_t z = (s += 0x9E3779B97F4A7C15ull);
@@ -169,12 +167,6 @@ long build(const std::string &what, const std::vector<double> &x) {
   if (what == "mesh3-cgal") return cgal_mesh3(x);
 #endif
   return -1;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
 }  // namespace

@@ -48,19 +48,16 @@
 #include <ctime>
 #include <vector>
 
+#include "bench_util.h"
+
 namespace {
+
+using namespace bench_util;
 
 
 double now_seconds() {
   using clock = std::chrono::steady_clock;
   return std::chrono::duration<double>(clock::now().time_since_epoch()).count();
-}
-
-// This thread's CPU time in seconds.
-double cpu_seconds() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 #ifdef TESSERA_BENCH_CGAL
@@ -82,18 +79,6 @@ double cgal_seconds(const std::vector<double> &xy, int n, long *faces) {
 }
 #endif
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
-uint64_t splitmix(uint64_t &s) {
-  uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
 
 // A jittered hexagonal tissue of about `target` cells at density 1 in lattice
 // order (spatially sorted, as LAMMPS keeps atoms), with its periodic images

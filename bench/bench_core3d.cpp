@@ -38,7 +38,11 @@
 #include <string>
 #include <vector>
 
+#include "bench_util.h"
+
 namespace {
+
+using namespace bench_util;
 
 // CPU time of this thread: the machine may be shared, wall time would count
 // the other processes' share.
@@ -48,20 +52,6 @@ double now_seconds() {
   return ts.tv_sec + 1e-9 * ts.tv_nsec;
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
-uint64_t splitmix(uint64_t &s) {
-  uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-double uniform(uint64_t &s) { return (splitmix(s) >> 11) * (1.0 / 9007199254740992.0); }
 double gauss(uint64_t &s) {
   const double u = std::max(uniform(s), 1e-300), v = uniform(s);
   return std::sqrt(-2.0 * std::log(u)) * std::cos(6.283185307179586 * v);

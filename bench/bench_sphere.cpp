@@ -53,32 +53,14 @@
 #include <unordered_map>
 #include <vector>
 
+#include "bench_util.h"
+
 namespace {
+
+using namespace bench_util;
 
 using Tri = std::array<int, 3>;
 
-// This thread's CPU time in seconds (steadier than wall time on a shared machine).
-double cpu_seconds() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
-uint64_t splitmix(uint64_t &s) {
-  uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-double uniform(uint64_t &s) {
-  return (splitmix(s) >> 11) * 0x1p-53;
-}
 
 const tessera::Vec3 kCentre{0.3, -0.2, 0.1};
 const double kR = 7.0;

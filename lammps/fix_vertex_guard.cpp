@@ -80,7 +80,29 @@ void FixVertexGuard::record()
   step0 = update->ntimestep;
   // (an atom still outside is noted again at the next move)
   left = Left();
-  record_neighbourhood();
+  recorded_count = pair ? pair->compute_count() : -1;
+  // The neighbourhood only matters when the guard fires.  Where nothing
+  // computes forces between the end of a step and the next post_integrate
+  // (fix brownian, fix nve, ...), the cells of the last force computation
+  // are still there then, and it is found from them only if needed: most
+  // steps skip the pass over every cell's neighbours.  Where something does
+  // (fix brownian/heun tessellates its predicted positions in
+  // initial_integrate), it is recorded now, as the step's start.
+  deferred = defer_ok;
+  if (!deferred) record_neighbourhood();
+}
+
+/* The neighbourhood the last record() deferred, from the cells still in
+   the pair style's view.  The view's points of owned atoms may be the atoms'
+   positions themselves, which the integrator has moved since: the
+   positions of the record (x0) stand in for them.  Ghosts move only at the
+   next communication, after post_integrate. */
+
+void FixVertexGuard::ensure_neighbourhood()
+{
+  if (!deferred) return;
+  deferred = false;
+  record_neighbourhood(true);
 }
 
 /* Each owned cell's neighbourhood in the cells of the last force
@@ -90,7 +112,7 @@ void FixVertexGuard::record()
    brownian/heun the cells at the guard's check are those of the predicted
    positions; these are the step's start, the state the message names. */
 
-void FixVertexGuard::record_neighbourhood()
+void FixVertexGuard::record_neighbourhood(bool moved)
 {
   const int n = atom->nlocal;
   around.assign(n, Around());
@@ -102,6 +124,13 @@ void FixVertexGuard::record_neighbourhood()
   const tessera::Contacts c = v.contacts();
   const int sd = v.space_dimension();
   double xi[3] = {0.0, 0.0, 0.0}, xq[3] = {0.0, 0.0, 0.0};
+  const bool from_x0 = moved && sd <= dim && static_cast<int>(x0.size()) == dim * n;
+  auto point = [&](int q, double *out) {
+    if (from_x0 && q < n)
+      for (int d = 0; d < sd; d++) out[d] = x0[dim * q + d];
+    else
+      v.point(q, out);
+  };
   double **f = atom->f;
   for (int i = 0; i < n; i++) {
     Around &a = around[i];
@@ -109,10 +138,10 @@ void FixVertexGuard::record_neighbourhood()
     if (!pair->is_cell_type(atom->type[i])) continue;
     a.measure = v.measure(i);
     a.boundary = v.boundary(i);
-    v.point(i, xi);
+    point(i, xi);
     for (int k = c.offset[i]; k < c.offset[i + 1]; k++) {
       const int q = c.neighbor[k];
-      v.point(q, xq);
+      point(q, xq);
       double r2 = 0.0;
       for (int d = 0; d < sd; d++) r2 += (xq[d] - xi[d]) * (xq[d] - xi[d]);
       const double r = std::sqrt(r2);
@@ -229,6 +258,7 @@ double FixVertexGuard::loss_limit() const
 
 std::string FixVertexGuard::describe_all(int root, int i, double moved)
 {
+  ensure_neighbourhood();
   const bool mine = comm->me == root;
   const bool known = mine && i >= 0 && i < static_cast<int>(around.size());
   // i's neighbours' IDs, from root to every rank
@@ -431,6 +461,18 @@ std::string FixVertexGuard::describe(int i, double moved, double size, const Sta
 void FixVertexGuard::post_integrate()
 {
   if (!pair) return;
+  // Did a force computation come between the last record and this check?
+  // If so, the cells now in the view are not the step's start: a deferred
+  // neighbourhood is lost for this step (none is named), and from now on
+  // it is recorded at once.
+  const bool unchanged = pair->compute_count() == recorded_count;
+  if (deferred && !unchanged) {
+    deferred = false;
+    around.clear();
+    nb_offset.assign(atom->nlocal + 1, 0);
+    nb_tag.clear();
+  }
+  defer_ok = unchanged;
   const int n = atom->nlocal;
   // Atoms added or re-ordered without a force computation (run N pre no):
   // nothing to compare on this rank, but it still takes part below.

@@ -39,7 +39,11 @@ class FixVertexGuard : public Fix {
   FixVertexGuard(class LAMMPS *, int, char **);
   int setmask() override;
   void init() override;
-  void setup(int) override { record(); }
+  void setup(int) override
+  {
+    defer_ok = false;
+    record();
+  }
   // The positions of the step's last force computation, once the step is
   // complete (not at post_force: fix brownian/heun computes forces twice
   // per step, the first time at its predicted positions).
@@ -89,8 +93,17 @@ class FixVertexGuard : public Fix {
   void note_left_box();
   std::vector<int> nb_offset;    // owned atom i's neighbours' IDs are
   std::vector<tagint> nb_tag;    // nb_tag[nb_offset[i] .. nb_offset[i+1])
+  // The pair style's compute_count() at the last record; whether that
+  // record left the neighbourhood to be found when needed, and whether the
+  // last step showed that this is safe (no force computation between the
+  // end of a step and the next check).
+  bigint recorded_count = -1;
+  bool deferred = false, defer_ok = false;
   void record();
-  void record_neighbourhood();
+  // moved: the owned atoms have moved since the cells were computed (their
+  // recorded positions are used).
+  void record_neighbourhood(bool moved = false);
+  void ensure_neighbourhood();
   double loss_limit() const;
   // The message's text for owned atom i of rank root (collective: every
   // rank calls it, and gets the text).

@@ -169,6 +169,44 @@ run 1
         self.assertIn("likely the cells' own force, too stiff for this timestep", line)
 
 
+    def test_later_step(self):
+        # An ordinary tissue, kicked by fix addforce from the force computation
+        # of step 2 on: the guard fires at step 3, and names the neighbourhood of
+        # step 2 (the step's start), found only then from the cells of that
+        # computation while the atoms already stand at their new places.  With
+        # every atom a cell the cells' points are the atoms' positions; with a
+        # particle of another type they are a copy: both are checked.
+        cases = {"cells only": ("1", "vertex/voronoi 3.0", "* * 1 1 0.1 -0.5", ""),
+                 "with a particle": ("2", "hybrid/overlay vertex/voronoi 3.0 soft 0.5",
+                                     "1 1 vertex/voronoi 1 1 0.1 -0.5",
+                                     "pair_coeff * * soft 1.0 0.5\n"
+                                     "create_atoms 2 single 2.9 1.3 0 units box\n")}
+        for name, (ntypes, style, coeff, extra) in cases.items():
+            with self.subTest(name):
+                run = self.run_lmp(lmptest.tissue(6, 3, ntypes=int(ntypes)) + f"""
+displace_atoms all random 0.1 0.1 0 4821 units box
+pair_style {style}
+pair_coeff {coeff}
+{extra}mass * 1.0
+group kicked id 5
+variable k equal (step>=2)*2000.0
+fix kick kicked addforce v_k 0.0 0.0
+fix b all brownian 1.0 1 gamma_t 1.0 rng none
+""" + DUMP.format(extra="") + "timestep 0.01\nrun 4\n", ok=None)
+                line = guard_line(run)
+                self.assertIsNotNone(line, run.output[-3000:])
+                self.assertIn("in the step from 2 to 3", line)
+                frames = run.dump("d.txt")
+                self.assertEqual(int(frames[2]["step"]), 2)
+                cells = frames[2]
+                if ntypes == "2":
+                    keep = cells["id"] != max(cells["id"])
+                    cells = {k: (v[keep] if k in ("id", "x", "y", "z") else v)
+                             for k, v in cells.items()}
+                moved, _, _ = self.check_nearest(line, cells)
+                self.assertEqual(moved, 5)
+
+
 class Heun(LammpsTestCase):
     """fix brownian/heun computes the forces a second time at predicted
     positions: the neighbour and the distance named are those of the step's

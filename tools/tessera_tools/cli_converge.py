@@ -140,11 +140,33 @@ def _input_files(directory):
 
 
 def run_dirs(args):
-    """(value, directory) of each run, in the order given."""
+    """(value, directory, seed) of each run, in the order given: one run per
+    value, or with --seeds one per value and seed (OUT/NAME_VALUE/SEEDVAR_S)."""
     out = []
     for v in args.values:
-        out.append((v, os.path.join(args.out, f"{args.var}_{v}")))
+        base = os.path.join(args.out, f"{args.var}_{v}")
+        if args.seeds:
+            for s in args.seeds:
+                out.append((v, os.path.join(base, f"{args.seed_var}_{s}"), s))
+        else:
+            out.append((v, base, None))
     return out
+
+
+def combine_starts(estimates):
+    """One value and its standard error from the (mean, block error) of runs
+    from independent starts: the mean of the means, and the larger of their
+    spread's standard error and the block errors carried through.  The spread
+    sees what blocks cannot: an event longer than a block (a stall) that one
+    run has and another has not."""
+    means = np.array([m for m, _ in estimates], dtype=float)
+    errs = np.array([e for _, e in estimates], dtype=float)
+    n = len(means)
+    if n == 1:
+        return float(means[0]), float(errs[0])
+    spread = means.std(ddof=1) / math.sqrt(n)
+    carried = math.sqrt(np.nansum(errs ** 2)) / n
+    return float(means.mean()), float(max(spread, carried))
 
 
 def finished(log):
@@ -154,8 +176,9 @@ def finished(log):
         return "Total wall time" in f.read()
 
 
-def launch(args, value, directory):
-    """Start one run of the input with -var VAR value (and --set) in directory."""
+def launch(args, value, directory, seed=None):
+    """Start one run of the input with -var VAR value (and --set, and the
+    seed's variable) in directory."""
     os.makedirs(directory, exist_ok=True)
     for path in _input_files(os.path.dirname(os.path.abspath(args.input))):
         shutil.copy(path, directory)
@@ -169,6 +192,8 @@ def launch(args, value, directory):
         if not sep:
             raise ValueError(f"--set takes NAME=VALUE, not '{spec}'")
         cmd += ["-var", name, val]
+    if seed is not None:
+        cmd += ["-var", args.seed_var, str(seed)]
     return subprocess.Popen(cmd, cwd=directory, stdout=subprocess.DEVNULL,
                             stderr=subprocess.PIPE, text=True), cmd
 
@@ -179,7 +204,7 @@ def analyse(args, runs):
     from .logplot import parse_log
 
     tables = []
-    for _, directory in runs:
+    for _, directory, _ in runs:
         log = os.path.join(directory, "log.lammps")
         tables.append(parse_log(log).combined())
     ends = [float(np.nanmax(t["time"])) for t in tables]
@@ -196,7 +221,7 @@ def analyse(args, runs):
     results = {}
     for col in columns:
         row = []
-        for t, (_, directory) in zip(tables, runs):
+        for t, (_, directory, _) in zip(tables, runs):
             if col not in t:
                 raise KeyError(f"thermo column '{col}' is not in {directory}/log.lammps")
             row.append(block_estimate(piecewise_linear_means(t["time"], t[col], edges)))
@@ -205,7 +230,7 @@ def analyse(args, runs):
         atom_type = int(atom_type)
         name = f"flux of type {atom_type} through x = {x:g}"
         row = []
-        for _, directory in runs:
+        for _, directory, _ in runs:
             path = os.path.join(directory, args.dump)
             if not os.path.exists(path):
                 raise ValueError(f"{path} does not exist (--dump names the dump file the input writes)")
@@ -213,13 +238,26 @@ def analyse(args, runs):
                                         args.dump_dt)
             row.append((flux, err))
         results[name] = row
+    if args.seeds:
+        # runs are value-major: each value's starts are consecutive
+        ns = len(args.seeds)
+        per_start = results
+        results = {name: [combine_starts(row[k * ns:(k + 1) * ns]) for k in range(len(args.values))]
+                   for name, row in per_start.items()}
+        args.per_start = per_start
     return results, (t0, t1)
 
 
 def table_text(args, results, window):
     head = f"{args.var}: " + ", ".join(str(v) for v in args.values)
+    if args.seeds:
+        errors_from = (f"each value's {len(args.seeds)} starts ({args.seed_var} = "
+                       f"{', '.join(str(s) for s in args.seeds)}) averaged, standard errors the "
+                       f"larger of their spread's and of {args.blocks} blocks per run")
+    else:
+        errors_from = f"standard errors from {args.blocks} blocks"
     lines = [f"# tessera-tools converge {os.path.basename(args.input)}: {head}; time averages over "
-             f"t = {window[0]:g}..{window[1]:g}, standard errors from {args.blocks} blocks",
+             f"t = {window[0]:g}..{window[1]:g}, {errors_from}",
              "| observable | " + " | ".join(f"{args.var} = {v}" for v in args.values) +
              " | largest z vs finest | agrees |",
              "|---" * (len(args.values) + 3) + "|"]
@@ -229,6 +267,16 @@ def table_text(args, results, window):
         zmax, ok = compare(values, errors)
         cells = [f"{v:.5g} +- {e:.2g}" for v, e in row]
         lines.append(f"| {name} | " + " | ".join(cells) + f" | {zmax:.2f} | {'yes' if ok else 'NO'} |")
+    if args.seeds:
+        lines += ["", "Each start on its own (time average +- block error):", "",
+                  "| observable | " + f"{args.var} | " +
+                  " | ".join(f"{args.seed_var} = {s}" for s in args.seeds) + " |",
+                  "|---" * (len(args.seeds) + 2) + "|"]
+        ns = len(args.seeds)
+        for name, row in args.per_start.items():
+            for k, v in enumerate(args.values):
+                cells = [f"{m:.4g} +- {e:.2g}" for m, e in row[k * ns:(k + 1) * ns]]
+                lines.append(f"| {name} | {v} | " + " | ".join(cells) + " |")
     return "\n".join(lines) + "\n"
 
 
@@ -282,13 +330,13 @@ def cmd_converge(args):
         if os.sep in args.lmp:
             args.lmp = os.path.abspath(args.lmp)
         pending = []
-        for value, directory in runs:
+        for value, directory, seed in runs:
             if args.reuse and finished(os.path.join(directory, "log.lammps")):
                 continue
-            pending.append((value, directory))
+            pending.append((value, directory, seed))
         while pending:
             batch, pending = pending[:args.jobs], pending[args.jobs:]
-            procs = [(launch(args, v, d), d) for v, d in batch]
+            procs = [(launch(args, v, d, s), d) for v, d, s in batch]
             for (proc, cmd), d in procs:
                 _, err = proc.communicate()
                 if proc.returncode != 0:
@@ -321,6 +369,11 @@ def add_commands(sub):
     p.add_argument("--set", nargs="+", metavar="NAME=VALUE", help="other -var settings for every run")
     p.add_argument("--window", nargs=2, type=float, metavar=("T0", "T1"),
                    help="time window of the averages (default: the second half of the shortest run)")
+    p.add_argument("--seeds", nargs="+", metavar="S",
+                   help="run every value from several starts (-var SEED_VAR S each) and average "
+                        "them; the errors include the spread between starts")
+    p.add_argument("--seed-var", default="seed",
+                   help="the input's variable that sets the start (default seed)")
     p.add_argument("--blocks", type=int, default=10, help="blocks of the error estimate (default 10)")
     p.add_argument("--thermo", nargs="+", metavar="COLUMN",
                    help="thermo columns to compare (default: every column but Step/Time/Dt/CPU)")

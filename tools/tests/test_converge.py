@@ -16,8 +16,8 @@ import unittest
 import numpy as np
 
 from helpers import TOOLS, is_png
-from tessera_tools.cli_converge import (block_estimate, compare, piecewise_linear_means,
-                                        section_flux)
+from tessera_tools.cli_converge import (block_estimate, combine_starts, compare,
+                                        piecewise_linear_means, section_flux)
 from tessera_tools.dump import Box, Frame
 
 TOOL = os.path.join(TOOLS, "tessera-tools")
@@ -126,6 +126,18 @@ class Verdict(unittest.TestCase):
         self.assertFalse(ok)
         self.assertAlmostEqual(z, 0.5 / math.hypot(0.1, 0.1))
 
+    def test_combine_starts(self):
+        """Three starts: the mean of their means; the error their spread's
+        (std / sqrt 3) when it is the larger, else the block errors carried
+        through (sqrt of the sum of squares over 3)."""
+        m, e = combine_starts([(1.0, 0.1), (2.0, 0.1), (3.0, 0.1)])
+        self.assertAlmostEqual(m, 2.0)
+        self.assertAlmostEqual(e, 1.0 / math.sqrt(3))
+        m, e = combine_starts([(1.0, 0.3), (1.01, 0.4), (0.99, 0.0)])
+        self.assertAlmostEqual(m, 1.0)
+        self.assertAlmostEqual(e, 0.5 / 3)
+        self.assertEqual(combine_starts([(1.5, 0.2)]), (1.5, 0.2))
+
 
 # A stand-in for LAMMPS: reads -var NAME VALUE pairs and writes log.lammps and
 # a dump.  Thermo 'good' is 2 + noise whatever the value, 'bad' is 2 + 30
@@ -137,7 +149,7 @@ FAKE = textwrap.dedent('''\
     a = sys.argv[1:]
     var = {a[i + 1]: a[i + 2] for i in range(len(a)) if a[i] == "-var"}
     value = float(var["dt"])
-    shift = float(var.get("shift", "0"))
+    shift = float(var.get("shift", "0")) + 0.1 * float(var.get("start", "0"))
     rng = random.Random(int(1e6 * value))
     with open("log.lammps", "w") as f:
         f.write("LAMMPS (fake)\\ntimestep " + repr(value) + "\\n")
@@ -210,6 +222,32 @@ class Command(unittest.TestCase):
                                      capture_output=True, text=True, timeout=120)
             self.assertNotEqual(failing.returncode, 0)
             self.assertIn("failed", failing.stderr)
+
+    def test_seeds(self):
+        # three starts per value (-var start S): their means 2.1, 2.2, 2.3 average
+        # to 2.2 with the spread's error 0.1 / sqrt(3), and each start's own row
+        with tempfile.TemporaryDirectory() as tmp:
+            lmp, inp = stand_in(tmp)
+            out = os.path.join(tmp, "runs")
+            proc = subprocess.run([sys.executable, TOOL, "converge", inp, "--var", "dt",
+                                   "--values", "0.02", "0.01", "--seeds", "1", "2", "3",
+                                   "--seed-var", "start", "--lmp", lmp, "--out", out,
+                                   "--window", "20", "90", "--thermo", "good", "--jobs", "2"],
+                                  capture_output=True, text=True, timeout=120)
+            self.assertEqual(proc.returncode, 0, proc.stdout + proc.stderr)
+            rows = [line for line in proc.stdout.splitlines() if line.startswith("| good |")]
+            cells = [c.split("+-") for c in rows[0].split("|")[2:4]]
+            for mean, err in cells:
+                self.assertAlmostEqual(float(mean), 2.2, delta=0.005)    # noise 0.01 per sample
+                self.assertEqual(err.strip(), "0.058")
+            self.assertTrue(rows[0].rstrip().endswith("| yes |"), rows[0])
+            self.assertIn("3 starts (start = 1, 2, 3)", proc.stdout)
+            self.assertEqual(len(rows), 3)    # the combined row and one per value
+            self.assertRegex(rows[1], r"\| good \| 0.02 \| 2.1\d* \+- \S+ \| 2.2\d* \+- \S+ \| 2.3")
+            for v in ("0.02", "0.01"):
+                for k in ("1", "2", "3"):
+                    self.assertTrue(os.path.exists(os.path.join(out, f"dt_{v}", f"start_{k}",
+                                                                "log.lammps")))
 
     def test_relative_paths(self):
         # each run starts in its own directory, so --lmp relative to the

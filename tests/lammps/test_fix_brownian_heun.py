@@ -596,10 +596,26 @@ class ConstrictionExample(LammpsTestCase):
                          "constriction", "in.constriction")
 
     def test_short_run(self):
+        # without noise (the default) and with it (-var T: fix brownian/heun
+        # ... rng gaussian, the noise seeded by -var seed)
+        # (same start: the noise is what differs)
+        last = {}
+        for extra in ({}, {"T": 0.01}):
+            with self.subTest(**extra):
+                run = self.check_short_run(extra)
+                self.assertIn(f"T {extra.get('T', 0.0)} tol", run.output)
+                last[bool(extra)] = run.dump("dump.constriction")[-1]
+        if len(last) == 2:
+            cells = last[False]["type"] == 1
+            shift = np.hypot(last[True]["xu"] - last[False]["xu"], last[True]["yu"] - last[False]["yu"])
+            # diffusion over t = 3 at D = 0.01: sqrt(4 D t) = 0.35 per cell
+            self.assertGreater(np.median(shift[cells]), 0.1)
+
+    def check_short_run(self, extra):
         with open(self.INPUT) as f:
             script = f.read()
         script += 'print "END $(time:%.17g) $(count(cells)) $(lx:%.17g)"\n'
-        run = self.run_lmp(script, variables={"tend": 3.0, "every": 25, "tol": 0.05})
+        run = self.run_lmp(script, variables={"tend": 3.0, "every": 25, "tol": 0.05, **extra})
         t_end, n, lx = [float(w) for w in run.stdout.split("\nEND ")[1].split()[:3]]
         self.assertGreaterEqual(t_end, 3.0)
         self.assertLess(t_end, 3.0 + 0.01 + 1e-12)
@@ -627,6 +643,7 @@ class ConstrictionExample(LammpsTestCase):
         moved = np.sum(last["xu"][cells] - first["xu"][cells]) / lx
         self.assertGreater(moved, 2.0)
         self.assertLessEqual(abs(crossed - moved), n / m + 1e-9)
+        return run
 
 
 class Errors(LammpsTestCase):

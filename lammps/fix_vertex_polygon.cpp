@@ -99,6 +99,13 @@ void FixVertexPolygon::setup(int vflag)
 
 void FixVertexPolygon::pre_exchange()
 {
+  // Divisions at this step need the ghosts: they delete after dividing.
+  if (update->ntimestep == pair->delete_step && division_step != update->ntimestep)
+    delete_removed();
+}
+
+void FixVertexPolygon::delete_due()
+{
   if (update->ntimestep == pair->delete_step) delete_removed();
 }
 

@@ -22,6 +22,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "fix_cell_death.h"
 #include "fix_vertex_polygon.h"
 #include "force.h"
 #include "modify.h"
@@ -253,8 +254,11 @@ void FixCellDivide::init()
   // The vertex model divides a cell by a new edge through it
   // (fix_cell_divide_vertex.cpp), through its internal fix.
   vertex = nullptr;
+  deaths.clear();
   int ndivide = 0;
   for (int k = 0; k < modify->nfix; k++) {
+    if (strcmp(modify->fix[k]->style, "cell/death") == 0)
+      deaths.push_back(dynamic_cast<FixCellDeath *>(modify->fix[k]));
     if (strcmp(modify->fix[k]->style, "VERTEX_POLYGON") == 0)
       vertex = dynamic_cast<FixVertexPolygon *>(modify->fix[k]);
     if (strcmp(modify->fix[k]->style, "cell/divide") == 0) ndivide++;
@@ -320,7 +324,10 @@ void FixCellDivide::init()
 
 bool FixCellDivide::takes(int i) const
 {
-  return (atom->mask[i] & groupbit) && cell_group::is_cell(pair, atom->type[i]);
+  if (!(atom->mask[i] & groupbit) || !cell_group::is_cell(pair, atom->type[i])) return false;
+  for (const FixCellDeath *d : deaths)
+    if (d->dying(i)) return false;
+  return true;
 }
 
 /* The base preferred area of cells that have none yet (before the first run,

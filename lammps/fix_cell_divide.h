@@ -72,6 +72,7 @@ class FixCellDivide : public Fix {
   class Region *region;
   class CellSource *pair;
   class FixVertexPolygon *vertex = nullptr;    // the vertex model's internal fix
+  std::vector<class FixCellDeath *> deaths;    // a dying cell does not divide
   bool noted_particles = false;
   bool takes(int i) const;    // owned atom i is a cell of the group
   int area0_index;    // d_area0 in atom->dvector, or -1

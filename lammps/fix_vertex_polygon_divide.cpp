@@ -110,18 +110,24 @@ std::vector<std::pair<int, int>> FixVertexPolygon::divide(const std::vector<Divi
       ok = ok && (int) rm.size() <= width && (int) rd.size() <= width;
       // A corner of either half close to the new edge (a reflex corner of a
       // concave mother next to the cut) would cross it within a few steps:
-      // such a division is refused.  Close: within a fifth of the new edge.
+      // such a division is refused.  Close: within a fifth of the new edge's
+      // length; the corners joined to its ends (along the old edges) do not
+      // count.
       if (ok) {
         const tessera::Vec2 e = tc.delta(v1, v2);
         const double le2 = e.x * e.x + e.y * e.y;
-        for (const std::vector<int> *half : {&rm, &rd})
-          for (int v : *half) {
-            if (v == v1 || v == v2) continue;
+        for (const std::vector<int> *half : {&rm, &rd}) {
+          const int n = (int) half->size();
+          for (int k = 0; k < n; k++) {
+            const int v = (*half)[k], prev = (*half)[(k + n - 1) % n], next = (*half)[(k + 1) % n];
+            if (v == v1 || v == v2 || prev == v1 || prev == v2 || next == v1 || next == v2)
+              continue;
             const tessera::Vec2 a = tc.delta(v1, v);
             const double s = std::min(1.0, std::max(0.0, (a.x * e.x + a.y * e.y) / le2));
             const double dx = a.x - s * e.x, dy = a.y - s * e.y;
             if (dx * dx + dy * dy < 0.04 * le2) ok = false;
           }
+        }
       }
       if (ok) {
         r[OK] = 1.0;

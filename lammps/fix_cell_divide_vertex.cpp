@@ -44,6 +44,7 @@ void FixCellDivide::divide_vertex_cells()
     if (found == pending.end()) continue;
     const auto rank = daughter_tag.find(atom->tag[i]);
     if (rank == daughter_tag.end() || (bigint) rank->second >= room) continue;    // the cap
+    if (!takes(i)) continue;    // began to die at this step (fix cell/death)
     mothers.push_back({atom->tag[i], found->second[0], found->second[1], (bigint) rank->second});
     where[atom->tag[i]] = {atom->x[i][0], atom->x[i][1]};
   }

@@ -315,6 +315,17 @@ print "N $(f_die) $(f_div)"
         run = self.run_lmp(script, files={"start.data": Data.data(self)})
         self.assertEqual(printed(run, "N")[0], [4.0, 0.0])
 
+    def test_dying_cell_does_not_divide(self):
+        """Every cell decides to die and to divide at step 0: all begin to
+        die at step 1 (fix die comes first), and none divides then or later."""
+        script = head() + """fix die cells cell/death rate 1000 seed 77 min 0
+fix div cells cell/divide rate 1000 seed 5
+run 3
+print "N $(f_die) $(f_div)"
+"""
+        run = self.run_lmp(script, files={"start.data": Data.data(self)})
+        self.assertEqual(printed(run, "N")[0], [float(NCELLS), 0.0])
+
     def test_long_active_run(self):
         """Fast polarity, divisions and deaths at the same rate: hundreds of
         events, every cell valid every step (the pair style checks each cell

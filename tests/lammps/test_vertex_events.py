@@ -10,6 +10,8 @@ ranks; a restart continues the run; a long active run with hundreds of
 divisions and deaths stays valid; bad input stops with an error naming the
 fix."""
 
+import os
+
 import numpy as np
 
 import lmptest
@@ -393,6 +395,28 @@ compute t all pair vertex/polygon
         np.testing.assert_array_equal(a["id"], b["id"])
         for col in ("x", "y"):
             np.testing.assert_allclose(a[col], b[col], rtol=0, atol=1e-9)
+
+
+EXAMPLES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples")
+
+
+class Example(LammpsTestCase):
+
+    def test_vertex_growth(self):
+        """examples/vertex_growth, shortened (t = 8, cap 70): the cells divide
+        (one cell atom and two vertex atoms each), the box follows the cell
+        number (mean area 1) and the tissue at the end is valid."""
+        with open(os.path.join(EXAMPLES, "vertex_growth", "in.vertex_growth")) as f:
+            script = f.read()
+        script += 'print "N $(v_ncell) $(f_div[2]) $(atoms) $(lx*ly)"\n'
+        run = self.run_lmp(script, variables={"tend": "8", "Nmax": "70"})
+        ncell, ndiv, natoms, area = printed(run, "N")[0]
+        self.assertGreater(ndiv, 10)
+        self.assertEqual(ncell, 50 + ndiv)
+        self.assertEqual(natoms, 3 * ncell)
+        self.assertAlmostEqual(area / ncell, 1.0, delta=1e-6)
+        _, _, rings, _, _ = check_tissue(self, run.text("vertex_growth.data"), "example")
+        self.assertEqual(len(rings), ncell)
 
 
 class BadInput(LammpsTestCase):

@@ -6,8 +6,9 @@
    vertex/polygon; doc/model.md, "Division and death"): a cell that dies is
    not deleted with its ring, which would leave a hole, but begins to die: its
    preferred area d_area0 and perimeter d_perim0 become those of a cell 0.03
-   times its size (A0 times 0.0009, P0 times 0.03), so that it shrinks, loses sides by T1s and leaves
-   by the model's own T2 (extrusion) once it is a triangle below the T2 area.
+   times its size (A0 times 0.0009, P0 times 0.03), so that it shrinks, loses
+   sides by T1s and leaves by the model's own T2 (extrusion) once it is a
+   triangle below the T2 area.
    The death is counted and logged when it begins; a dying cell no longer
    counts among the living cells of 'min N', neither dies again nor divides.
 ------------------------------------------------------------------------- */

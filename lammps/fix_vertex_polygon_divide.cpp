@@ -168,8 +168,9 @@ std::vector<std::pair<int, int>> FixVertexPolygon::divide(const std::vector<Divi
   const int nrec = total / rec;
   std::vector<const double *> recs(nrec);
   for (int k = 0; k < nrec; k++) recs[k] = all.data() + (size_t) k * rec;
-  std::sort(recs.begin(), recs.end(),
-            [](const double *a, const double *b) { return a[PLACE] < b[PLACE]; });
+  std::sort(recs.begin(), recs.end(), [](const double *a, const double *b) {
+    return a[PLACE] < b[PLACE];
+  });
 
   // A division that changes a cell an earlier one changes waits: dropped.
   std::set<tagint> changed;
@@ -252,7 +253,8 @@ std::vector<std::pair<int, int>> FixVertexPolygon::divide(const std::vector<Divi
       if (a == 0) {
         x[j][0] = r[DX];
         x[j][1] = r[DY];
-        for (int c = 0; c < width; c++) rg[j][c] = c < (int) r[LEN_D] ? (int) r[HEAD + width + c] : 0;
+        for (int c = 0; c < width; c++)
+          rg[j][c] = c < (int) r[LEN_D] ? (int) r[HEAD + width + c] : 0;
         made.emplace_back(from, j);
       } else {
         // Next to its template, by the minimum image.

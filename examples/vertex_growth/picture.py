@@ -4,7 +4,7 @@
 unwrapped by the minimum image) coloured by generation (f_div[2] of
 cells.dump), and N(t) from the log against 50 exp(R t).
 
-    /usr/bin/python3 picture.py vertex_growth.data cells.dump log.vertex_growth.1 -o vertex_growth.png
+    /usr/bin/python3 picture.py vertex_growth.data cells.dump log.lammps -o vertex_growth.png
 """
 
 import argparse

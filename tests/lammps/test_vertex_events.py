@@ -103,7 +103,8 @@ class Division(LammpsTestCase):
         """The tissue before and after each of nsteps steps without motion
         (no integrator: the vertices stay where the cut puts them)."""
         # No T1 or T2: nothing but the cuts changes the tissue.
-        script = head().replace(" t1 0.04 0.06 t2 0.05", "") + extra + fix + "\nthermo_style custom step atoms f_div c_t[3]\n"
+        script = (head().replace(" t1 0.04 0.06 t2 0.05", "") + extra + fix
+                  + "\nthermo_style custom step atoms f_div c_t[3]\n")
         script += "thermo_modify norm no\nrun 0\nwrite_data d0.data\n"
         for k in range(1, nsteps + 1):
             script += f"run 1\nwrite_data d{k}.data\nprint \"S{k} $(f_div) $(atoms)\"\n"
@@ -167,8 +168,9 @@ class Division(LammpsTestCase):
             x = np.array(atoms1[v][1:])
             for a, b in zip(ring, ring[1:] + ring[:1]):
                 seg = polygon(box, {0: (0, *x), a: atoms0[a], b: atoms0[b]}, [0, a, b])
-                s = np.dot(seg[0] - seg[1], seg[2] - seg[1]) / np.dot(seg[2] - seg[1], seg[2] - seg[1])
-                dist = np.linalg.norm(seg[1] + s * (seg[2] - seg[1]) - seg[0])
+                e = seg[2] - seg[1]
+                s = np.dot(seg[0] - seg[1], e) / np.dot(e, e)
+                dist = np.linalg.norm(seg[1] + s * e - seg[0])
                 if dist < 1e-9 and (abs(s - 0.1) < 1e-9 or abs(s - 0.9) < 1e-9):
                     return True
         return False
@@ -283,7 +285,8 @@ class Death(LammpsTestCase):
         takes it; no other cell leaves; the tissue stays valid."""
         _, atoms, _, _ = parse_data(Data.data(self))
         x, y = atoms[40][1:]
-        script = head() + f"""region one block {x - 0.2} {x + 0.2} {y - 0.2} {y + 0.2} -1 1 units box
+        region = f"{x - 0.2} {x + 0.2} {y - 0.2} {y + 0.2} -1 1"
+        script = head() + f"""region one block {region} units box
 fix b vertices brownian 1.0 1 gamma_t 1.0 rng none
 fix die cells cell/death rate 1000 seed 77 region one file die.log
 thermo_style custom step atoms c_t[2]
@@ -448,7 +451,8 @@ class BadInput(LammpsTestCase):
         self.assertIn("t2 0", out)
 
     def test_one_divide_fix(self):
-        self.fails("fix d1 cells cell/divide rate 1 seed 3\nfix d2 cells cell/divide rate 1 seed 4\n",
+        self.fails("fix d1 cells cell/divide rate 1 seed 3\n"
+                   "fix d2 cells cell/divide rate 1 seed 4\n",
                    "fix cell/divide d1", "takes one fix cell/divide (2 are defined)")
 
 

@@ -79,7 +79,9 @@ def centroid(p):
     x, y = p[:, 0], p[:, 1]
     cr = x * np.roll(y, -1) - np.roll(x, -1) * y
     a = 0.5 * cr.sum()
-    return np.array([((x + np.roll(x, -1)) * cr).sum(), ((y + np.roll(y, -1)) * cr).sum()]) / (6 * a)
+    cx = ((x + np.roll(x, -1)) * cr).sum()
+    cy = ((y + np.roll(y, -1)) * cr).sum()
+    return np.array([cx, cy]) / (6 * a)
 
 
 def _cross(p, q, r, s):

@@ -64,6 +64,8 @@ void FixVertexPolygon::init()
   // written) stay scheduled.
   const bigint now = update->ntimestep;
   next_reneighbor = -1;
+  // fix cell/divide decides again at the setup of the run (and says so then).
+  division_step = -1;
   for (bigint s : {pair->topology_step, pair->delete_step})
     if (s > now && (next_reneighbor < 0 || s < next_reneighbor)) next_reneighbor = s;
 }

@@ -20,6 +20,8 @@
 #include "error.h"
 #include "force.h"
 #include "output.h"
+#include "cell_source.h"
+#include "memory.h"
 #include "pair_vertex_voronoi.h"
 #include "region.h"
 #include "update.h"
@@ -109,6 +111,19 @@ FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
   extscalar = 0;
   extvector = 0;
   restart_global = 1;
+  restart_peratom = 1;
+  create_attribute = 1;
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+  for (int i = 0; i < atom->nlocal; i++) set_arrays(i);
+}
+
+FixCellDeath::~FixCellDeath()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  memory->destroy(dying_since);
 }
 
 int FixCellDeath::setmask()
@@ -118,24 +133,15 @@ int FixCellDeath::setmask()
 
 void FixCellDeath::init()
 {
-  {
-    // The vertex model's cells are rings of vertex atoms (pair_style
-    // vertex/polygon): this fix does not know them yet.
-    CellSource *source = CellSource::find(lmp);
-    if (source && source->cells_are_vertices())
-      error->all(FLERR,
-                 "fix cell/death {}: death of vertex-model cells (pair_style vertex/polygon) is "
-                 "not implemented yet: a dying cell must shrink to a triangle and leave by a T2 "
-                 "(extrusion), not be deleted with its ring",
-                 id);
-  }
   log.open();
   region = nullptr;
   if (!region_id.empty()) {
     region = find_region(domain, region_id);
     if (!region) error->all(FLERR, "fix cell/death: region '{}' no longer exists", region_id);
   }
-  pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  pair = CellSource::find(lmp);
+  vertex = pair && pair->cells_are_vertices();
+  if (vertex) init_vertex();
   // A tessellation of a sphere needs 4 cells: there the floor is at least 4.
   const bool sphere = pair && pair->on_sphere();
   if (sphere && min_user >= 0 && min_user < SPHERE_MIN_CELLS)
@@ -146,9 +152,8 @@ void FixCellDeath::init()
   min_cells = min_user >= 0 ? min_user : sphere ? SPHERE_MIN_CELLS : 1;
   warned_floor = 0;
   if (!pair && trigger == AREA)
-    error->all(FLERR,
-               "fix cell/death: the area trigger needs pair_style vertex/voronoi (its "
-               "tessellation gives the cells' areas)");
+    error->all(FLERR, "fix cell/death: the area trigger needs {} (its cells give the cells' areas)",
+               CellSource::styles());
 }
 
 /* Whether the fix takes owned atom i: a cell of its group (particles in
@@ -156,7 +161,7 @@ void FixCellDeath::init()
 
 bool FixCellDeath::takes(int i) const
 {
-  return (atom->mask[i] & groupbit) && cell_group::is_cell(pair, atom->type[i]);
+  return (atom->mask[i] & groupbit) && cell_group::is_cell(pair, atom->type[i]) && !dying(i);
 }
 
 /* How many cells may die now above the floor: the cells of the whole
@@ -165,7 +170,9 @@ bool FixCellDeath::takes(int i) const
 bigint FixCellDeath::floor_room() const
 {
   if (min_cells <= 0) return MAXBIGINT;
-  return MAX((bigint) 0, cell_group::count_cells(lmp, pair) - min_cells);
+  // (the vertex model: cells that are dying are no longer living cells)
+  const bigint dead = vertex ? count_dying() : 0;
+  return MAX((bigint) 0, cell_group::count_cells(lmp, pair) - dead - min_cells);
 }
 
 /* As for fix cell/divide, a run's setup re-makes the current step's decisions. */
@@ -240,6 +247,10 @@ void FixCellDeath::pre_exchange()
 {
   if (next_reneighbor != update->ntimestep) return;
   next_reneighbor = -1;
+  if (vertex) {
+    start_dying();
+    return;
+  }
   // min N again, against the cell count now: another fix cell/death may have
   // removed cells at this step since the decisions, so that the floor holds
   // for the whole system (divisions only add cells).
@@ -279,6 +290,63 @@ double FixCellDeath::compute_scalar()
 double FixCellDeath::compute_vector(int n)
 {
   return events.vector(n, update->ntimestep);
+}
+
+double FixCellDeath::memory_usage()
+{
+  return (double) atom->nmax * sizeof(double);
+}
+
+void FixCellDeath::grow_arrays(int nmax)
+{
+  memory->grow(dying_since, nmax, "cell/death:dying_since");
+}
+
+void FixCellDeath::copy_arrays(int i, int j, int /*delflag*/)
+{
+  dying_since[j] = dying_since[i];
+}
+
+void FixCellDeath::set_arrays(int i)
+{
+  dying_since[i] = 0.0;
+}
+
+int FixCellDeath::pack_exchange(int i, double *buf)
+{
+  buf[0] = dying_since[i];
+  return 1;
+}
+
+int FixCellDeath::unpack_exchange(int nlocal, double *buf)
+{
+  dying_since[nlocal] = buf[0];
+  return 1;
+}
+
+int FixCellDeath::pack_restart(int i, double *buf)
+{
+  buf[0] = 2;
+  buf[1] = dying_since[i];
+  return 2;
+}
+
+void FixCellDeath::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  dying_since[nlocal] = extra[nlocal][m + 1];
+}
+
+int FixCellDeath::size_restart(int /*nlocal*/)
+{
+  return 2;
+}
+
+int FixCellDeath::maxsize_restart()
+{
+  return 2;
 }
 
 /* The global record: the event count and clock (cell_events::EventCount). */

@@ -24,6 +24,7 @@ namespace LAMMPS_NS {
 class FixCellDeath : public Fix {
  public:
   FixCellDeath(class LAMMPS *, int, char **);
+  ~FixCellDeath() override;
   int setmask() override;
   void init() override;
   void setup(int) override;
@@ -33,6 +34,19 @@ class FixCellDeath : public Fix {
   double compute_vector(int) override;
   void write_restart(FILE *) override;
   void restart(char *) override;
+  // Per atom: whether the cell is dying (the vertex model: it shrinks until
+  // a T2 takes it; fix_cell_death_vertex.cpp).
+  double memory_usage() override;
+  void grow_arrays(int) override;
+  void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
+  int pack_exchange(int, double *) override;
+  int unpack_exchange(int, double *) override;
+  int pack_restart(int, double *) override;
+  void unpack_restart(int, int) override;
+  int size_restart(int) override;
+  int maxsize_restart() override;
+  bool dying(int i) const { return dying_since && dying_since[i] > 0.0; }
 
  protected:
   enum Trigger { RATE, AREA };
@@ -44,7 +58,10 @@ class FixCellDeath : public Fix {
   int warned_floor = 0;    // the floor held back deaths (said once per run)
   std::string region_id;
   class Region *region;
-  class PairVertexVoronoi *pair;
+  class CellSource *pair;
+  bool vertex = false;    // the vertex model (pair_style vertex/polygon)
+  int area0_index = -1, perim0_index = -1;
+  double *dying_since = nullptr;    // per atom: 0, or the time the cell began to die
   bool noted_particles = false;
   bool takes(int i) const;    // owned atom i is a cell of the group
   bigint floor_room() const;
@@ -54,6 +71,9 @@ class FixCellDeath : public Fix {
   cell_events::EventLog log;    // keyword file
 
   void decide();
+  void init_vertex();    // fix_cell_death_vertex.cpp
+  void start_dying();
+  bigint count_dying() const;
 };
 
 }    // namespace LAMMPS_NS

@@ -22,11 +22,14 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
+#include "fix_cell_death.h"
+#include "fix_vertex_polygon.h"
 #include "force.h"
+#include "modify.h"
 #include "math_const.h"
 #include "memory.h"
 #include "output.h"
-#include "pair_vertex_voronoi.h"
+#include "cell_source.h"
 #include "region.h"
 #include "update.h"
 
@@ -248,28 +251,36 @@ int FixCellDivide::setmask()
 
 void FixCellDivide::init()
 {
-  {
-    // The vertex model's cells are rings of vertex atoms (pair_style
-    // vertex/polygon): this fix does not know them yet.
-    CellSource *source = CellSource::find(lmp);
-    if (source && source->cells_are_vertices())
-      error->all(FLERR,
-                 "fix cell/divide {}: division of vertex-model cells (pair_style vertex/polygon) "
-                 "is not implemented yet: a daughter needs a new cell atom, two new vertex atoms "
-                 "and new rings for the mother, the daughter and the two neighbours across the cut",
-                 id);
+  // The vertex model divides a cell by a new edge through it
+  // (fix_cell_divide_vertex.cpp), through its internal fix.
+  vertex = nullptr;
+  deaths.clear();
+  int ndivide = 0;
+  for (int k = 0; k < modify->nfix; k++) {
+    if (strcmp(modify->fix[k]->style, "cell/death") == 0)
+      deaths.push_back(dynamic_cast<FixCellDeath *>(modify->fix[k]));
+    if (strcmp(modify->fix[k]->style, "VERTEX_POLYGON") == 0)
+      vertex = dynamic_cast<FixVertexPolygon *>(modify->fix[k]);
+    if (strcmp(modify->fix[k]->style, "cell/divide") == 0) ndivide++;
   }
+  if (vertex && ndivide > 1)
+    error->all(FLERR,
+               "fix cell/divide {}: pair_style vertex/polygon takes one fix cell/divide ({} are "
+               "defined): its divisions need the ghost atoms, which the first one's new atoms "
+               "replace; give the cells of every group one fix (a per-cell rate: rate d_name)",
+               id, ndivide);
   log.open();
   region = nullptr;
   if (!region_id.empty()) {
     region = find_region(domain, region_id);
     if (!region) error->all(FLERR, "fix cell/divide: region '{}' no longer exists", region_id);
   }
-  pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  pair = CellSource::find(lmp);
   if (!pair && (trigger == AREA || axis == LONG || axis == SHORT))
     error->all(FLERR,
-               "fix cell/divide: the area trigger and axis long/short need pair_style "
-               "vertex/voronoi (its tessellation gives the cells' shapes)");
+               "fix cell/divide: the area trigger and axis long/short need {} (its cells give "
+               "the cells' shapes)",
+               CellSource::styles());
   int flag = -1, cols = -1;
   split_index.clear();
   for (const std::string &name : split_names) {
@@ -313,7 +324,10 @@ void FixCellDivide::init()
 
 bool FixCellDivide::takes(int i) const
 {
-  return (atom->mask[i] & groupbit) && cell_group::is_cell(pair, atom->type[i]);
+  if (!(atom->mask[i] & groupbit) || !cell_group::is_cell(pair, atom->type[i])) return false;
+  for (const FixCellDeath *d : deaths)
+    if (d->dying(i)) return false;
+  return true;
 }
 
 /* The base preferred area of cells that have none yet (before the first run,
@@ -548,6 +562,7 @@ void FixCellDivide::decide()
   // Daughter IDs are assigned at the event (after any deaths) from this order.
   for (size_t k = 0; k < all.size(); k++) daughter_tag[all[k].second] = static_cast<tagint>(k);
   next_reneighbor = update->ntimestep + 1;
+  if (vertex) vertex->division_step = next_reneighbor;
 }
 
 /* How many more cells max N allows now (no cap: any number).  It counts
@@ -583,6 +598,10 @@ void FixCellDivide::pre_exchange()
 {
   if (next_reneighbor != update->ntimestep) return;
   next_reneighbor = -1;
+  if (vertex) {
+    divide_vertex_cells();
+    return;
+  }
 
   tagint maxtag = 0, maxtag_all = 0;
   for (int i = 0; i < atom->nlocal; i++) maxtag = MAX(maxtag, atom->tag[i]);
@@ -623,24 +642,7 @@ void FixCellDivide::pre_exchange()
       x[i][d] -= h * u[d];
       x[j][d] += h * u[d];
     }
-    for (const int k : {i, j}) {
-      cellstate[k][AGE] = 0.0;
-      cellstate[k][GENERATION] += 1.0;
-      cellstate[k][MOTHER] = (double) mother;
-      cellstate[k][BIRTH] = decide_time;
-      cellstate[k][CYCLE_TIME] = draw_cycle(atom->tag[k], step);
-      if (growth && cellstate[k][AREA0_BASE] > 0.0)
-        atom->dvector[area0_index][k] = cellstate[k][AREA0_BASE];
-      if (atom->mu_flag) {
-        double *mu = atom->mu[k];
-        double n[3];
-        daughter_polarity(seed, atom->tag[k], step, noise, domain->dimension, mu, n);
-        mu[0] = n[0];
-        mu[1] = n[1];
-        mu[2] = n[2];
-        mu[3] = 1.0;
-      }
-    }
+    for (const int k : {i, j}) born(k, mother, step);
   }
   pending.clear();
   daughter_tag.clear();
@@ -655,6 +657,31 @@ void FixCellDivide::pre_exchange()
     atom->map_set();
   }
   if (nall > 0) refresh_dumps(output);
+}
+
+/* The state of daughter k of mother (both daughters: the mother's atom and
+   the new one): age 0, one generation more, her mother and birth time, a
+   new cycle time, the base preferred area under growth linear, and her
+   polarity with the noise. */
+
+void FixCellDivide::born(int k, tagint mother, uint64_t step)
+{
+  cellstate[k][AGE] = 0.0;
+  cellstate[k][GENERATION] += 1.0;
+  cellstate[k][MOTHER] = (double) mother;
+  cellstate[k][BIRTH] = decide_time;
+  cellstate[k][CYCLE_TIME] = draw_cycle(atom->tag[k], step);
+  if (growth && cellstate[k][AREA0_BASE] > 0.0)
+    atom->dvector[area0_index][k] = cellstate[k][AREA0_BASE];
+  if (atom->mu_flag) {
+    double *mu = atom->mu[k];
+    double n[3];
+    daughter_polarity(seed, atom->tag[k], step, noise, domain->dimension, mu, n);
+    mu[0] = n[0];
+    mu[1] = n[1];
+    mu[2] = n[2];
+    mu[3] = 1.0;
+  }
 }
 
 /* The division rate of owned cell i from 'rate d_name', which must be

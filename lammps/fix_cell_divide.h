@@ -70,7 +70,9 @@ class FixCellDivide : public Fix {
   double decide_time;          // time of the step whose end made the pending decisions
   bool cap_warned;             // the max-with-growth warning was given
   class Region *region;
-  class PairVertexVoronoi *pair;
+  class CellSource *pair;
+  class FixVertexPolygon *vertex = nullptr;    // the vertex model's internal fix
+  std::vector<class FixCellDeath *> deaths;    // a dying cell does not divide
   bool noted_particles = false;
   bool takes(int i) const;    // owned atom i is a cell of the group
   int area0_index;    // d_area0 in atom->dvector, or -1
@@ -95,6 +97,8 @@ class FixCellDivide : public Fix {
   bigint cap_room() const;
   void warn_cap(bigint);
   void decide();
+  void born(int i, tagint mother, uint64_t step);
+  void divide_vertex_cells();    // fix_cell_divide_vertex.cpp
 };
 
 }    // namespace LAMMPS_NS

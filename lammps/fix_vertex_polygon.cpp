@@ -64,6 +64,8 @@ void FixVertexPolygon::init()
   // written) stay scheduled.
   const bigint now = update->ntimestep;
   next_reneighbor = -1;
+  // fix cell/divide decides again at the setup of the run (and says so then).
+  division_step = -1;
   for (bigint s : {pair->topology_step, pair->delete_step})
     if (s > now && (next_reneighbor < 0 || s < next_reneighbor)) next_reneighbor = s;
 }
@@ -98,6 +100,13 @@ void FixVertexPolygon::setup(int vflag)
 }
 
 void FixVertexPolygon::pre_exchange()
+{
+  // Divisions at this step need the ghosts: they delete after dividing.
+  if (update->ntimestep == pair->delete_step && division_step != update->ntimestep)
+    delete_removed();
+}
+
+void FixVertexPolygon::delete_due()
 {
   if (update->ntimestep == pair->delete_step) delete_removed();
 }

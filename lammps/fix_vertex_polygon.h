@@ -14,6 +14,9 @@ FixStyle(VERTEX_POLYGON,FixVertexPolygon);
 
 #include "fix.h"
 
+#include "tessera/vertex_model.h"
+
+#include <string>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -63,6 +66,26 @@ class FixVertexPolygon : public Fix {
   // Sums per-atom counts (one double per local atom) from ghosts onto owners.
   void reverse_counts(std::vector<double> &count);
 
+  // Division of cells by a new edge (fix cell/divide; doc/model.md, "Division
+  // and death"), in a pre_exchange, before any deletion: every rank passes
+  // the mothers it owns (atom ID, the unit axis, the place in the step's
+  // global order); new atom IDs are first_tag + 3 place (the daughter) and
+  // + 1, + 2 (the two new vertices).  Returns the (mother, daughter) local
+  // indices of the divisions carried out whose mother this rank owns; *done
+  // and *refused (optional) count them on all ranks.  Collective.
+  struct Division {
+    tagint mother;
+    double ux, uy;
+    bigint place;
+  };
+  std::vector<std::pair<int, int>> divide(const std::vector<Division> &mothers, tagint first_tag,
+                                          bigint *done = nullptr, bigint *refused = nullptr);
+  // The step whose pre_exchange divides cells (its deletion of atoms a T2
+  // removed waits for the divisions, which need the ghosts).
+  bigint division_step = -1;
+  void delete_removed();
+  void delete_due();    // delete_removed() if this step is the one a T2 asked for
+
  private:
   enum Mode { RINGS, CANONICAL, SHARE, COUNT, VELOCITY };
   int mode = RINGS;
@@ -72,7 +95,9 @@ class FixVertexPolygon : public Fix {
   void cell_velocities();
   // One pass of the rule; returns the number of events carried out (all ranks).
   bigint run_topology();
-  void delete_removed();
+  void build_patch(tessera::VertexTissue &t, tessera::EdgeMap &m);
+  bool owned(tagint id) const;
+  void thin(const std::string &what) const;
 };
 
 }    // namespace LAMMPS_NS

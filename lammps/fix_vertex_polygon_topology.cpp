@@ -34,7 +34,12 @@ const char *kind_name(const tessera::TopologyEvent &e)
 
 }    // namespace
 
-bigint FixVertexPolygon::run_topology()
+/* The patch of cells this rank sees (by ID, with the owners' coordinates,
+   so that what the rule computes is the same number on every rank), checked
+   to hold whole what this rank owns: its cells and their neighbours, and the
+   three cells of each of its vertices.  Collective (forward communication). */
+
+void FixVertexPolygon::build_patch(tessera::VertexTissue &t, tessera::EdgeMap &m)
 {
   PairVertexPolygon &p = *pair;
   forward_rings();
@@ -43,10 +48,7 @@ bigint FixVertexPolygon::run_topology()
   const int *type = atom->type;
   const tagint *tag = atom->tag;
   int **ring = atom->iarray[p.ring_index];
-  const int width = p.ring_width;
 
-  // Every copy gets its owner's coordinates: what the rule computes is then
-  // the same number on every rank.
   canon.assign(2 * static_cast<size_t>(nall), 0.0);
   for (int i = 0; i < nlocal; i++) {
     canon[2 * i] = x[i][0];
@@ -55,8 +57,7 @@ bigint FixVertexPolygon::run_topology()
   mode = CANONICAL;
   tessera_compat::forward_comm(comm, this);
 
-  // The patch: the cells this rank sees, by ID, and their vertices.
-  tessera::VertexTissue t;
+  t = tessera::VertexTissue();
   t.periodic = true;
   t.box =
       tessera::Box::rect(domain->boxlo[0], domain->boxhi[0], domain->boxlo[1], domain->boxhi[1]);
@@ -82,20 +83,7 @@ bigint FixVertexPolygon::run_topology()
     t.type.push_back(type[i] - 1);
     t.cell_id.push_back(tag[i]);
   }
-  const tessera::EdgeMap m(t);
-  auto owned = [&](tagint id) {
-    const int j = atom->map(id);
-    return j >= 0 && j < nlocal;
-  };
-  auto thin = [&](const std::string &what) {
-    error->one(FLERR,
-               "pair_style vertex/polygon at step {}: {} is not complete among this rank's atoms: "
-               "the cutoff {} is too small for the topology (use about 3.5 cell diameters, e.g. "
-               "{:.3g})",
-               update->ntimestep, what, p.cut_global, 1.5 * p.cut_global);
-  };
-  // What this rank owns must be seen whole: its cells and their neighbours,
-  // and the three cells of each of its vertices.
+  m.build(t);
   std::vector<int> seen(t.n_vertices(), 0);
   for (int c = 0; c < t.n_cells(); c++) {
     if (!t.complete(c)) continue;
@@ -111,7 +99,34 @@ bigint FixVertexPolygon::run_topology()
       if (it == vertex_of.end() || seen[it->second] != 3)
         thin(fmt::format("the set of cells around vertex {}", tag[i]));
     }
+}
 
+bool FixVertexPolygon::owned(tagint id) const
+{
+  const int j = atom->map(id);
+  return j >= 0 && j < atom->nlocal;
+}
+
+void FixVertexPolygon::thin(const std::string &what) const
+{
+  error->one(FLERR,
+             "pair_style vertex/polygon at step {}: {} is not complete among this rank's atoms: "
+             "the cutoff {} is too small for the topology (use about 3.5 cell diameters, e.g. "
+             "{:.3g})",
+             update->ntimestep, what, pair->cut_global, 1.5 * pair->cut_global);
+}
+
+bigint FixVertexPolygon::run_topology()
+{
+  PairVertexPolygon &p = *pair;
+  const int nlocal = atom->nlocal;
+  double **x = atom->x;
+  int **ring = atom->iarray[p.ring_index];
+  const int width = p.ring_width;
+
+  tessera::VertexTissue t;
+  tessera::EdgeMap m;
+  build_patch(t, m);
   const std::vector<tessera::TopologyEvent> events = tessera::find_events(t, m, p.topo);
   const std::vector<tessera::EventStatus> status = tessera::decide_events(t, m, events);
   double counts[3] = {0.0, 0.0, 0.0};    // T1s, T2s, refused (by the owner of the first cell)

@@ -494,7 +494,9 @@ void PairVertexPolygon::compute(int eflag, int vflag)
     x[i][1] = m.centroid.y;
     // A topology candidate: ask for a topology step (end_of_step).
     if (!request) {
-      if (topo.t2_area > 0.0 && n == 3 && m.area < topo.t2_area) request = 1;
+      // (and a cell of more sides below the T2 area loses its shortest edge)
+      if (topo.t2_area > 0.0 && m.area < topo.t2_area && (n == 3 || topo.t1_length > 0.0))
+        request = 1;
       // An edge shorter than l_T1, or folding onto the next one (the core's
       // size of an edge, from this cell's corners).
       for (int k = 0; k < n && topo.t1_length > 0.0 && !request; k++) {

@@ -76,6 +76,7 @@ class PairVertexPolygon : public Pair, public CellSource {
   // The rings' fix property/atom: its ID, the array's name, and a ring's
   // length (entries before the first 0; 0 for a removed atom, marked -1).
   static const char *ring_fix_id() { return "vring"; }
+  const tessera::TopologyParams &topology() const { return topo; }
   int ring_length(int i) const;
 
  protected:

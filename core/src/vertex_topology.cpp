@@ -108,6 +108,24 @@ std::vector<TopologyEvent> find_events(const VertexTissue &t, const EdgeMap &m,
         continue;
       const std::vector<int> &r = t.rings[c];
       const int n = static_cast<int>(r.size());
+      // A cell of four or more sides below the T2 area (a dying cell that
+      // shrinks) loses its shortest edge whose far side has four or more
+      // sides, however long, so that it becomes a triangle for a T2.
+      int forced = -1;
+      if (p.t2_area > 0.0 && n >= 4 && t.measures(c).area < p.t2_area) {
+        double shortest = 0.0;
+        for (int k = 0; k < n; ++k) {
+          const int o = twin_cell(t, m, c, k);
+          if (o < 0 || t.rings[o].size() < 4)
+            continue;
+          const Vec2 d = t.delta(r[k], ring_next(r, k));
+          const double l = d.x * d.x + d.y * d.y;
+          if (forced < 0 || l < shortest) {
+            forced = k;
+            shortest = l;
+          }
+        }
+      }
       for (int k = 0; k < n; ++k) {
         int a = r[k], b = ring_next(r, k);
         if (t.vid(a) > t.vid(b))
@@ -121,7 +139,7 @@ std::vector<TopologyEvent> find_events(const VertexTissue &t, const EdgeMap &m,
         for (int cell : {X, Y})
           if (t.complete(cell))
             size = fold_length(t, cell, a, b, size);
-        if (!(size < p.t1_length))
+        if (!(size < p.t1_length) && k != forced)
           continue;
         const std::uint64_t key =
             (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |

@@ -6,7 +6,8 @@
 variables  an atom-style variable of each per-cell column of compute
            vertex/atom (v = c_ID[I]) equals the column itself, atom by atom
            in a dump and summed by compute reduce;
-t1_births  cells divide and die in a tissue that does not move: compute
+t1_births  cells divide and die in a tissue that does not move (the vertex
+           model: divide only, as its dying cells leave by moving): compute
            vertex/tissue's neighbour exchanges (element 3) equal, step by
            step, the new neighbour pairs counted here from dumped junctions
            among cells that existed at both steps and whose neighbourhoods
@@ -94,14 +95,18 @@ print "S $(c_vs[1]:%.17g) $(c_vs[4]:%.17g) $(c_vs[9]:%.17g) $(c_cs[1]:%.17g) $(c
     def check_t1_births(self, model):
         d = dim_of(model)
         sphere = model == "sphere"
+        # The vertex model: a dying cell leaves only by moving its corners
+        # (it shrinks until a T2 takes it), which a still tissue does not:
+        # there, births alone.
+        vertex = model.startswith("vertex_polygon")
         cols = " ".join("c_l[%d]" % k for k in range(1, 8 if d == 2 and not sphere else 10))
         steps = 6
+        die = "" if vertex else "fix die all cell/death rate 2.0 seed 1733\n"
         script = model_script(model) + f"""compute t all vertex/tissue
 compute l all vertex/local
 fix div all cell/divide rate 4.0 seed 4821 separation 0.05
-fix die all cell/death rate 2.0 seed 1733
-timestep 0.01
-thermo_style custom step atoms c_t[3] f_div[2] f_die[2]
+{die}timestep 0.01
+thermo_style custom step atoms c_t[3] f_div[2] {"" if vertex else "f_die[2]"}
 thermo 1
 dump a all custom 1 ids.dump id
 dump f all local 1 junctions.dump {cols}
@@ -115,7 +120,7 @@ run {steps}
         self.assertEqual(len(ids), steps + 1)
         counts = self.thermo_column(run.stdout, "c_t[3]")
         births = self.thermo_column(run.stdout, "f_div[2]")
-        deaths = self.thermo_column(run.stdout, "f_die[2]")
+        deaths = [] if vertex else self.thermo_column(run.stdout, "f_die[2]")
         self.assertEqual(len(counts), steps + 1)
         pairs = [neighbour_pairs(rows, d, sphere) for rows in frames]
         expected, gained = [0], 0
@@ -126,6 +131,8 @@ run {steps}
         self.assertEqual(counts, expected)
         self.assertEqual(sum(counts), 0)    # nothing moves: no exchange
         self.assertGreater(births[-1], 0)
+        if vertex:
+            return
         self.assertGreater(deaths[-1], 0)
         self.assertGreater(gained, 0)    # the deaths' neighbours met: not exchanges
 

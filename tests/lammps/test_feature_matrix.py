@@ -24,6 +24,7 @@ from feature_state import StateChecks
 from feature_models import (COEFFS_2D, COEFFS_3D, COEFFS_FINITE, PARTICLE_IDS, POLYGON_CELLS,
                             PROBES, SPHERE_C, SPHERE_R, dim_of, is_polygon, local_rows,
                             model_script, polygon_groups, printed, read_matrix)
+from vertex_check import check_tissue
 from feature_cellfix import check_particles_fixes
 from feature_signal import check_signal
 from lmptest import LammpsTestCase
@@ -295,10 +296,13 @@ thermo_style custom step atoms pe
 print "N0 $(atoms)"
 run 4
 print "N1 $(atoms)"
+write_data end.data
 """
             run = self.run_lmp(script)
             n0, n1 = printed(run, "N0")[0][0], printed(run, "N1")[0][0]
             self.assertGreater(n1, n0, f"{trigger} axis {axis}: no division")
+            if is_polygon(model):    # the cuts leave a valid tissue
+                check_tissue(self, run.text("end.data"), f"{model} {trigger} axis {axis}")
         if model in ("confluent", "3d"):
             self.check_division_axis(model)
 
@@ -371,6 +375,8 @@ write_dump all custom after.dump id x y z modify format float %.17g
         return vec[:, -1]
 
     def check_death(self, model):
+        if is_polygon(model):
+            return self.check_death_vertex(model)
         for trigger in ("rate 5.0", "area 100.0"):
             script = model_script(model) + f"""fix b all brownian 1.0 1 gamma_t 1.0 rng none
 fix die all cell/death {trigger} seed 77 min 10
@@ -384,6 +390,30 @@ print "N1 $(atoms)"
             n0, n1 = printed(run, "N0")[0][0], printed(run, "N1")[0][0]
             self.assertLess(n1, n0, trigger)
             self.assertGreaterEqual(n1, 10)
+
+    def check_death_vertex(self, model):
+        """A dying vertex-model cell shrinks (through its own d_area0 and
+        d_perim0) and leaves by T1s and a T2: fewer atoms, at least min 10
+        living cells, and a valid tissue (vertex_check, numpy)."""
+        base = model_script(model).replace(" t1 0.04 0.06\n", " t1 0.04 0.06 t2 0.05\n")
+        for trigger in ("rate 0.2", "area 0.97"):
+            script = base + f"""fix pc all property/atom d_area0 d_perim0
+set group cells d_area0 1.0
+set group cells d_perim0 3.7
+fix b all brownian 1.0 1 gamma_t 1.0 rng none
+fix die all cell/death {trigger} seed 77 min 10
+timestep 0.002
+thermo_style custom step atoms pe
+print "N0 $(atoms)"
+run 2000
+print "N1 $(atoms)"
+write_data end.data
+"""
+            run = self.run_lmp(script)
+            n0, n1 = printed(run, "N0")[0][0], printed(run, "N1")[0][0]
+            self.assertLess(n1, n0, trigger)
+            _, _, rings, _, _ = check_tissue(self, run.text("end.data"), f"{model} {trigger}")
+            self.assertGreaterEqual(len(rings), 10)
 
     def check_area0(self, model):
         # Per-cell preferred measures: the energy of each cell follows its own

@@ -196,7 +196,10 @@ struct TopologyEvent {
 
 // The candidates of a tissue or patch, each once: edges shorter than
 // t1_length between two known cells of four or more sides, enumerated from
-// complete cells; complete triangles of area below t2_area.
+// complete cells; with t2_area > 0, also the shortest edge of a complete cell
+// of four or more sides and area below t2_area among those whose other cell
+// has four or more sides (however long: so that a shrinking cell becomes a
+// triangle); complete triangles of area below t2_area.
 std::vector<TopologyEvent> find_events(const VertexTissue &t, const EdgeMap &m,
                                        const TopologyParams &p);
 

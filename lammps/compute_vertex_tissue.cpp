@@ -37,6 +37,13 @@ namespace {
 
 constexpr int NVALUES = 8;
 
+// The rows of the internal per-atom store (a FixStore in LAMMPS 2021, a
+// FixStoreAtom since; the header holds it as a Fix).
+static double **rows(Fix *fix)
+{
+  return static_cast<tessera_compat::FixStorePerAtom *>(fix)->astore;
+}
+
 // The neighbour memory of an atom (a row of the internal fix STORE):
 // COUNT is how many neighbour tags follow (-1: none yet), OWNER the atom ID
 // the row was written for, then up to MAXNEIGH neighbour tags, ascending.
@@ -138,8 +145,8 @@ void ComputeVertexTissue::init()
 
 void ComputeVertexTissue::set_arrays(int i)
 {
-  fix->astore[i][COUNT] = -1.0;
-  fix->astore[i][OWNER] = 0.0;
+  rows(fix)[i][COUNT] = -1.0;
+  rows(fix)[i][OWNER] = 0.0;
 }
 
 void ComputeVertexTissue::check_cells()
@@ -340,7 +347,7 @@ double ComputeVertexTissue::count_new_neighbors()
   const int nall = nlocal + atom->nghost;
   const int *mask = atom->mask;
   const tagint *tag = atom->tag;
-  double **memo = fix->astore;
+  double **memo = rows(fix);
 
   // Which cells existed at the previous call (they have a memory of their
   // own), on the ghosts too.

@@ -13,7 +13,6 @@ ComputeStyle(vertex/tissue,ComputeVertexTissue);
 #define LMP_COMPUTE_VERTEX_TISSUE_H
 
 #include "compute.h"
-#include "tessera_compat.h"
 
 #include <vector>
 
@@ -35,7 +34,7 @@ class ComputeVertexTissue : public Compute {
 
  protected:
   char *id_fix;
-  tessera_compat::FixStorePerAtom *fix;
+  class Fix *fix;    // the internal store (tessera_compat::FixStorePerAtom)
   class CellSource *pair;
   int warned_overflow;
 

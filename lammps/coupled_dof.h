@@ -31,17 +31,20 @@
 
 #include "lmptype.h"
 
+#include <memory>
+
 namespace LAMMPS_NS {
 
-// The destructors are protected and not virtual: nothing is deleted through
-// these interfaces, and so they add no exception specification that would
-// clash with Fix's destructor (noexcept(false) in newer LAMMPS).
+class FixPolarity;
 
 class CoupledDof {
- protected:
-  ~CoupledDof() = default;
-
  public:
+  static constexpr const char *extract_name = "tessera/coupled_dof";
+  static constexpr const char *integrator_name = "tessera/coupled_integrator";
+  // fix polarity's side (fix_polarity.cpp), which the fix owns.
+  static std::unique_ptr<CoupledDof> of(FixPolarity &);
+  virtual ~CoupledDof() = default;
+
   // Number of scalar degrees of freedom per atom.
   virtual int coupled_size() const = 0;
   // Deterministic rate dq/dt at the current positions, degrees of freedom,
@@ -79,16 +82,6 @@ class CoupledDof {
                                         int /*stride*/)
   {
   }
-};
-
-// Marks a time integrator that advances the CoupledDof fixes itself.
-class CoupledIntegrator {
- protected:
-  ~CoupledIntegrator() = default;
-
- public:
-  // Makes the class polymorphic, for dynamic_cast from Fix *.
-  virtual int integrates_coupled_dof() const { return 1; }
 };
 
 }    // namespace LAMMPS_NS

@@ -7,6 +7,8 @@
 
 #include "fix_brownian.h"
 
+#include "integrator_chatter.h"
+
 #include "atom.h"
 #include "comm.h"
 #include "domain.h"
@@ -30,7 +32,7 @@ static constexpr int MAX_MARSAGLIA_SEED = 900000000;
 /* ---------------------------------------------------------------------- */
 
 FixBrownianTessera::FixBrownianTessera(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), random(nullptr), chatter(lmp)
+    Fix(lmp, narg, arg), random(nullptr), chatter(new IntegratorChatter(lmp))
 {
   if (narg < 5)
     error->all(FLERR,
@@ -166,7 +168,7 @@ void FixBrownianTessera::initial_integrate(int /*vflag*/)
                "Fix {} (ID {}): the timestep must be > 0 to take a step (the velocity is the "
                "displacement over dt), got {}; set it with 'timestep'",
                style, id, dt);
-  chatter.start(groupbit);
+  chatter->start(groupbit);
   const bool three_d = domain->dimension == 3;
   double watch[IntegratorChatter::NSUMS] = {0.0, 0.0, 0.0, 0.0};
   switch (noise) {
@@ -179,7 +181,7 @@ void FixBrownianTessera::initial_integrate(int /*vflag*/)
     default:
       three_d ? move<NOISE_NONE, 1>(watch) : move<NOISE_NONE, 0>(watch);
   }
-  chatter.observe(style, id, watch, dt);
+  chatter->observe(style, id, watch, dt);
 }
 
 /* ----------------------------------------------------------------------

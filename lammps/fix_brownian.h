@@ -12,9 +12,12 @@
 #define TESSERA_FIX_BROWNIAN_H
 
 #include "fix.h"
-#include "integrator_chatter.h"
+
+#include <memory>
 
 namespace LAMMPS_NS {
+
+class IntegratorChatter;
 
 class FixBrownianTessera : public Fix {
  public:
@@ -39,7 +42,7 @@ class FixBrownianTessera : public Fix {
   double mobility;       // velocity per unit force: ftm2v / gamma_t
   double noise_scale;    // multiplies one random number to give one displacement component
   class RanMars *random;
-  IntegratorChatter chatter;    // warns once when the steps oscillate (period two)
+  std::unique_ptr<IntegratorChatter> chatter;    // warns once when the steps oscillate (period two)
 
   double parse_number(const char *what, const char *text);
   void set_step();

@@ -17,6 +17,9 @@
 
 #include "fix_brownian_heun.h"
 
+#include "coupled_dof.h"
+#include "integrator_chatter.h"
+
 #include "angle.h"
 #include "atom.h"
 #include "bond.h"
@@ -121,7 +124,8 @@ void FixBrownianHeun::init()
   wiener_offset.clear();
   ncoupled = nstate = nwiener_coupled = 0;
   for (int i = 0; i < modify->nfix; i++) {
-    auto *c = dynamic_cast<CoupledDof *>(modify->fix[i]);
+    int dim = 0;
+    auto *c = static_cast<CoupledDof *>(modify->fix[i]->extract(CoupledDof::extract_name, dim));
     if (!c) continue;
     coupled.push_back(c);
     coupled_offset.push_back(ncoupled);
@@ -182,7 +186,7 @@ void FixBrownianHeun::initial_integrate(int /*vflag*/)
   const bool three_d = domain->dimension == 3;
   const bigint step = update->ntimestep;
 
-  chatter.begin(groupbit);
+  chatter->begin(groupbit);
   save_start();
   // Coupled degrees of freedom: every rate at the start state before any
   // of them moves (and, for a rejected step, their state).
@@ -234,7 +238,7 @@ void FixBrownianHeun::initial_integrate(int /*vflag*/)
   est_last = est;
   err_last = err;
   if (adapt) finish_adaptive_step(err, rejected);
-  chatter.end(style, id, groupbit, dt);
+  chatter->end(style, id, groupbit, dt);
 }
 
 /* ----------------------------------------------------------------------
@@ -543,4 +547,13 @@ int FixBrownianHeun::unpack_exchange(int nlocal, double *buf)
   for (int k = 0; k < ncol; k++) saved[nlocal][k] = buf[k];
   for (int k = 0; k < qcols(); k++) qbuf[nlocal][k] = buf[ncol + k];
   return ncol + qcols();
+}
+
+/* Tells the CoupledDof fixes (fix polarity) that this fix integrates their
+   degrees of freedom (coupled_dof.h). */
+
+void *FixBrownianHeun::extract(const char *name, int &dim)
+{
+  dim = 0;
+  return strcmp(name, CoupledDof::integrator_name) == 0 ? this : nullptr;
 }

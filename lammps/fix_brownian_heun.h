@@ -17,7 +17,6 @@ FixStyle(brownian/heun,FixBrownianHeun);
 #ifndef TESSERA_FIX_BROWNIAN_HEUN_H
 #define TESSERA_FIX_BROWNIAN_HEUN_H
 
-#include "coupled_dof.h"
 #include "fix_brownian.h"
 
 #include <cstdint>
@@ -25,7 +24,9 @@ FixStyle(brownian/heun,FixBrownianHeun);
 
 namespace LAMMPS_NS {
 
-class FixBrownianHeun : public FixBrownianTessera, public CoupledIntegrator {
+class CoupledDof;
+
+class FixBrownianHeun : public FixBrownianTessera {
  public:
   FixBrownianHeun(class LAMMPS *, int, char **);
   ~FixBrownianHeun() override;
@@ -33,6 +34,7 @@ class FixBrownianHeun : public FixBrownianTessera, public CoupledIntegrator {
   void init() override;
   void setup(int) override;
   void initial_integrate(int) override;
+  void *extract(const char *, int &) override;
 
   double compute_scalar() override;
   double compute_vector(int) override;

@@ -28,6 +28,8 @@
 
 #include "fix_brownian_heun.h"
 
+#include "integrator_chatter.h"
+
 #include "atom.h"
 #include "comm.h"
 #include "domain.h"
@@ -179,7 +181,7 @@ void FixBrownianHeun::init_adapt()
   diffusion_amp = 0.0;
   if (noise == NOISE_GAUSSIAN)
     diffusion_amp = std::sqrt(2.0 * force->boltz * temperature / (force->mvv2e * gamma_t));
-  chatter.context = fmt::format("; this run's adapt tol {} gives each step an error estimate "
+  chatter->context = fmt::format("; this run's adapt tol {} gives each step an error estimate "
                                 "below {} (a length), so a period-two oscillation left is at most "
                                 "that large",
                                 tol, tol);

@@ -11,6 +11,9 @@
 
 #include "fix_cell_death.h"
 
+#include "cell_event_count.h"
+#include "cell_event_log.h"
+
 #include "atom.h"
 #include "atom_vec.h"
 #include "cell_events.h"
@@ -38,8 +41,14 @@ static constexpr bigint SPHERE_MIN_CELLS = 4;
 static const char SYNTAX[] =
     "fix ID group cell/death rate R | area Amin, seed S [region ID] [min N] [file path]";
 
+struct FixCellDeath::Impl {
+  cell_events::EventCount events;
+  cell_events::EventLog log;
+};
+
 FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), region(nullptr), pair(nullptr)
+    Fix(lmp, narg, arg), region(nullptr), pair(nullptr), impl(new Impl),
+    events(impl->events), log(impl->log)
 {
   clock = update->atime + (double) (update->ntimestep - update->atimestep) * update->dt;
   trigger = -1;
@@ -110,6 +119,8 @@ FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
   extvector = 0;
   restart_global = 1;
 }
+
+FixCellDeath::~FixCellDeath() = default;
 
 int FixCellDeath::setmask()
 {

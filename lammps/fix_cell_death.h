@@ -12,18 +12,23 @@ FixStyle(cell/death,FixCellDeath);
 #ifndef LMP_FIX_CELL_DEATH_H
 #define LMP_FIX_CELL_DEATH_H
 
-#include "cell_event_count.h"
-#include "cell_event_log.h"
 #include "fix.h"
 
+#include <memory>
 #include <string>
 #include <unordered_map>
 
 namespace LAMMPS_NS {
 
+namespace cell_events {
+struct EventCount;
+class EventLog;
+}    // namespace cell_events
+
 class FixCellDeath : public Fix {
  public:
   FixCellDeath(class LAMMPS *, int, char **);
+  ~FixCellDeath() override;
   int setmask() override;
   void init() override;
   void setup(int) override;
@@ -50,8 +55,12 @@ class FixCellDeath : public Fix {
   bigint floor_room() const;
   // Cells that die at the next step -> their place in the sorted list (min N).
   std::unordered_map<tagint, bigint> pending;
-  cell_events::EventCount events;
-  cell_events::EventLog log;    // keyword file
+  // The event count and the keyword file's log (cell_event_count.h,
+  // cell_event_log.h) in Impl (the .cpp), named by events and log.
+  struct Impl;
+  std::unique_ptr<Impl> impl;
+  cell_events::EventCount &events;
+  cell_events::EventLog &log;    // keyword file
 
   void decide();
 };

@@ -15,6 +15,9 @@
 
 #include "fix_cell_divide.h"
 
+#include "cell_event_count.h"
+#include "cell_event_log.h"
+
 #include "atom.h"
 #include "atom_vec.h"
 #include "cell_events.h"
@@ -42,9 +45,15 @@ static const char SYNTAX[] =
     "random|long|short|polarity] [separation d] [growth none|linear] [region ID] [max N] "
     "[noise eta] [file path] [split d_name ...]";
 
+struct FixCellDivide::Impl {
+  cell_events::EventCount events;
+  cell_events::EventLog log;
+};
+
 FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), decide_time(0.0), cap_warned(false), region(nullptr), pair(nullptr),
-    area0_index(-1), cellstate(nullptr)
+    area0_index(-1), cellstate(nullptr), impl(new Impl),
+    events(impl->events), log(impl->log)
 {
   // The fix's clock starts at LAMMPS's time now (0 at the first run) and is
   // advanced by the fix itself: its value is kept in the restart file.

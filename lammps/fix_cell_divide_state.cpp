@@ -13,6 +13,8 @@
 #include "cell_events.h"
 #include "comm.h"
 #include "memory.h"
+#include "cell_event_count.h"
+#include "cell_event_log.h"
 
 #include <cstdio>
 

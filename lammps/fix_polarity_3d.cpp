@@ -17,6 +17,7 @@
 
 #include "tessera/counter_rng.h"
 #include "tessera/sphere.h"
+#include "tessera/polarity.h"
 
 #include <algorithm>
 #include <cmath>

@@ -16,6 +16,7 @@
 #include "force.h"
 #include "modify.h"
 #include "update.h"
+#include "tessera/subset_cells.h"
 
 #include <cmath>
 #include <cstring>

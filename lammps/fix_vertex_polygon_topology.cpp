@@ -20,6 +20,7 @@
 #include "domain.h"
 #include "error.h"
 #include "update.h"
+#include "tessera/vertex_model.h"
 
 #include <unordered_map>
 

@@ -9,7 +9,10 @@
 
 #include "pair_vertex_polygon.h"
 
+#include "cell_source.h"
 #include "fix_vertex_polygon.h"
+
+#include "tessera/vertex_model.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -29,7 +32,15 @@
 
 using namespace LAMMPS_NS;
 
-PairVertexPolygon::PairVertexPolygon(LAMMPS *lmp) : Pair(lmp)
+struct PairVertexPolygon::Impl {
+  tessera::TopologyParams topo;
+  tessera::Model model;
+  tessera::PolygonCells view, shown;
+};
+
+PairVertexPolygon::PairVertexPolygon(LAMMPS *lmp) :
+    Pair(lmp), impl(new Impl), topo(impl->topo), model(impl->model), view(impl->view),
+    shown(impl->shown)
 {
   single_enable = 0;
   restartinfo = 1;
@@ -440,6 +451,10 @@ void PairVertexPolygon::compute(int eflag, int vflag)
   std::vector<int> nt;
   std::vector<long> ids;
   double energy = 0.0;
+  // The Tessera values held in Impl, bound once per compute (not per cell).
+  const tessera::Model &model = this->model;
+  const tessera::TopologyParams &topo = this->topo;
+  tessera::PolygonCells &view = this->view;
   const double l2 = topo.t1_length * topo.t1_length;
   const bool percell = model.has_cell_params();
   nforce++;
@@ -578,7 +593,27 @@ void *PairVertexPolygon::extract(const char *str, int &dim)
   if (strcmp(str, "area0") == 0) return adapt_area0;
   if (strcmp(str, "gamma") == 0) return adapt_gamma;
   if (strcmp(str, "lambda") == 0) return adapt_lambda;
+  if (strcmp(str, CellSource::extract_name) == 0) {
+    dim = 0;
+    if (!source) source = CellSource::of(*this);
+    return source.get();
+  }
   return nullptr;
+}
+
+const tessera::CellView &PairVertexPolygon::cells() const
+{
+  return show_shown ? static_cast<const tessera::CellView &>(shown) : view;
+}
+
+tessera::Contacts PairVertexPolygon::force_contacts() const
+{
+  return view.contacts();
+}
+
+double PairVertexPolygon::force_boundary(int c) const
+{
+  return view.boundary(c);
 }
 
 /* fix adapt changed extract()'s arrays: the per-type values from the

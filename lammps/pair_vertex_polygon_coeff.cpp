@@ -13,6 +13,7 @@
 #include "comm.h"
 #include "error.h"
 #include "memory.h"
+#include "tessera/vertex_model.h"
 
 #include <cmath>
 #include <cstring>

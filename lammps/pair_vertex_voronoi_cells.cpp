@@ -22,6 +22,7 @@
 #include "error.h"
 #include "force.h"
 #include "pair_hybrid.h"
+#include "tessera/subset_cells.h"
 
 #include <cstring>
 

@@ -11,6 +11,7 @@
 #include "atom.h"
 #include "error.h"
 #include "force.h"
+#include "tessera/subset_cells.h"
 
 #include <cmath>
 #include <cstring>

@@ -11,6 +11,7 @@
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
+#include "tessera/subset_cells.h"
 
 using namespace LAMMPS_NS;
 

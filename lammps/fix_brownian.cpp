@@ -1,9 +1,23 @@
-// Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
-//
-// fix brownian: Euler-Maruyama integration of overdamped translation,
-//   dr = F / gamma_t dt + sqrt(2 kT / gamma_t) dW,
-// with the arguments of upstream LAMMPS's BROWNIAN package (see
-// doc/fix_brownian.rst), so input scripts run unchanged on either.
+/* ----------------------------------------------------------------------
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
+
+   fix brownian: Euler-Maruyama integration of overdamped translation,
+     dr = F / gamma_t dt + sqrt(2 kT / gamma_t) dW,
+   with the arguments of upstream LAMMPS's BROWNIAN package (see
+   doc/fix_brownian.rst), so input scripts run unchanged on either.
+------------------------------------------------------------------------- */
 
 #include "fix_brownian.h"
 

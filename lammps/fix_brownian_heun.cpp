@@ -1,19 +1,33 @@
-// Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
-//
-// fix brownian/heun: stochastic Heun (predictor-corrector) integration of
-//   dr = F / gamma_t dt + sqrt(2 kT / gamma_t) dW
-// and of the degrees of freedom of the CoupledDof fixes (fix polarity's
-// angles), with the arguments of fix brownian (doc/fix_brownian_heun.rst).
-// Per step:
-//   predictor  r~ = r + dt F(r)/gamma_t + w,          q~ = q + dt k(q) + w_q
-//   forces     at r~, q~ (ghosts updated, pair style, every fix's post_force)
-//   corrector  r' = r~ + dt/2 (F(r~) - F(r))/gamma_t,  q' = q~ + dt/2 (k(q~) - k(q))
-// so r' = r + dt/2 (F(r) + F(r~))/gamma_t + w with the same noise w in both
-// stages: second order without noise, strong order 1 and weak order 2 with
-// additive noise.  The corrector's increment is the difference between the
-// Heun and the Euler step, the local error estimate of the adaptive step
-// ('adapt', fix_brownian_heun_adapt.cpp): a step whose estimate exceeds the
-// tolerance is undone and taken again with a smaller dt.
+/* ----------------------------------------------------------------------
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
+
+   fix brownian/heun: stochastic Heun (predictor-corrector) integration of
+     dr = F / gamma_t dt + sqrt(2 kT / gamma_t) dW
+   and of the degrees of freedom of the CoupledDof fixes (fix polarity's
+   angles), with the arguments of fix brownian (doc/fix_brownian_heun.rst).
+   Per step:
+     predictor  r~ = r + dt F(r)/gamma_t + w,          q~ = q + dt k(q) + w_q
+     forces     at r~, q~ (ghosts updated, pair style, every fix's post_force)
+     corrector  r' = r~ + dt/2 (F(r~) - F(r))/gamma_t,  q' = q~ + dt/2 (k(q~) - k(q))
+   so r' = r + dt/2 (F(r) + F(r~))/gamma_t + w with the same noise w in both
+   stages: second order without noise, strong order 1 and weak order 2 with
+   additive noise.  The corrector's increment is the difference between the
+   Heun and the Euler step, the local error estimate of the adaptive step
+   ('adapt', fix_brownian_heun_adapt.cpp): a step whose estimate exceeds the
+   tolerance is undone and taken again with a smaller dt.
+------------------------------------------------------------------------- */
 
 #include "fix_brownian_heun.h"
 

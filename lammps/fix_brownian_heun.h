@@ -1,12 +1,26 @@
-// Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
-//
-// fix brownian/heun: the overdamped dynamics of fix brownian (same arguments)
-// integrated by the stochastic Heun (predictor-corrector) scheme, together
-// with the angles of fix polarity (through the CoupledDof interface of
-// coupled_dof.h); with 'adapt', an error-controlled timestep (the Euler
-// predictor and the Heun corrector as an embedded pair).  Documentation:
-// doc/fix_brownian_heun.rst.  The step is in fix_brownian_heun.cpp, the
-// adaptive step's controller, noise and restart in fix_brownian_heun_adapt.cpp.
+/* -*- c++ -*- ----------------------------------------------------------
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
+
+   fix brownian/heun: the overdamped dynamics of fix brownian (same arguments)
+   integrated by the stochastic Heun (predictor-corrector) scheme, together
+   with the angles of fix polarity (through the CoupledDof interface of
+   coupled_dof.h); with 'adapt', an error-controlled timestep (the Euler
+   predictor and the Heun corrector as an embedded pair).  Documentation:
+   doc/fix_brownian_heun.rst.  The step is in fix_brownian_heun.cpp, the
+   adaptive step's controller, noise and restart in fix_brownian_heun_adapt.cpp.
+------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
 // clang-format off

@@ -468,6 +468,7 @@ void PairVertexPolygon::compute(int eflag, int vflag)
   tessera::PolygonCells &view = this->view;
   const double l2 = topo.t1_length * topo.t1_length;
   const bool percell = model.has_cell_params();
+  const bool vflag_cells = vflag_global && !vflag_fdotr;
   nforce++;
   show_shown = false;
   view.clear(nlocal, nlocal + atom->nghost, tessera::Points{&x[0][0], nlocal + atom->nghost, 3});
@@ -513,6 +514,16 @@ void PairVertexPolygon::compute(int eflag, int vflag)
         vatom[i][0] -= rx * g[2 * k];
         vatom[i][1] -= ry * g[2 * k + 1];
         vatom[i][3] -= 0.5 * (rx * g[2 * k + 1] + ry * g[2 * k]);
+      }
+    }
+    if (vflag_cells) {
+      // 'pair_modify nofdotr': the global virial is the sum of the cells' own
+      // (the same as f dot r: the forces of a cell on its corners sum to zero).
+      for (int k = 0; k < n; k++) {
+        const double rx = xy[2 * k] - m.centroid.x, ry = xy[2 * k + 1] - m.centroid.y;
+        virial[0] -= rx * g[2 * k];
+        virial[1] -= ry * g[2 * k + 1];
+        virial[3] -= 0.5 * (rx * g[2 * k + 1] + ry * g[2 * k]);
       }
     }
     view.add_cell(i, xy.data(), n, &nbr_local[off[i]], m.area, m.perimeter);

@@ -7,7 +7,8 @@
             ComputeStyle(...), CommandStyle(...)) includes LAMMPS's headers and
             standard ones only, and of the package's own headers at most that of its
             base class, which must follow the same rule (fix brownian/heun's base,
-            compute vertex/loops/atom's): Tessera's types stay in the .cpp files
+            compute vertex/loops/atom's): Tessera's types stay in the .cpp files; its
+            macro line is kept from clang-format ('// clang-format off' before it)
   block     every lammps/*.cpp, *.h begins with the package's header block in
             LAMMPS's layout (tests/conventions/header_block.py), a header's first line
             with LAMMPS's `-*- c++ -*-` marker
@@ -101,9 +102,17 @@ def check_headers(root):
     faults = []
     styles = 0
     for path in sources(root):
-        if path.endswith(".h") and MACRO.search(read(path)):
+        text = read(path)
+        if path.endswith(".h") and MACRO.search(text):
             styles += 1
             faults += header_faults(root, path)
+            # LAMMPS's CMake reads the macro line as written: clang-format keeps off it
+            for m in MACRO.finditer(text):
+                before = text[:m.start()].rstrip("\n").rsplit("\n", 1)[-1]
+                if before.strip() != "// clang-format off":
+                    faults.append(f"lammps/{os.path.basename(path)}: '{m.group(0)}' without "
+                                  f"'// clang-format off' on the line before (and '// "
+                                  f"clang-format on' after), as LAMMPS's style headers have")
     if styles == 0:
         faults.append("no style header found in lammps/ (PairStyle(...) etc.)")
     return faults, f"{styles} style headers"
@@ -212,6 +221,7 @@ def self_test():
          '#include "pair.h"\n#include "cell_source.h"\n'),
         ("headers", "fix_brownian.h", '#include "fix.h"\n',    # in a style's base class
          '#include "fix.h"\n#include "integrator_chatter.h"\n'),
+        ("headers", "fix_clock.h", "// clang-format off\nFixStyle", "FixStyle"),
         ("block", "fix_clock.cpp", "   SPDX-License-Identifier: GPL-2.0-or-later\n", ""),
         ("block", "fix_clock.h", "/* -*- c++ -*- ---", "/* ----------"),
         ("format", "fix_clock.cpp", "\n}\n", "\n}\n// " + "x" * 98 + "\n"),

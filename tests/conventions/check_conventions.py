@@ -85,8 +85,11 @@ def header_faults(root, path, seen=None):
         if not package_header(root, inc):
             continue    # LAMMPS's own header, or a standard one
         inc_path = os.path.join(root, "lammps", inc)
+        # the header of a base class that is itself a style's (it derives from
+        # LAMMPS's Fix, Compute, ...), not of an interface such as CoupledDof
         declares = os.path.exists(inc_path) and any(
-            re.search(r"^class\s+%s\b" % re.escape(b), read(inc_path), re.M) for b in bases)
+            re.search(r"^class\s+%s\s*(?:final\s*)?:" % re.escape(b), read(inc_path), re.M)
+            for b in bases)
         if not declares:
             faults.append(f"lammps/{name} includes \"{inc}\", one of Tessera's headers: a style "
                           f"header includes only LAMMPS's and standard headers (and its base "
@@ -222,6 +225,9 @@ def self_test():
         ("headers", "fix_brownian.h", '#include "fix.h"\n',    # in a style's base class
          '#include "fix.h"\n#include "integrator_chatter.h"\n'),
         ("headers", "fix_clock.h", "// clang-format off\nFixStyle", "FixStyle"),
+        ("headers", "fix_polarity.h", '#include "fix.h"\n',    # an interface as a base class
+         '#include "fix.h"\n#include "coupled_dof.h"\n',
+         "class FixPolarity : public Fix {", "class FixPolarity : public Fix, public CoupledDof {"),
         ("block", "fix_clock.cpp", "   SPDX-License-Identifier: GPL-2.0-or-later\n", ""),
         ("block", "fix_clock.h", "/* -*- c++ -*- ---", "/* ----------"),
         ("format", "fix_clock.cpp", "\n}\n", "\n}\n// " + "x" * 98 + "\n"),
@@ -238,12 +244,14 @@ def self_test():
             faults, _ = run(check, tmp)
             if faults:
                 failures.append(f"{check}: fails on the unchanged lammps/: {faults[:3]}")
-        for kind, name, old, new in plants:
+        for kind, name, *edits in plants:
             if kind != check:
                 continue
+            new = edits[1]
             with tempfile.TemporaryDirectory() as tmp:
                 copy_tree(tmp)
-                plant(os.path.join(tmp, "lammps", name), old, new)
+                for k in range(0, len(edits), 2):
+                    plant(os.path.join(tmp, "lammps", name), edits[k], edits[k + 1])
                 faults, _ = run(check, tmp)
                 mine = [f for f in faults if name in f]
                 if not mine:

@@ -1,6 +1,17 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   Tessera: active Voronoi vertex model in LAMMPS.
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
    SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
 
    Which atoms the cell-only fixes (cell/signal, cell/adapt, cell/divide,
    cell/death) act on: the cells of their group, that is the atoms whose
@@ -30,13 +41,15 @@
 namespace LAMMPS_NS {
 namespace cell_group {
 
-inline bool is_cell(const CellSource *pair, int type)
+// Pair: CellSource (either pair style) or PairVertexVoronoi itself.
+
+template <class Pair> inline bool is_cell(const Pair *pair, int type)
 {
   return !pair || pair->is_cell_type(type);
 }
 
 // Some atom type has no cell parameters (whether or not it has atoms).
-inline bool any_particle_type(const CellSource *pair, int ntypes)
+template <class Pair> inline bool any_particle_type(const Pair *pair, int ntypes)
 {
   if (!pair) return false;
   for (int t = 1; t <= ntypes; t++)
@@ -45,7 +58,7 @@ inline bool any_particle_type(const CellSource *pair, int ntypes)
 }
 
 // The number of cells in the whole system (every group).  Collective.
-inline bigint count_cells(LAMMPS *lmp, const CellSource *pair)
+template <class Pair> inline bigint count_cells(LAMMPS *lmp, const Pair *pair)
 {
   Atom *atom = lmp->atom;
   if (!pair) return atom->natoms;
@@ -59,8 +72,8 @@ inline bigint count_cells(LAMMPS *lmp, const CellSource *pair)
 // Says once (noted) in the screen and log how many atoms of group igroup
 // are no cells, and of which types: 'who' (e.g. "fix s cell/signal") leaves
 // them alone, 'what' says how.  Collective.
-inline void note_particles(LAMMPS *lmp, const CellSource *pair, int igroup,
-                           const std::string &who, const std::string &what, bool &noted)
+template <class Pair>
+inline void note_particles(LAMMPS *lmp, const Pair *pair, int igroup, const std::string &who, const std::string &what, bool &noted)
 {
   if (noted || !pair) return;
   Atom *atom = lmp->atom;

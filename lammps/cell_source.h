@@ -1,6 +1,17 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   Tessera: active Voronoi vertex model in LAMMPS.
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
    SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
 ------------------------------------------------------------------------- */
 
 #ifndef LMP_CELL_SOURCE_H
@@ -10,11 +21,14 @@
 
 #include "tessera/cells.h"
 
+#include <memory>
 #include <string>
 
 namespace LAMMPS_NS {
 
 class LAMMPS;
+class PairVertexVoronoi;
+class PairVertexPolygon;
 
 /* What the computes and fixes that read cells need from the pair style that
    makes them: pair_style vertex/voronoi (cells around atoms) and
@@ -52,12 +66,13 @@ class CellSource {
   static CellSource *find(LAMMPS *lmp);
   // Its name for messages: "pair_style vertex/voronoi or vertex/polygon".
   static const char *styles() { return "pair_style vertex/voronoi or vertex/polygon"; }
+  // What the pair styles' extract() hands out under this name (their headers
+  // hold no Tessera type, as LAMMPS's style headers; see cell_source.cpp).
+  static constexpr const char *extract_name = "tessera/cell_source";
+  static std::unique_ptr<CellSource> of(PairVertexVoronoi &);
+  static std::unique_ptr<CellSource> of(PairVertexPolygon &);
 
- protected:
-  // Never deleted through this interface (a pair style is deleted as a Pair,
-  // whose destructor may throw in current LAMMPS): no virtual destructor
-  // whose exception specification would clash with Pair's.
-  ~CellSource() = default;
+  virtual ~CellSource() = default;
 };
 
 }    // namespace LAMMPS_NS

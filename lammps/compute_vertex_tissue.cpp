@@ -1,6 +1,17 @@
 /* ----------------------------------------------------------------------
-   Tessera: active Voronoi vertex model in LAMMPS.
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
    SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
 
    compute vertex/tissue: global values of the Voronoi tessellation that
    pair_style vertex/voronoi computed, for thermo, variables and fix
@@ -36,6 +47,13 @@ using vertex_pieces::piece_floor;
 namespace {
 
 constexpr int NVALUES = 8;
+
+// The rows of the internal per-atom store (a FixStore in LAMMPS 2021, a
+// FixStoreAtom since; the header holds it as a Fix).
+static double **rows(Fix *fix)
+{
+  return static_cast<tessera_compat::FixStorePerAtom *>(fix)->astore;
+}
 
 // The neighbour memory of an atom (a row of the internal fix STORE):
 // COUNT is how many neighbour tags follow (-1: none yet), OWNER the atom ID
@@ -138,8 +156,8 @@ void ComputeVertexTissue::init()
 
 void ComputeVertexTissue::set_arrays(int i)
 {
-  fix->astore[i][COUNT] = -1.0;
-  fix->astore[i][OWNER] = 0.0;
+  rows(fix)[i][COUNT] = -1.0;
+  rows(fix)[i][OWNER] = 0.0;
 }
 
 void ComputeVertexTissue::check_cells()
@@ -340,7 +358,7 @@ double ComputeVertexTissue::count_new_neighbors()
   const int nall = nlocal + atom->nghost;
   const int *mask = atom->mask;
   const tagint *tag = atom->tag;
-  double **memo = fix->astore;
+  double **memo = rows(fix);
 
   // Which cells existed at the previous call (they have a memory of their
   // own), on the ghosts too.

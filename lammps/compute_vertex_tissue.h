@@ -1,6 +1,17 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   Tessera: active Voronoi vertex model in LAMMPS.
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
    SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
 ------------------------------------------------------------------------- */
 
 #ifdef COMPUTE_CLASS
@@ -13,7 +24,6 @@ ComputeStyle(vertex/tissue,ComputeVertexTissue);
 #define LMP_COMPUTE_VERTEX_TISSUE_H
 
 #include "compute.h"
-#include "tessera_compat.h"
 
 #include <vector>
 
@@ -35,7 +45,7 @@ class ComputeVertexTissue : public Compute {
 
  protected:
   char *id_fix;
-  tessera_compat::FixStorePerAtom *fix;
+  class Fix *fix;    // the internal store (tessera_compat::FixStorePerAtom)
   class CellSource *pair;
   int warned_overflow;
 

@@ -1,47 +1,64 @@
-// Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
-//
-// The interface between an overdamped integrator that takes more than one
-// force evaluation per step (fix brownian/heun) and the fixes whose own
-// per-atom degrees of freedom must follow the positions in the same scheme
-// (fix polarity's angles).  A fix with such degrees of freedom implements
-// CoupledDof; the integrator implements CoupledIntegrator.
-//
-// Without a CoupledIntegrator among the fixes, a CoupledDof fix advances its
-// degrees of freedom itself (fix polarity: forward Euler in its
-// initial_integrate), which is how it works with fix brownian (Tessera's or
-// upstream LAMMPS's).  With one, it leaves that to the integrator, which in
-// each step calls, for the local atoms 0..nlocal-1:
-//
-//   coupled_rate(k1, step - 1)     the rate dq/dt at the state the step starts from
-//   coupled_noise(w)               this step's noise increment (the same in both stages)
-//   coupled_advance(dt k1 + w)     predictor
-//   ... positions predicted, ghosts updated, forces recomputed (pair style
-//   ... and every fix's post_force, so the coupled fix sees the predicted state)
-//   coupled_rate(k2, step)         the rate at the predicted state
-//   coupled_advance(dt/2 (k2 - k1))  corrector
-//
-// Values for atom i live at q[i * stride + k], k < coupled_size().  Atoms
-// outside the coupled fix's group get rate and noise 0 and are not changed.
-// An increment is added to the degree of freedom (for an angle: a rotation
-// by that angle), so the integrator stores no absolute values and needs
-// nothing from the coupled fix when atoms migrate.
+/* -*- c++ -*- ----------------------------------------------------------
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
+
+   The interface between an overdamped integrator that takes more than one
+   force evaluation per step (fix brownian/heun) and the fixes whose own
+   per-atom degrees of freedom must follow the positions in the same scheme
+   (fix polarity's angles).  A fix with such degrees of freedom implements
+   CoupledDof; the integrator implements CoupledIntegrator.
+
+   Without a CoupledIntegrator among the fixes, a CoupledDof fix advances its
+   degrees of freedom itself (fix polarity: forward Euler in its
+   initial_integrate), which is how it works with fix brownian (Tessera's or
+   upstream LAMMPS's).  With one, it leaves that to the integrator, which in
+   each step calls, for the local atoms 0..nlocal-1:
+
+     coupled_rate(k1, step - 1)     the rate dq/dt at the state the step starts from
+     coupled_noise(w)               this step's noise increment (the same in both stages)
+     coupled_advance(dt k1 + w)     predictor
+     ... positions predicted, ghosts updated, forces recomputed (pair style
+     ... and every fix's post_force, so the coupled fix sees the predicted state)
+     coupled_rate(k2, step)         the rate at the predicted state
+     coupled_advance(dt/2 (k2 - k1))  corrector
+
+   Values for atom i live at q[i * stride + k], k < coupled_size().  Atoms
+   outside the coupled fix's group get rate and noise 0 and are not changed.
+   An increment is added to the degree of freedom (for an angle: a rotation
+   by that angle), so the integrator stores no absolute values and needs
+   nothing from the coupled fix when atoms migrate.
+------------------------------------------------------------------------- */
 
 #ifndef TESSERA_COUPLED_DOF_H
 #define TESSERA_COUPLED_DOF_H
 
 #include "lmptype.h"
 
+#include <memory>
+
 namespace LAMMPS_NS {
 
-// The destructors are protected and not virtual: nothing is deleted through
-// these interfaces, and so they add no exception specification that would
-// clash with Fix's destructor (noexcept(false) in newer LAMMPS).
+class FixPolarity;
 
 class CoupledDof {
- protected:
-  ~CoupledDof() = default;
-
  public:
+  static constexpr const char *extract_name = "tessera/coupled_dof";
+  static constexpr const char *integrator_name = "tessera/coupled_integrator";
+  // fix polarity's side (fix_polarity.cpp), which the fix owns.
+  static std::unique_ptr<CoupledDof> of(FixPolarity &);
+  virtual ~CoupledDof() = default;
+
   // Number of scalar degrees of freedom per atom.
   virtual int coupled_size() const = 0;
   // Deterministic rate dq/dt at the current positions, degrees of freedom,
@@ -79,16 +96,6 @@ class CoupledDof {
                                         int /*stride*/)
   {
   }
-};
-
-// Marks a time integrator that advances the CoupledDof fixes itself.
-class CoupledIntegrator {
- protected:
-  ~CoupledIntegrator() = default;
-
- public:
-  // Makes the class polymorphic, for dynamic_cast from Fix *.
-  virtual int integrates_coupled_dof() const { return 1; }
 };
 
 }    // namespace LAMMPS_NS

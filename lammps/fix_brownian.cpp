@@ -1,11 +1,27 @@
-// Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
-//
-// fix brownian: Euler-Maruyama integration of overdamped translation,
-//   dr = F / gamma_t dt + sqrt(2 kT / gamma_t) dW,
-// with the arguments of upstream LAMMPS's BROWNIAN package (see
-// doc/fix_brownian.rst), so input scripts run unchanged on either.
+/* ----------------------------------------------------------------------
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
+
+   fix brownian: Euler-Maruyama integration of overdamped translation,
+     dr = F / gamma_t dt + sqrt(2 kT / gamma_t) dW,
+   with the arguments of upstream LAMMPS's BROWNIAN package (see
+   doc/fix_brownian.rst), so input scripts run unchanged on either.
+------------------------------------------------------------------------- */
 
 #include "fix_brownian.h"
+
+#include "integrator_chatter.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -30,7 +46,7 @@ static constexpr int MAX_MARSAGLIA_SEED = 900000000;
 /* ---------------------------------------------------------------------- */
 
 FixBrownianTessera::FixBrownianTessera(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), random(nullptr), chatter(lmp)
+    Fix(lmp, narg, arg), random(nullptr), chatter(new IntegratorChatter(lmp))
 {
   if (narg < 5)
     error->all(FLERR,
@@ -166,7 +182,7 @@ void FixBrownianTessera::initial_integrate(int /*vflag*/)
                "Fix {} (ID {}): the timestep must be > 0 to take a step (the velocity is the "
                "displacement over dt), got {}; set it with 'timestep'",
                style, id, dt);
-  chatter.start(groupbit);
+  chatter->start(groupbit);
   const bool three_d = domain->dimension == 3;
   double watch[IntegratorChatter::NSUMS] = {0.0, 0.0, 0.0, 0.0};
   switch (noise) {
@@ -179,7 +195,7 @@ void FixBrownianTessera::initial_integrate(int /*vflag*/)
     default:
       three_d ? move<NOISE_NONE, 1>(watch) : move<NOISE_NONE, 0>(watch);
   }
-  chatter.observe(style, id, watch, dt);
+  chatter->observe(style, id, watch, dt);
 }
 
 /* ----------------------------------------------------------------------

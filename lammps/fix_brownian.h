@@ -1,20 +1,37 @@
-// Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
-//
-// fix brownian: overdamped (Brownian) dynamics of point particles, with the
-// syntax and semantics of upstream LAMMPS's BROWNIAN package, for a host
-// LAMMPS built without that package.  Documentation: doc/fix_brownian.rst.
-//
-// The class is called FixBrownianTessera, not FixBrownian, so that it stays
-// distinct from upstream's class when the host liblammps.so has one; the
-// registration (tessera_styles.cpp) then keeps the host's `fix brownian`.
+/* -*- c++ -*- ----------------------------------------------------------
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
+
+   fix brownian: overdamped (Brownian) dynamics of point particles, with the
+   syntax and semantics of upstream LAMMPS's BROWNIAN package, for a host
+   LAMMPS built without that package.  Documentation: doc/fix_brownian.rst.
+
+   The class is called FixBrownianTessera, not FixBrownian, so that it stays
+   distinct from upstream's class when the host liblammps.so has one; the
+   registration (tessera_styles.cpp) then keeps the host's `fix brownian`.
+------------------------------------------------------------------------- */
 
 #ifndef TESSERA_FIX_BROWNIAN_H
 #define TESSERA_FIX_BROWNIAN_H
 
 #include "fix.h"
-#include "integrator_chatter.h"
+
+#include <memory>
 
 namespace LAMMPS_NS {
+
+class IntegratorChatter;
 
 class FixBrownianTessera : public Fix {
  public:
@@ -39,7 +56,7 @@ class FixBrownianTessera : public Fix {
   double mobility;       // velocity per unit force: ftm2v / gamma_t
   double noise_scale;    // multiplies one random number to give one displacement component
   class RanMars *random;
-  IntegratorChatter chatter;    // warns once when the steps oscillate (period two)
+  std::unique_ptr<IntegratorChatter> chatter;    // warns once when the steps oscillate (period two)
 
   double parse_number(const char *what, const char *text);
   void set_step();

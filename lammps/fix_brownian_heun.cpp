@@ -1,21 +1,38 @@
-// Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
-//
-// fix brownian/heun: stochastic Heun (predictor-corrector) integration of
-//   dr = F / gamma_t dt + sqrt(2 kT / gamma_t) dW
-// and of the degrees of freedom of the CoupledDof fixes (fix polarity's
-// angles), with the arguments of fix brownian (doc/fix_brownian_heun.rst).
-// Per step:
-//   predictor  r~ = r + dt F(r)/gamma_t + w,          q~ = q + dt k(q) + w_q
-//   forces     at r~, q~ (ghosts updated, pair style, every fix's post_force)
-//   corrector  r' = r~ + dt/2 (F(r~) - F(r))/gamma_t,  q' = q~ + dt/2 (k(q~) - k(q))
-// so r' = r + dt/2 (F(r) + F(r~))/gamma_t + w with the same noise w in both
-// stages: second order without noise, strong order 1 and weak order 2 with
-// additive noise.  The corrector's increment is the difference between the
-// Heun and the Euler step, the local error estimate of the adaptive step
-// ('adapt', fix_brownian_heun_adapt.cpp): a step whose estimate exceeds the
-// tolerance is undone and taken again with a smaller dt.
+/* ----------------------------------------------------------------------
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
+
+   fix brownian/heun: stochastic Heun (predictor-corrector) integration of
+     dr = F / gamma_t dt + sqrt(2 kT / gamma_t) dW
+   and of the degrees of freedom of the CoupledDof fixes (fix polarity's
+   angles), with the arguments of fix brownian (doc/fix_brownian_heun.rst).
+   Per step:
+     predictor  r~ = r + dt F(r)/gamma_t + w,          q~ = q + dt k(q) + w_q
+     forces     at r~, q~ (ghosts updated, pair style, every fix's post_force)
+     corrector  r' = r~ + dt/2 (F(r~) - F(r))/gamma_t,  q' = q~ + dt/2 (k(q~) - k(q))
+   so r' = r + dt/2 (F(r) + F(r~))/gamma_t + w with the same noise w in both
+   stages: second order without noise, strong order 1 and weak order 2 with
+   additive noise.  The corrector's increment is the difference between the
+   Heun and the Euler step, the local error estimate of the adaptive step
+   ('adapt', fix_brownian_heun_adapt.cpp): a step whose estimate exceeds the
+   tolerance is undone and taken again with a smaller dt.
+------------------------------------------------------------------------- */
 
 #include "fix_brownian_heun.h"
+
+#include "coupled_dof.h"
+#include "integrator_chatter.h"
 
 #include "angle.h"
 #include "atom.h"
@@ -121,7 +138,8 @@ void FixBrownianHeun::init()
   wiener_offset.clear();
   ncoupled = nstate = nwiener_coupled = 0;
   for (int i = 0; i < modify->nfix; i++) {
-    auto *c = dynamic_cast<CoupledDof *>(modify->fix[i]);
+    int dim = 0;
+    auto *c = static_cast<CoupledDof *>(modify->fix[i]->extract(CoupledDof::extract_name, dim));
     if (!c) continue;
     coupled.push_back(c);
     coupled_offset.push_back(ncoupled);
@@ -182,7 +200,7 @@ void FixBrownianHeun::initial_integrate(int /*vflag*/)
   const bool three_d = domain->dimension == 3;
   const bigint step = update->ntimestep;
 
-  chatter.begin(groupbit);
+  chatter->begin(groupbit);
   save_start();
   // Coupled degrees of freedom: every rate at the start state before any
   // of them moves (and, for a rejected step, their state).
@@ -234,7 +252,7 @@ void FixBrownianHeun::initial_integrate(int /*vflag*/)
   est_last = est;
   err_last = err;
   if (adapt) finish_adaptive_step(err, rejected);
-  chatter.end(style, id, groupbit, dt);
+  chatter->end(style, id, groupbit, dt);
 }
 
 /* ----------------------------------------------------------------------
@@ -543,4 +561,13 @@ int FixBrownianHeun::unpack_exchange(int nlocal, double *buf)
   for (int k = 0; k < ncol; k++) saved[nlocal][k] = buf[k];
   for (int k = 0; k < qcols(); k++) qbuf[nlocal][k] = buf[ncol + k];
   return ncol + qcols();
+}
+
+/* Tells the CoupledDof fixes (fix polarity) that this fix integrates their
+   degrees of freedom (coupled_dof.h). */
+
+void *FixBrownianHeun::extract(const char *name, int &dim)
+{
+  dim = 0;
+  return strcmp(name, CoupledDof::integrator_name) == 0 ? this : nullptr;
 }

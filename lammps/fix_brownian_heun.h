@@ -1,12 +1,26 @@
-// Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
-//
-// fix brownian/heun: the overdamped dynamics of fix brownian (same arguments)
-// integrated by the stochastic Heun (predictor-corrector) scheme, together
-// with the angles of fix polarity (through the CoupledDof interface of
-// coupled_dof.h); with 'adapt', an error-controlled timestep (the Euler
-// predictor and the Heun corrector as an embedded pair).  Documentation:
-// doc/fix_brownian_heun.rst.  The step is in fix_brownian_heun.cpp, the
-// adaptive step's controller, noise and restart in fix_brownian_heun_adapt.cpp.
+/* -*- c++ -*- ----------------------------------------------------------
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
+
+   fix brownian/heun: the overdamped dynamics of fix brownian (same arguments)
+   integrated by the stochastic Heun (predictor-corrector) scheme, together
+   with the angles of fix polarity (through the CoupledDof interface of
+   coupled_dof.h); with 'adapt', an error-controlled timestep (the Euler
+   predictor and the Heun corrector as an embedded pair).  Documentation:
+   doc/fix_brownian_heun.rst.  The step is in fix_brownian_heun.cpp, the
+   adaptive step's controller, noise and restart in fix_brownian_heun_adapt.cpp.
+------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
 // clang-format off
@@ -17,7 +31,6 @@ FixStyle(brownian/heun,FixBrownianHeun);
 #ifndef TESSERA_FIX_BROWNIAN_HEUN_H
 #define TESSERA_FIX_BROWNIAN_HEUN_H
 
-#include "coupled_dof.h"
 #include "fix_brownian.h"
 
 #include <cstdint>
@@ -25,7 +38,9 @@ FixStyle(brownian/heun,FixBrownianHeun);
 
 namespace LAMMPS_NS {
 
-class FixBrownianHeun : public FixBrownianTessera, public CoupledIntegrator {
+class CoupledDof;
+
+class FixBrownianHeun : public FixBrownianTessera {
  public:
   FixBrownianHeun(class LAMMPS *, int, char **);
   ~FixBrownianHeun() override;
@@ -33,6 +48,7 @@ class FixBrownianHeun : public FixBrownianTessera, public CoupledIntegrator {
   void init() override;
   void setup(int) override;
   void initial_integrate(int) override;
+  void *extract(const char *, int &) override;
 
   double compute_scalar() override;
   double compute_vector(int) override;

@@ -1,32 +1,48 @@
-// Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
-//
-// fix brownian/heun ... adapt tol T: the error-controlled timestep.
-//
-// The Euler predictor and the Heun corrector are an embedded pair: the
-// corrector's increment dt/2 (F(r~) - F(r))/gamma_t is the difference of the
-// two solutions, an estimate of the Euler step's local error (O(dt^2) for
-// smooth forces).  A step whose largest estimate over all atoms exceeds the
-// tolerance is undone (positions, image flags, the coupled fixes' state)
-// and taken again with a smaller dt; the accepted Heun solution is kept
-// (local extrapolation), and the next step's dt follows the controller
-//   dt' = dt min(grow, max(shrink, safety (tol/est)^(1/2)))
-// within [dtmin, dtmax] (no growth right after a rejection).
-//
-// Noise (rejection sampling with memory, Rackauckas and Nie 2017): the
-// Wiener increments of a step are parts of one Brownian path whose future is
-// revealed as the steps need it and kept in a queue of intervals.  A step of
-// length h takes the front intervals that fit, splits the next one at h by a
-// Brownian bridge (given W at both ends, W in between is Gaussian with mean
-// the linear interpolation and variance q (1 - q) tau), or draws a fresh
-// interval when the queue runs out.  A rejected attempt gives nothing back:
-// its intervals stay revealed and the smaller retry takes the front part of
-// them.  Every increment used is therefore an increment of the same path,
-// whichever steps were rejected, and no draw is discarded because of its
-// value: the noise is unbiased.  Fresh Gaussian numbers are counter-based
-// (seed, atom ID, draw number), so the noise does not depend on the number
-// of ranks or the order of atoms.
+/* ----------------------------------------------------------------------
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
+
+   fix brownian/heun ... adapt tol T: the error-controlled timestep.
+
+   The Euler predictor and the Heun corrector are an embedded pair: the
+   corrector's increment dt/2 (F(r~) - F(r))/gamma_t is the difference of the
+   two solutions, an estimate of the Euler step's local error (O(dt^2) for
+   smooth forces).  A step whose largest estimate over all atoms exceeds the
+   tolerance is undone (positions, image flags, the coupled fixes' state)
+   and taken again with a smaller dt; the accepted Heun solution is kept
+   (local extrapolation), and the next step's dt follows the controller
+     dt' = dt min(grow, max(shrink, safety (tol/est)^(1/2)))
+   within [dtmin, dtmax] (no growth right after a rejection).
+
+   Noise (rejection sampling with memory, Rackauckas and Nie 2017): the
+   Wiener increments of a step are parts of one Brownian path whose future is
+   revealed as the steps need it and kept in a queue of intervals.  A step of
+   length h takes the front intervals that fit, splits the next one at h by a
+   Brownian bridge (given W at both ends, W in between is Gaussian with mean
+   the linear interpolation and variance q (1 - q) tau), or draws a fresh
+   interval when the queue runs out.  A rejected attempt gives nothing back:
+   its intervals stay revealed and the smaller retry takes the front part of
+   them.  Every increment used is therefore an increment of the same path,
+   whichever steps were rejected, and no draw is discarded because of its
+   value: the noise is unbiased.  Fresh Gaussian numbers are counter-based
+   (seed, atom ID, draw number), so the noise does not depend on the number
+   of ranks or the order of atoms.
+------------------------------------------------------------------------- */
 
 #include "fix_brownian_heun.h"
+
+#include "integrator_chatter.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -179,7 +195,7 @@ void FixBrownianHeun::init_adapt()
   diffusion_amp = 0.0;
   if (noise == NOISE_GAUSSIAN)
     diffusion_amp = std::sqrt(2.0 * force->boltz * temperature / (force->mvv2e * gamma_t));
-  chatter.context = fmt::format("; this run's adapt tol {} gives each step an error estimate "
+  chatter->context = fmt::format("; this run's adapt tol {} gives each step an error estimate "
                                 "below {} (a length), so a period-two oscillation left is at most "
                                 "that large",
                                 tol, tol);

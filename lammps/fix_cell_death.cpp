@@ -1,6 +1,17 @@
 /* ----------------------------------------------------------------------
-   Tessera: active Voronoi vertex model in LAMMPS.
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
    SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
 
    fix cell/death: apoptosis (rate R) or extrusion (area below Amin).  As in
    fix cell/divide, cells decide at the end of a step with counter-based
@@ -10,6 +21,9 @@
 ------------------------------------------------------------------------- */
 
 #include "fix_cell_death.h"
+
+#include "cell_event_count.h"
+#include "cell_event_log.h"
 
 #include "atom.h"
 #include "atom_vec.h"
@@ -40,8 +54,14 @@ static constexpr bigint SPHERE_MIN_CELLS = 4;
 static const char SYNTAX[] =
     "fix ID group cell/death rate R | area Amin, seed S [region ID] [min N] [file path]";
 
+struct FixCellDeath::Impl {
+  cell_events::EventCount events;
+  cell_events::EventLog log;
+};
+
 FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), region(nullptr), pair(nullptr)
+    Fix(lmp, narg, arg), region(nullptr), pair(nullptr), impl(new Impl),
+    events(impl->events), log(impl->log)
 {
   clock = update->atime + (double) (update->ntimestep - update->atimestep) * update->dt;
   trigger = -1;
@@ -125,6 +145,8 @@ FixCellDeath::~FixCellDeath()
   atom->delete_callback(id, Atom::RESTART);
   memory->destroy(dying_since);
 }
+
+FixCellDeath::~FixCellDeath() = default;
 
 int FixCellDeath::setmask()
 {

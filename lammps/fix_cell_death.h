@@ -1,6 +1,17 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   Tessera: active Voronoi vertex model in LAMMPS.
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
    SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -12,14 +23,18 @@ FixStyle(cell/death,FixCellDeath);
 #ifndef LMP_FIX_CELL_DEATH_H
 #define LMP_FIX_CELL_DEATH_H
 
-#include "cell_event_count.h"
-#include "cell_event_log.h"
 #include "fix.h"
 
+#include <memory>
 #include <string>
 #include <unordered_map>
 
 namespace LAMMPS_NS {
+
+namespace cell_events {
+struct EventCount;
+class EventLog;
+}    // namespace cell_events
 
 class FixCellDeath : public Fix {
  public:
@@ -67,8 +82,12 @@ class FixCellDeath : public Fix {
   bigint floor_room() const;
   // Cells that die at the next step -> their place in the sorted list (min N).
   std::unordered_map<tagint, bigint> pending;
-  cell_events::EventCount events;
-  cell_events::EventLog log;    // keyword file
+  // The event count and the keyword file's log (cell_event_count.h,
+  // cell_event_log.h) in Impl (the .cpp), named by events and log.
+  struct Impl;
+  std::unique_ptr<Impl> impl;
+  cell_events::EventCount &events;
+  cell_events::EventLog &log;    // keyword file
 
   void decide();
   void init_vertex();    // fix_cell_death_vertex.cpp

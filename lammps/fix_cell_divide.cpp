@@ -1,6 +1,17 @@
 /* ----------------------------------------------------------------------
-   Tessera: active Voronoi vertex model in LAMMPS.
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
    SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
 
    fix cell/divide: cell division.  At the end of each step every cell of
    the group decides whether it divides (rate, cycle time or area trigger);
@@ -14,6 +25,9 @@
 ------------------------------------------------------------------------- */
 
 #include "fix_cell_divide.h"
+
+#include "cell_event_count.h"
+#include "cell_event_log.h"
 
 #include "atom.h"
 #include "atom_vec.h"
@@ -45,9 +59,15 @@ static const char SYNTAX[] =
     "random|long|short|polarity] [separation d] [growth none|linear] [region ID] [max N] "
     "[noise eta] [file path] [split d_name ...]";
 
+struct FixCellDivide::Impl {
+  cell_events::EventCount events;
+  cell_events::EventLog log;
+};
+
 FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), decide_time(0.0), cap_warned(false), region(nullptr), pair(nullptr),
-    area0_index(-1), cellstate(nullptr)
+    area0_index(-1), cellstate(nullptr), impl(new Impl),
+    events(impl->events), log(impl->log)
 {
   // The fix's clock starts at LAMMPS's time now (0 at the first run) and is
   // advanced by the fix itself: its value is kept in the restart file.

@@ -1,6 +1,17 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   Tessera: active Voronoi vertex model in LAMMPS.
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
    SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -12,16 +23,20 @@ FixStyle(cell/divide,FixCellDivide);
 #ifndef LMP_FIX_CELL_DIVIDE_H
 #define LMP_FIX_CELL_DIVIDE_H
 
-#include "cell_event_count.h"
-#include "cell_event_log.h"
 #include "fix.h"
 
+#include <memory>
 #include <string>
 #include <array>
 #include <unordered_map>
 #include <vector>
 
 namespace LAMMPS_NS {
+
+namespace cell_events {
+struct EventCount;
+class EventLog;
+}    // namespace cell_events
 
 class FixCellDivide : public Fix {
  public:
@@ -87,8 +102,12 @@ class FixCellDivide : public Fix {
   // the daughters' atom IDs assigned from the global sorted list.
   std::unordered_map<tagint, std::array<double, 3>> pending;    // division axis
   std::unordered_map<tagint, tagint> daughter_tag;
-  cell_events::EventCount events;
-  cell_events::EventLog log;    // keyword file
+  // The event count and the keyword file's log (cell_event_count.h,
+  // cell_event_log.h) in Impl (the .cpp), named by events and log.
+  struct Impl;
+  std::unique_ptr<Impl> impl;
+  cell_events::EventCount &events;
+  cell_events::EventLog &log;    // keyword file
 
   double draw_cycle(tagint, uint64_t) const;
   void cell_axis(int, double *) const;

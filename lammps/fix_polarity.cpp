@@ -1,6 +1,17 @@
 /* ----------------------------------------------------------------------
-   Tessera: active Voronoi vertex model in LAMMPS.
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
    SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
 
    fix polarity: active force f_a n_i along each cell's polarity and the
    overdamped dynamics of the polarity angle (neighbour, groove and velocity
@@ -9,6 +20,8 @@
 ------------------------------------------------------------------------- */
 
 #include "fix_polarity.h"
+
+#include "coupled_dof.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -23,6 +36,7 @@
 #include "update.h"
 
 #include "tessera/counter_rng.h"
+#include "tessera/polarity.h"
 
 #include <algorithm>
 #include <cmath>
@@ -58,8 +72,14 @@ inline bool one_block(double **a, int n, int stride)
                                      [velocity J_V] [noise D_r seed] [seed S]
 ------------------------------------------------------------------------- */
 
+struct FixPolarity::Impl {
+  tessera::PolarityParams params;
+  tessera::Tessellation none;
+};
+
 FixPolarity::FixPolarity(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), d_rot(0.0), seed(0), pair(nullptr)
+    Fix(lmp, narg, arg), impl(new Impl), params(impl->params), d_rot(0.0), seed(0), pair(nullptr),
+    none(impl->none)
 {
   if (lmp->citeme) lmp->citeme->add(tessera_cite::thesis);
   if (narg < 5)
@@ -525,7 +545,7 @@ void FixPolarity::find_driver()
 {
   int n = 0;
   for (int i = 0; i < modify->nfix; i++)
-    if (dynamic_cast<CoupledIntegrator *>(modify->fix[i])) n++;
+    if (int dim = 0; modify->fix[i]->extract(CoupledDof::integrator_name, dim)) n++;
   if (n > 1)
     error->all(FLERR,
                "fix polarity {}: {} fixes (brownian/heun) want to integrate its angles; "
@@ -705,4 +725,44 @@ void FixPolarity::rotate(int i, double dth)
   mu[i][1] = m * ry * r;
   mu[i][2] = 0.0;
   mu[i][3] = m;
+}
+
+/* The CoupledDof that fix brownian/heun integrates: this fix's coupled_*
+   members (one virtual call per call, as when the fix derived from it). */
+
+namespace {
+class PolarityDof final : public CoupledDof {
+ public:
+  explicit PolarityDof(FixPolarity &fix) : p(fix) {}
+  int coupled_size() const override { return p.coupled_size(); }
+  void coupled_rate(double *r, int s, bigint step) override { p.coupled_rate(r, s, step); }
+  void coupled_noise(double *w, int s) override { p.coupled_noise(w, s); }
+  void coupled_advance(const double *dq, int s) override { p.coupled_advance(dq, s); }
+  int coupled_state_size() const override { return p.coupled_state_size(); }
+  void coupled_save(double *q, int s) override { p.coupled_save(q, s); }
+  void coupled_restore(const double *q, int s) override { p.coupled_restore(q, s); }
+  int coupled_wiener_size() const override { return p.coupled_wiener_size(); }
+  void coupled_wiener_increment(const double *dw, int ws, double *w, int s) override
+  {
+    p.coupled_wiener_increment(dw, ws, w, s);
+  }
+
+ private:
+  FixPolarity &p;
+};
+}    // namespace
+
+std::unique_ptr<CoupledDof> CoupledDof::of(FixPolarity &fix)
+{
+  return std::unique_ptr<CoupledDof>(new PolarityDof(fix));
+}
+
+FixPolarity::~FixPolarity() = default;
+
+void *FixPolarity::extract(const char *name, int &dim)
+{
+  dim = 0;
+  if (strcmp(name, CoupledDof::extract_name) != 0) return nullptr;
+  if (!coupled_dof) coupled_dof = CoupledDof::of(*this);
+  return coupled_dof.get();
 }

@@ -1,6 +1,17 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   Tessera: active Voronoi vertex model in LAMMPS.
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
    SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
 ------------------------------------------------------------------------- */
 
 #ifdef FIX_CLASS
@@ -12,39 +23,52 @@ FixStyle(polarity,FixPolarity);
 #ifndef LMP_FIX_POLARITY_H
 #define LMP_FIX_POLARITY_H
 
-#include "coupled_dof.h"
 #include "fix.h"
 
-#include "tessera/polarity.h"
-#include "tessera/tessellation.h"
-
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+// Tessera's types this header names (tessera/polarity.h, tessellation.h):
+// declared only, as a LAMMPS style header includes no more than its base
+// class; the fix holds the values in Impl (the .cpp).
+namespace tessera {
+struct Contacts;
+struct PolarityParams;
+struct Tessellation;
+}    // namespace tessera
+
 namespace LAMMPS_NS {
 
-class FixPolarity : public Fix, public CoupledDof {
+class CoupledDof;
+
+class FixPolarity : public Fix {
  public:
   FixPolarity(class LAMMPS *, int, char **);
+  ~FixPolarity() override;
   int setmask() override;
   void init() override;
   void setup(int) override;
   void post_force(int) override;
   void initial_integrate(int) override;
   double compute_vector(int) override;
+  void *extract(const char *, int &) override;
 
  protected:
   double f_active, gamma_r;
   std::string fa_name;    // 'd_name' given for f_a: each cell's own active force
   int fa_index = -1;      // its index in atom->dvector (init)
   double active_force(int i) const;
-  tessera::PolarityParams params;
+  struct Impl;
+  std::unique_ptr<Impl> impl;
+  std::unique_ptr<CoupledDof> coupled_dof;    // what extract(CoupledDof::extract_name) gives
+  tessera::PolarityParams &params;
   double d_rot;
   int seed;
   class CellSource *pair;
   std::vector<double> tau, vhat, unit;
-  tessera::Tessellation none;  // an empty tessellation when no neighbours are needed
+  tessera::Tessellation &none;  // an empty tessellation when no neighbours are needed
   std::vector<unsigned char> has_v;
   std::vector<unsigned char> in_group;    // 1 for atoms of the fix group (when it is not all)
   // Cells on a sphere: positions of the owned and ghost atoms at the last
@@ -80,18 +104,18 @@ class FixPolarity : public Fix, public CoupledDof {
   // coupled_dof.h): the angle of each cell is its degree of freedom.
  public:
   // 2d: the angle; 3d: the rotation vector (three components).
-  int coupled_size() const override;
-  void coupled_rate(double *, int, bigint) override;
-  void coupled_noise(double *, int) override;
-  void coupled_advance(const double *, int) override;
+  int coupled_size() const;
+  void coupled_rate(double *, int, bigint);
+  void coupled_noise(double *, int);
+  void coupled_advance(const double *, int);
   // For an adaptive step (rejected steps): mu is the state; the noise is
   // sqrt(2 D_r) dW (2d: one angle; 3d: a rotation vector; on a sphere: a
   // rotation about the normal).
-  int coupled_state_size() const override { return 4; }
-  void coupled_save(double *, int) override;
-  void coupled_restore(const double *, int) override;
-  int coupled_wiener_size() const override;
-  void coupled_wiener_increment(const double *, int, double *, int) override;
+  int coupled_state_size() const { return 4; }
+  void coupled_save(double *, int);
+  void coupled_restore(const double *, int);
+  int coupled_wiener_size() const;
+  void coupled_wiener_increment(const double *, int, double *, int);
 
  protected:
   int driven = 0;    // 1: a CoupledIntegrator advances the angles, not initial_integrate

@@ -1,6 +1,17 @@
 /* ----------------------------------------------------------------------
-   Tessera: active Voronoi vertex model in LAMMPS.
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
    SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
 
    fix polarity in 'dimension 3': the polarity is a unit vector, turned by
    rotations (Rodrigues) about n x h and by rotational noise on the sphere.
@@ -17,6 +28,7 @@
 
 #include "tessera/counter_rng.h"
 #include "tessera/sphere.h"
+#include "tessera/polarity.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,14 +1,28 @@
-// Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
-//
-// tessera-lmp: LAMMPS's `lmp` driver plus Tessera's styles.  It takes every
-// lmp command-line flag and runs input scripts the same way; the styles are
-// inserted into the instance right after it is constructed.
-//
-// Two flags act inside LAMMPS's constructor, before any style could be
-// added, so they are handled here: -h/-help (we build a quiet instance,
-// register, and print LAMMPS-style help listing all styles, Tessera's
-// included) and -restart2data/-restart2dump (a restart file can name our
-// pair style; we convert after registering).
+/* ----------------------------------------------------------------------
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
+
+   tessera-lmp: LAMMPS's `lmp` driver plus Tessera's styles.  It takes every
+   lmp command-line flag and runs input scripts the same way; the styles are
+   inserted into the instance right after it is constructed.
+
+   Two flags act inside LAMMPS's constructor, before any style could be
+   added, so they are handled here: -h/-help (we build a quiet instance,
+   register, and print LAMMPS-style help listing all styles, Tessera's
+   included) and -restart2data/-restart2dump (a restart file can name our
+   pair style; we convert after registering).
+------------------------------------------------------------------------- */
 
 #include "tessera_compat.h"
 #include "tessera_styles.h"

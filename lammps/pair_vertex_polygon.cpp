@@ -1,6 +1,17 @@
 /* ----------------------------------------------------------------------
-   Tessera: active Voronoi vertex model in LAMMPS.
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
    SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
 
    pair_style vertex/polygon: the vertex model's energy, forces on the
    vertices and virial; its settings and coefficients are in
@@ -9,7 +20,10 @@
 
 #include "pair_vertex_polygon.h"
 
+#include "cell_source.h"
 #include "fix_vertex_polygon.h"
+
+#include "tessera/vertex_model.h"
 
 #include "atom.h"
 #include "comm.h"
@@ -29,7 +43,15 @@
 
 using namespace LAMMPS_NS;
 
-PairVertexPolygon::PairVertexPolygon(LAMMPS *lmp) : Pair(lmp)
+struct PairVertexPolygon::Impl {
+  tessera::TopologyParams topo;
+  tessera::Model model;
+  tessera::PolygonCells view, shown;
+};
+
+PairVertexPolygon::PairVertexPolygon(LAMMPS *lmp) :
+    Pair(lmp), impl(new Impl), topo(impl->topo), model(impl->model), view(impl->view),
+    shown(impl->shown)
 {
   single_enable = 0;
   restartinfo = 1;
@@ -440,8 +462,13 @@ void PairVertexPolygon::compute(int eflag, int vflag)
   std::vector<int> nt;
   std::vector<long> ids;
   double energy = 0.0;
+  // The Tessera values held in Impl, bound once per compute (not per cell).
+  const tessera::Model &model = this->model;
+  const tessera::TopologyParams &topo = this->topo;
+  tessera::PolygonCells &view = this->view;
   const double l2 = topo.t1_length * topo.t1_length;
   const bool percell = model.has_cell_params();
+  const bool vflag_cells = vflag_global && !vflag_fdotr;
   nforce++;
   show_shown = false;
   view.clear(nlocal, nlocal + atom->nghost, tessera::Points{&x[0][0], nlocal + atom->nghost, 3});
@@ -487,6 +514,16 @@ void PairVertexPolygon::compute(int eflag, int vflag)
         vatom[i][0] -= rx * g[2 * k];
         vatom[i][1] -= ry * g[2 * k + 1];
         vatom[i][3] -= 0.5 * (rx * g[2 * k + 1] + ry * g[2 * k]);
+      }
+    }
+    if (vflag_cells) {
+      // 'pair_modify nofdotr': the global virial is the sum of the cells' own
+      // (the same as f dot r: the forces of a cell on its corners sum to zero).
+      for (int k = 0; k < n; k++) {
+        const double rx = xy[2 * k] - m.centroid.x, ry = xy[2 * k + 1] - m.centroid.y;
+        virial[0] -= rx * g[2 * k];
+        virial[1] -= ry * g[2 * k + 1];
+        virial[3] -= 0.5 * (rx * g[2 * k + 1] + ry * g[2 * k]);
       }
     }
     view.add_cell(i, xy.data(), n, &nbr_local[off[i]], m.area, m.perimeter);
@@ -580,7 +617,27 @@ void *PairVertexPolygon::extract(const char *str, int &dim)
   if (strcmp(str, "area0") == 0) return adapt_area0;
   if (strcmp(str, "gamma") == 0) return adapt_gamma;
   if (strcmp(str, "lambda") == 0) return adapt_lambda;
+  if (strcmp(str, CellSource::extract_name) == 0) {
+    dim = 0;
+    if (!source) source = CellSource::of(*this);
+    return source.get();
+  }
   return nullptr;
+}
+
+const tessera::CellView &PairVertexPolygon::cells() const
+{
+  return show_shown ? static_cast<const tessera::CellView &>(shown) : view;
+}
+
+tessera::Contacts PairVertexPolygon::force_contacts() const
+{
+  return view.contacts();
+}
+
+double PairVertexPolygon::force_boundary(int c) const
+{
+  return view.boundary(c);
 }
 
 /* fix adapt changed extract()'s arrays: the per-type values from the

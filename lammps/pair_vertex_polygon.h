@@ -1,6 +1,17 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   Tessera: active Voronoi vertex model in LAMMPS.
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
    SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
 ------------------------------------------------------------------------- */
 
 #ifdef PAIR_CLASS
@@ -12,16 +23,26 @@ PairStyle(vertex/polygon,PairVertexPolygon);
 #ifndef LMP_PAIR_VERTEX_POLYGON_H
 #define LMP_PAIR_VERTEX_POLYGON_H
 
-#include "cell_source.h"
 #include "pair.h"
 
-#include "tessera/vertex_model.h"
-
+#include <memory>
 #include <string>
 #include <vector>
 
+// Tessera's types this header names (tessera/cells.h, vertex_model.h):
+// declared only, as a LAMMPS style header includes no more than its base
+// class; the pair holds the values in Impl (the .cpp).
+namespace tessera {
+class CellView;
+class PolygonCells;
+struct Contacts;
+struct Model;
+struct TopologyParams;
+}    // namespace tessera
+
 namespace LAMMPS_NS {
 
+class CellSource;
 class FixVertexPolygon;
 
 /* pair_style vertex/polygon: the vertex model (doc/model.md, "The vertex
@@ -35,7 +56,7 @@ class FixVertexPolygon;
    (fix_vertex_polygon.cpp); the parameters are vertex/voronoi's
    (tessera::Model). */
 
-class PairVertexPolygon : public Pair, public CellSource {
+class PairVertexPolygon : public Pair {
   friend class FixVertexPolygon;
 
  public:
@@ -58,18 +79,15 @@ class PairVertexPolygon : public Pair, public CellSource {
   // cell c is local atom c, vertex atoms are empty cells; neighbours are the
   // local copies of the cell atoms across each edge, closest to the cell.
   // Filled at each force computation.
-  const tessera::CellView &cells() const override
-  {
-    return show_shown ? static_cast<const tessera::CellView &>(shown) : view;
-  }
-  bigint cells_step() const override { return view_step; }
-  void require_current_cells(const std::string &who) override;
-  tessera::Contacts force_contacts() const override { return view.contacts(); }
-  double force_boundary(int c) const override { return view.boundary(c); }
-  bigint force_count() const override { return nforce; }
-  bigint compute_count() const override { return nforce; }
-  bool is_cell_type(int type) const override { return role(type) == CELL; }
-  bool cells_are_vertices() const override { return true; }
+  const tessera::CellView &cells() const;
+  bigint cells_step() const { return view_step; }
+  void require_current_cells(const std::string &who);
+  tessera::Contacts force_contacts() const;
+  double force_boundary(int c) const;
+  bigint force_count() const { return nforce; }
+  bigint compute_count() const { return nforce; }
+  bool is_cell_type(int type) const { return role(type) == CELL; }
+  bool cells_are_vertices() const { return true; }
 
   enum Role { NONE = 0, CELL = 1, VERTEX = 2 };
   int role(int type) const { return type >= 1 && type < (int) roles.size() ? roles[type] : NONE; }
@@ -81,8 +99,13 @@ class PairVertexPolygon : public Pair, public CellSource {
 
  protected:
   double cut_global = 0.0;
-  tessera::TopologyParams topo;
-  tessera::Model model;
+  // The Tessera values the pair holds (topo, model, view, shown), behind one
+  // pointer; the references name them (bound in the constructor).
+  struct Impl;
+  std::unique_ptr<Impl> impl;
+  std::unique_ptr<CellSource> source;    // what extract("tessera/cell_source") gives
+  tessera::TopologyParams &topo;
+  tessera::Model &model;
   // Per type (1-based): role, cell parameters as given.
   std::vector<int> roles, quad;
   std::vector<double> kappa, area0, gamma, energy0;
@@ -127,13 +150,13 @@ class PairVertexPolygon : public Pair, public CellSource {
   // The steps the internal fix scheduled: a topology step (asked for at the
   // end of the step before) and the deletion of atoms a T2 removed.
   bigint topology_step = -1, delete_step = -1;
-  tessera::PolygonCells view;
+  tessera::PolygonCells &view;
   std::vector<double> cell_energy;    // per local atom, for the view
   bigint view_step = -1, nforce = 0;
   bigint view_natoms = -1;    // atom count of the view's step
   double view_box[8] = {};    // the box (h, boxlo) of the cells shown
   // The cells of a box changed after the forces (fix deform), for output.
-  tessera::PolygonCells shown;
+  tessera::PolygonCells &shown;
   std::vector<double> shown_energy;
   bool show_shown = false;
   std::string fix_id;

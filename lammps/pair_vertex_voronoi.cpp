@@ -1,6 +1,17 @@
 /* ----------------------------------------------------------------------
-   Tessera: active Voronoi vertex model in LAMMPS.
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
    SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
 
    pair_style vertex/voronoi, the face: settings, pair_coeff, the per-type
    table, fix adapt, the ghost shell, the shared accumulation of energy and
@@ -12,6 +23,7 @@
 ------------------------------------------------------------------------- */
 
 #include "pair_vertex_voronoi.h"
+#include "cell_source.h"
 
 #include "fix_vertex_guard.h"
 #include "pair_vertex_voronoi_3d.h"
@@ -33,6 +45,7 @@
 #include "output.h"
 #include "thermo.h"
 #include "update.h"
+#include "tessera/subset_cells.h"
 
 #include <algorithm>
 #include <cmath>
@@ -43,7 +56,13 @@
 using namespace LAMMPS_NS;
 
 
-PairVertexVoronoi::PairVertexVoronoi(LAMMPS *lmp) : Pair(lmp)
+struct PairVertexVoronoi::Impl {
+  tessera::Model model;
+  tessera::SubsetCells subset;
+};
+
+PairVertexVoronoi::PairVertexVoronoi(LAMMPS *lmp) :
+    Pair(lmp), impl(new Impl), model(impl->model), subset(impl->subset)
 {
   if (lmp->citeme) lmp->citeme->add(tessera_cite::thesis);
   single_enable = 0;
@@ -688,6 +707,11 @@ void *PairVertexVoronoi::extract(const char *str, int &dim)
   if (strcmp(str, "area0") == 0) return adapt_area0;
   if (strcmp(str, "gamma") == 0) return adapt_gamma;
   if (strcmp(str, "lambda") == 0) return lambda;
+  if (strcmp(str, CellSource::extract_name) == 0) {
+    dim = 0;
+    if (!source) source = CellSource::of(*this);
+    return source.get();
+  }
   return nullptr;
 }
 

@@ -1,6 +1,17 @@
 /* -*- c++ -*- ----------------------------------------------------------
-   Tessera: active Voronoi vertex model in LAMMPS.
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
    SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
 ------------------------------------------------------------------------- */
 
 #ifdef PAIR_CLASS
@@ -12,20 +23,27 @@ PairStyle(vertex/voronoi,PairVertexVoronoi);
 #ifndef LMP_PAIR_VERTEX_VORONOI_H
 #define LMP_PAIR_VERTEX_VORONOI_H
 
-#include "cell_source.h"
 #include "pair.h"
-
-#include "tessera/cells.h"
-#include "tessera/energy.h"
-#include "tessera/subset_cells.h"
 
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
+// Tessera's types this header names (tessera/cells.h, energy.h,
+// subset_cells.h): declared only, as a LAMMPS style header includes no more
+// than its base class; the pair holds the values in Impl (the .cpp).
+namespace tessera {
+class CellView;
+class SubsetCells;
+struct Contacts;
+struct Model;
+enum class Tension;
+}    // namespace tessera
+
 namespace LAMMPS_NS {
 
+class CellSource;
 class VertexModel;
 
 /* The face of pair_style vertex/voronoi: settings, pair_coeff, the per-type
@@ -36,7 +54,7 @@ class VertexModel;
    the dimension and the 'radius' keyword.  Every consumer reads the cells
    through cells(), the model-independent view (tessera/cells.h). */
 
-class PairVertexVoronoi : public Pair, public CellSource {
+class PairVertexVoronoi : public Pair {
   friend class VertexModel;
   friend class VertexConfluent;
   friend class VertexFinite;
@@ -127,6 +145,11 @@ class PairVertexVoronoi : public Pair, public CellSource {
   void check_single_instance() const;    // one vertex/voronoi under pair_style hybrid
   double cut_global;
   bigint ncompute = 0;
+  // The Tessera values the pair holds (model, subset), behind one pointer;
+  // model and subset name them (bound in the constructor).
+  struct Impl;
+  std::unique_ptr<Impl> impl;
+  std::unique_ptr<CellSource> source;    // what extract("tessera/cell_source") gives
   tessera::Tension tension;
   double *kappa, *area0, *gamma;  // per type, 1-based
   double **lambda;                // per type pair
@@ -134,7 +157,7 @@ class PairVertexVoronoi : public Pair, public CellSource {
   int *type_set;                  // 1 if pair_coeff I I gave the cell parameters
   int *quad_set;                  // 1 if they came in the quadratic form
   double *energy0;                // per type: the quadratic form's constant (see build_model)
-  tessera::Model model;
+  tessera::Model &model;
   // Model-parameter plumbing for fix adapt and the quadratic heterotypic
   // tension (see build_model() and reinit()).
   double **lambda_extra;  // lambda_set == 2: Lambda_IJ = mean + this (pair_coeff I J quadratic)
@@ -176,7 +199,7 @@ class PairVertexVoronoi : public Pair, public CellSource {
   std::vector<int> cell_local, cell_scratch;
   std::vector<double> cell_xbuf, cell_fbuf;
   bigint cell_map_version = 0;  // changes when the list is not the last one
-  tessera::SubsetCells subset;
+  tessera::SubsetCells &subset;
   std::vector<double> cell_e_atom, cell_pc[4];  // per owned atom; compact per-cell values
   void check_cell_types();
   void gather_cells();

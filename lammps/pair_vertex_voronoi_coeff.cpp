@@ -1,6 +1,17 @@
 /* ----------------------------------------------------------------------
-   Tessera: active Voronoi vertex model in LAMMPS.
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
    SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
 
    pair_style vertex/voronoi: the pair_style keywords and pair_coeff (both
    parameter forms, junction tensions between types, free tensions).
@@ -11,6 +22,7 @@
 #include "atom.h"
 #include "error.h"
 #include "force.h"
+#include "tessera/subset_cells.h"
 
 #include <cmath>
 #include <cstring>

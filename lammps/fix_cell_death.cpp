@@ -146,8 +146,6 @@ FixCellDeath::~FixCellDeath()
   memory->destroy(dying_since);
 }
 
-FixCellDeath::~FixCellDeath() = default;
-
 int FixCellDeath::setmask()
 {
   return END_OF_STEP | PRE_EXCHANGE;

@@ -17,11 +17,16 @@
 
 #include "atom.h"
 #include "error.h"
+#include "force.h"
 #include "output.h"
 #include "pair_vertex_polygon.h"
 #include "update.h"
 
+#include "cell_event_count.h"
+#include "cell_event_log.h"
 #include "cell_events.h"
+
+#include "tessera/vertex_model.h"
 
 using namespace LAMMPS_NS;
 using namespace cell_events;
@@ -44,7 +49,7 @@ void FixCellDeath::init_vertex()
                "define them with 'fix ID all property/atom d_area0 d_perim0' and set them "
                "(missing: {}{})",
                id, area0_index < 0 ? "d_area0 " : "", perim0_index < 0 ? "d_perim0" : "");
-  auto *p = dynamic_cast<PairVertexPolygon *>(pair);
+  auto *p = dynamic_cast<PairVertexPolygon *>(force->pair_match("vertex/polygon", 1));
   if (p && !(p->topology().t1_length > 0.0 && p->topology().t2_area > 0.0))
     error->all(FLERR,
                "fix cell/death {}: a dying vertex-model cell leaves by T1s and a T2, which "

@@ -19,6 +19,8 @@
 #include "output.h"
 #include "update.h"
 
+#include "cell_event_count.h"
+#include "cell_event_log.h"
 #include "cell_events.h"
 
 #include <array>

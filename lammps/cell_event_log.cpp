@@ -155,8 +155,9 @@ void EventLog::flush(double time)
   std::vector<int> order(nev);
   for (int k = 0; k < nev; k++) order[k] = k;
   // By cell ID: each cell has one event per step, whatever rank owned it.
-  std::sort(order.begin(), order.end(),
-            [&](int a, int b) { return all[a * NCOL + 1] < all[b * NCOL + 1]; });
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return all[a * NCOL + 1] < all[b * NCOL + 1];
+  });
   const Update *u = lmp->update;
   for (const int k : order) {
     const double *r = &all[k * NCOL];

@@ -25,7 +25,6 @@
 #include "pair_vertex_polygon.h"
 #include "pair_vertex_voronoi.h"
 
-
 using namespace LAMMPS_NS;
 
 CellSource *CellSource::find(LAMMPS *lmp)

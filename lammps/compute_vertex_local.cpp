@@ -125,8 +125,9 @@ void ComputeVertexLocal::compute_local()
           buf[buf.size() - 3] = xyz[0];
           buf[buf.size() - 2] = xyz[1];
         }
-        buf.insert(buf.end(), {static_cast<double>(tag[i]), j >= 0 ? static_cast<double>(tag[j]) : 0.0,
-                               xyz[0], xyz[1], xyz[2], xyz[3], v.piece_size(k)});
+        buf.insert(buf.end(),
+                   {static_cast<double>(tag[i]), j >= 0 ? static_cast<double>(tag[j]) : 0.0, xyz[0],
+                    xyz[1], xyz[2], xyz[3], v.piece_size(k)});
       }
       if (buf.size() > first) {
         buf[buf.size() - 3] = buf[first + 2];
@@ -146,8 +147,9 @@ void ComputeVertexLocal::compute_local()
         // Repeated corners (several tetrahedra with one circumcentre) are
         // one corner of the polygon.
         if (a[0] == b[0] && a[1] == b[1] && a[2] == b[2]) continue;
-        buf.insert(buf.end(), {static_cast<double>(tag[i]), jd, a[0], a[1], a[2], b[0], b[1], b[2],
-                               v.piece_size(k)});
+        buf.insert(
+            buf.end(),
+            {static_cast<double>(tag[i]), jd, a[0], a[1], a[2], b[0], b[1], b[2], v.piece_size(k)});
       }
     }
   }

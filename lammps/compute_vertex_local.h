@@ -38,8 +38,8 @@ class ComputeVertexLocal : public Compute {
   double memory_usage() override;
 
  protected:
-  int nmax;          // rows allocated
-  double **rows;     // nmax x 7: cell ID, neighbour ID, x1 y1 x2 y2, length
+  int nmax;         // rows allocated
+  double **rows;    // nmax x 7: cell ID, neighbour ID, x1 y1 x2 y2, length
   class CellSource *pair;
   std::vector<double> flat;    // the rows of this step, row-major
 };

@@ -84,9 +84,8 @@ ComputeVertexLoops::ComputeVertexLoops(LAMMPS *lmp, int narg, char **arg, bool p
                    id);
       min_area = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (!(min_area >= 0.0) || !std::isfinite(min_area))
-        error->all(FLERR,
-                   "compute vertex/loops {}: min_area must be a finite area >= 0, got '{}'", id,
-                   arg[iarg + 1]);
+        error->all(FLERR, "compute vertex/loops {}: min_area must be a finite area >= 0, got '{}'",
+                   id, arg[iarg + 1]);
       iarg += 2;
     } else {
       error->all(FLERR,
@@ -178,8 +177,9 @@ void ComputeVertexLoops::find_loops()
   std::vector<double> mine;
   mine.reserve(arcs.size() * ARC_DOUBLES);
   for (const auto &a : arcs)
-    mine.insert(mine.end(), {static_cast<double>(a.cell), static_cast<double>(a.next), a.cx, a.cy,
-                             a.r, a.phi, a.theta});
+    mine.insert(mine.end(),
+                {static_cast<double>(a.cell), static_cast<double>(a.next), a.cx, a.cy, a.r, a.phi,
+                 a.theta});
   const int nprocs = comm->nprocs, me = comm->me;
   int count = static_cast<int>(mine.size());
   std::vector<int> counts(nprocs), displs(nprocs, 0);
@@ -226,8 +226,7 @@ void ComputeVertexLoops::find_loops()
     std::sort(every.begin(), every.end(), [](const tessera::FreeArc &a, const tessera::FreeArc &b) {
       return a.cell != b.cell ? a.cell < b.cell : a.phi < b.phi;
     });
-    const auto loops =
-        tessera::free_loops(every, image, 1e-6 * pair->finite_radius(), &unmatched);
+    const auto loops = tessera::free_loops(every, image, 1e-6 * pair->finite_radius(), &unmatched);
     nloops = static_cast<int>(loops.size());
     if (want_chains) {
       chain_arcs.clear();

@@ -42,12 +42,12 @@ class ComputeVertexLoops : public Compute {
   // per_atom: the constructor of compute vertex/loops/atom (the same loops,
   // output per atom instead of the local array and global vector).
   ComputeVertexLoops(class LAMMPS *, int, char **, bool per_atom);
-  int nmax;          // rows allocated
-  double **rows;     // one row per loop (on rank 0)
+  int nmax;         // rows allocated
+  double **rows;    // one row per loop (on rank 0)
   class CellSource *pair;
-  bigint loops_of;   // pair's compute_count() of the loops found last
+  bigint loops_of;    // pair's compute_count() of the loops found last
   int warned;
-  double min_area;    // holes below this area are left out of the global values
+  double min_area;              // holes below this area are left out of the global values
   std::vector<double> table;    // the loops, 7 values each (every rank)
   // With want_chains: each loop's arcs in walking order, unwrapped, on
   // every rank: chain_arcs holds CHAIN_DOUBLES values per arc (cell ID,

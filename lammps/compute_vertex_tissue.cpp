@@ -394,8 +394,7 @@ double ComputeVertexTissue::count_new_neighbors()
     const double *old = memo[i];
     const int kept = known[i] ? MIN(static_cast<int>(old[COUNT]), MAXNEIGH) : 0;
     for (int k = 0; !touched && k < kept; k++)
-      if (!std::binary_search(present.begin(), present.end(),
-                              static_cast<tagint>(old[FIRST + k])))
+      if (!std::binary_search(present.begin(), present.end(), static_cast<tagint>(old[FIRST + k])))
         touched = true;
     flag[i] = touched ? 1.0 : 0.0;
   }

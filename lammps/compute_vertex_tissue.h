@@ -51,7 +51,7 @@ class ComputeVertexTissue : public Compute {
 
   void check_cells();
   double count_multifold();
-  double rosette;  // > 0: count clusters of vertices joined by junctions shorter than this
+  double rosette;    // > 0: count clusters of vertices joined by junctions shorter than this
   std::vector<int> cluster_offset, cluster_members;
   double count_new_neighbors();
   void junction_lengths(double &het, double &total);

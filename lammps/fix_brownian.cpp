@@ -61,7 +61,8 @@ FixBrownianTessera::FixBrownianTessera(LAMMPS *lmp, int narg, char **arg) :
   if (temperature <= 0.0)
     error->all(FLERR,
                "Fix {} (ID {}): temperature T = {} must be > 0 "
-               "(for dynamics without noise keep T > 0 and add 'rng none')", style, id, arg[3]);
+               "(for dynamics without noise keep T > 0 and add 'rng none')",
+               style, id, arg[3]);
 
   if (!utils::is_integer(arg[4]))
     error->all(FLERR, "Fix {} (ID {}): seed must be an integer, got '{}'", style, id, arg[4]);
@@ -91,7 +92,8 @@ FixBrownianTessera::FixBrownianTessera(LAMMPS *lmp, int narg, char **arg) :
       } else if (strcmp(value, "none") == 0) {
         noise = NOISE_NONE;
       } else {
-        error->all(FLERR, "Fix {} (ID {}): rng must be uniform, gaussian or none, got '{}'", style, id, value);
+        error->all(FLERR, "Fix {} (ID {}): rng must be uniform, gaussian or none, got '{}'", style,
+                   id, value);
       }
       iarg += 2;
     } else if (strcmp(keyword, "gamma_r") == 0 || strcmp(keyword, "gamma_t_eigen") == 0 ||
@@ -101,7 +103,8 @@ FixBrownianTessera::FixBrownianTessera(LAMMPS *lmp, int narg, char **arg) :
       error->all(FLERR,
                  "Fix {} (ID {}): keyword {} belongs to upstream's fix brownian/sphere or "
                  "brownian/asphere, which Tessera does not provide; fix brownian moves positions "
-                 "only (polarity dynamics: fix polarity)", style, id, keyword);
+                 "only (polarity dynamics: fix polarity)",
+                 style, id, keyword);
     } else {
       error->all(FLERR, "Fix {} (ID {}): unknown keyword '{}' (expected gamma_t or rng)", style, id,
                  keyword);

@@ -77,12 +77,11 @@ static int args_before_adapt(int narg, char **arg)
 
 FixBrownianHeun::FixBrownianHeun(LAMMPS *lmp, int narg, char **arg) :
     FixBrownianTessera(lmp, args_before_adapt(narg, arg), arg), saved(nullptr), ncol(NFIXED),
-    nmax_saved(0), col_k1(NFIXED), col_q0(NFIXED), ncoupled(0),
-    nstate(0), nwiener_coupled(0), adapt(0), tol(0.0), tol_angle(0.0), dtmin(0.0),
-    dtmax(-1.0), safety(0.9), grow_max(2.0), shrink_min(0.2), dt_next(-1.0), dt_set(-1.0),
-    naccept(0), nreject(0), nforced(0), err_last(0.0), est_last(0.0), forced_warned(0),
-    qbuf(nullptr), qcap(0), nwiener(0), draws(0), noise_seed(0), diffusion_amp(0.0),
-    consumed(0)
+    nmax_saved(0), col_k1(NFIXED), col_q0(NFIXED), ncoupled(0), nstate(0), nwiener_coupled(0),
+    adapt(0), tol(0.0), tol_angle(0.0), dtmin(0.0), dtmax(-1.0), safety(0.9), grow_max(2.0),
+    shrink_min(0.2), dt_next(-1.0), dt_set(-1.0), naccept(0), nreject(0), nforced(0), err_last(0.0),
+    est_last(0.0), forced_warned(0), qbuf(nullptr), qcap(0), nwiener(0), draws(0), noise_seed(0),
+    diffusion_amp(0.0), consumed(0)
 {
   scalar_flag = 1;
   vector_flag = 1;

@@ -97,8 +97,8 @@ class FixBrownianHeun : public FixBrownianTessera {
 
   // ---- the adaptive step ('adapt', fix_brownian_heun_adapt.cpp) ----
   int adapt;
-  double tol, tol_angle;               // error tolerances: length; radians for coupled dof
-  double dtmin, dtmax;                 // bounds (<= 0 before the first run: defaults)
+  double tol, tol_angle;    // error tolerances: length; radians for coupled dof
+  double dtmin, dtmax;      // bounds (<= 0 before the first run: defaults)
   double safety, grow_max, shrink_min;
   double dt_next;                      // the controller's proposal for the next step
   double dt_set;                       // update->dt as this fix last set it

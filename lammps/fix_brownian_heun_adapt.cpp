@@ -196,9 +196,9 @@ void FixBrownianHeun::init_adapt()
   if (noise == NOISE_GAUSSIAN)
     diffusion_amp = std::sqrt(2.0 * force->boltz * temperature / (force->mvv2e * gamma_t));
   chatter->context = fmt::format("; this run's adapt tol {} gives each step an error estimate "
-                                "below {} (a length), so a period-two oscillation left is at most "
-                                "that large",
-                                tol, tol);
+                                 "below {} (a length), so a period-two oscillation left is at most "
+                                 "that large",
+                                 tol, tol);
   maxexchange_dynamic = 1;
   maxexchange = ncol + qcols();
 }
@@ -330,8 +330,7 @@ void FixBrownianHeun::fresh_queue_rows()
       const double s = std::sqrt(qtau[k]);
       for (int c = 0; c < nwiener; c++)
         qbuf[i][1 + k * nwiener + c] = s *
-            tessera::rng::gaussian_mixed(noise_seed ^ STREAM_JOIN, tag[i],
-                                         qid[k] * MAX_WIENER + c);
+            tessera::rng::gaussian_mixed(noise_seed ^ STREAM_JOIN, tag[i], qid[k] * MAX_WIENER + c);
     }
   }
 }
@@ -367,8 +366,7 @@ void FixBrownianHeun::split_entry(int k, double first)
   const tagint *tag = atom->tag;
   for (int i = 0; i < atom->nlocal; i++) {
     double *row = qbuf[i] + 1;
-    std::memmove(row + (k + 1) * nwiener, row + k * nwiener,
-                 sizeof(double) * (n - k) * nwiener);
+    std::memmove(row + (k + 1) * nwiener, row + k * nwiener, sizeof(double) * (n - k) * nwiener);
     for (int c = 0; c < nwiener; c++) {
       const double whole = row[(k + 1) * nwiener + c];
       const double part = q * whole +

@@ -60,8 +60,8 @@ struct FixCellDeath::Impl {
 };
 
 FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), region(nullptr), pair(nullptr), impl(new Impl),
-    events(impl->events), log(impl->log)
+    Fix(lmp, narg, arg), region(nullptr), pair(nullptr), impl(new Impl), events(impl->events),
+    log(impl->log)
 {
   clock = update->atime + (double) (update->ntimestep - update->atimestep) * update->dt;
   trigger = -1;
@@ -89,7 +89,8 @@ FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
       trigger_text = std::string(kw) + " " + v;
       rate = utils::numeric(FLERR, v, false, lmp);
       if (!(rate >= 0.0) || !std::isfinite(rate))
-        error->all(FLERR, "fix cell/death: rate R must be >= 0 (deaths per cell per time), got {}", v);
+        error->all(FLERR, "fix cell/death: rate R must be >= 0 (deaths per cell per time), got {}",
+                   v);
     } else if (strcmp(kw, "area") == 0) {
       trigger = AREA;
       trigger_text = std::string(kw) + " " + v;
@@ -102,7 +103,8 @@ FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
     } else if (strcmp(kw, "region") == 0) {
       region_id = v;
       if (!find_region(domain, region_id))
-        error->all(FLERR, "fix cell/death: region '{}' does not exist; define it with 'region' first",
+        error->all(FLERR,
+                   "fix cell/death: region '{}' does not exist; define it with 'region' first",
                    region_id);
     } else if (strcmp(kw, "min") == 0) {
       min_cells = min_user = utils::bnumeric(FLERR, v, false, lmp);
@@ -120,7 +122,8 @@ FixCellDeath::FixCellDeath(LAMMPS *lmp, int narg, char **arg) :
     error->all(FLERR, "fix cell/death: give a trigger: rate R or area Amin; syntax: {}", SYNTAX);
   if (seed < 0) error->all(FLERR, "fix cell/death: keyword 'seed S' is required");
   if (!atom->tag_enable) error->all(FLERR, "fix cell/death requires atom IDs");
-  if (atom->molecular) error->all(FLERR, "fix cell/death cannot remove atoms of a molecular system");
+  if (atom->molecular)
+    error->all(FLERR, "fix cell/death cannot remove atoms of a molecular system");
 
   force_reneighbor = 1;
   next_reneighbor = -1;
@@ -248,8 +251,7 @@ void FixCellDeath::decide()
                        "keeps {} of them alive: the tissue keeps at least {} cells (said once per "
                        "run)",
                        id, update->ntimestep, all.size(), min_cells,
-                       min_user < 0 ? " (the default)" : "", (bigint) all.size() - room,
-                       min_cells);
+                       min_user < 0 ? " (the default)" : "", (bigint) all.size() - room, min_cells);
       warned_floor = 1;
       all.resize(room);
     }

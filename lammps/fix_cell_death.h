@@ -32,8 +32,8 @@ FixStyle(cell/death,FixCellDeath);
 namespace LAMMPS_NS {
 
 namespace cell_events {
-struct EventCount;
-class EventLog;
+  struct EventCount;
+  class EventLog;
 }    // namespace cell_events
 
 class FixCellDeath : public Fix {
@@ -67,7 +67,7 @@ class FixCellDeath : public Fix {
   enum Trigger { RATE, AREA };
   int trigger, seed;
   double rate, area_min;
-  double clock;    // the time of the current step, kept by restart files (for the event log)
+  double clock;        // the time of the current step, kept by restart files (for the event log)
   bigint min_cells;    // the floor in use (min N, or the model's default)
   bigint min_user = -1;    // min N as given, or -1
   int warned_floor = 0;    // the floor held back deaths (said once per run)

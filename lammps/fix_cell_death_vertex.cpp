@@ -1,6 +1,17 @@
 /* ----------------------------------------------------------------------
-   Tessera: active Voronoi vertex model in LAMMPS.
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
    SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
 
    fix cell/death on the cells of the vertex model (pair_style
    vertex/polygon; doc/model.md, "Division and death"): a cell that dies is

@@ -66,8 +66,7 @@ struct FixCellDivide::Impl {
 
 FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), decide_time(0.0), cap_warned(false), region(nullptr), pair(nullptr),
-    area0_index(-1), cellstate(nullptr), impl(new Impl),
-    events(impl->events), log(impl->log)
+    area0_index(-1), cellstate(nullptr), impl(new Impl), events(impl->events), log(impl->log)
 {
   // The fix's clock starts at LAMMPS's time now (0 at the first run) and is
   // advanced by the fix itself: its value is kept in the restart file.
@@ -111,7 +110,8 @@ FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
         rate = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       }
       if (!(rate >= 0.0) || !std::isfinite(rate))
-        error->all(FLERR, "fix cell/divide: rate R must be >= 0 (divisions per cell per time), got {}",
+        error->all(FLERR,
+                   "fix cell/divide: rate R must be >= 0 (divisions per cell per time), got {}",
                    arg[iarg + 1]);
       iarg += 2;
     } else if (strcmp(kw, "cycle") == 0) {
@@ -175,13 +175,15 @@ FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
       else if (strcmp(arg[iarg + 1], "linear") == 0)
         growth = 1;
       else
-        error->all(FLERR, "fix cell/divide: growth must be none or linear, got '{}'", arg[iarg + 1]);
+        error->all(FLERR, "fix cell/divide: growth must be none or linear, got '{}'",
+                   arg[iarg + 1]);
       iarg += 2;
     } else if (strcmp(kw, "region") == 0) {
       need(iarg, 1, kw);
       region_id = arg[iarg + 1];
       if (!find_region(domain, region_id))
-        error->all(FLERR, "fix cell/divide: region '{}' does not exist; define it with 'region' first",
+        error->all(FLERR,
+                   "fix cell/divide: region '{}' does not exist; define it with 'region' first",
                    region_id);
       iarg += 2;
     } else if (strcmp(kw, "max") == 0) {
@@ -216,7 +218,8 @@ FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
     }
   }
   if (trigger < 0)
-    error->all(FLERR, "fix cell/divide: give a trigger: rate R, cycle T spread s, or area Ac; syntax: {}",
+    error->all(FLERR,
+               "fix cell/divide: give a trigger: rate R, cycle T spread s, or area Ac; syntax: {}",
                SYNTAX);
   if (seed < 0) error->all(FLERR, "fix cell/divide: keyword 'seed S' is required");
   if (growth && trigger == AREA)
@@ -226,7 +229,8 @@ FixCellDivide::FixCellDivide(LAMMPS *lmp, int narg, char **arg) :
   if (growth && trigger == RATE && rate == 0.0 && rate_name.empty())
     error->all(FLERR, "fix cell/divide: growth linear with rate 0 has no cycle time (1/R)");
   if (axis == POLARITY && !atom->mu_flag)
-    error->all(FLERR, "fix cell/divide: axis polarity needs atom_style dipole (the polarity is mu)");
+    error->all(FLERR,
+               "fix cell/divide: axis polarity needs atom_style dipole (the polarity is mu)");
   if (!atom->tag_enable) error->all(FLERR, "fix cell/divide requires atom IDs");
 
   force_reneighbor = 1;
@@ -495,8 +499,9 @@ static void daughter_polarity(uint64_t seed, tagint t, uint64_t step, double noi
                               const double *mu, double *n)
 {
   if (dim == 2) {
-    double th = std::hypot(mu[0], mu[1]) > 0.0 ? std::atan2(mu[1], mu[0])
-                                               : MathConst::MY_2PI * uniform01(seed, t, step, DIRECTION);
+    double th = std::hypot(mu[0], mu[1]) > 0.0
+        ? std::atan2(mu[1], mu[0])
+        : MathConst::MY_2PI * uniform01(seed, t, step, DIRECTION);
     if (noise > 0.0) th += noise * (2.0 * uniform01(seed, t, step, NOISE) - 1.0);
     n[0] = std::cos(th);
     n[1] = std::sin(th);
@@ -644,7 +649,7 @@ void FixCellDivide::pre_exchange()
     const auto found = pending.find(atom->tag[i]);
     if (found == pending.end()) continue;
     const auto rank = daughter_tag.find(atom->tag[i]);
-    if (rank == daughter_tag.end()) continue;    // over the cap
+    if (rank == daughter_tag.end()) continue;       // over the cap
     if ((bigint) rank->second >= room) continue;    // over the cap, with the other fixes' cells
     const std::array<double, 3> &u = found->second;
     if (atom->nlocal == atom->nmax) atom->avec->grow(0);

@@ -34,8 +34,8 @@ FixStyle(cell/divide,FixCellDivide);
 namespace LAMMPS_NS {
 
 namespace cell_events {
-struct EventCount;
-class EventLog;
+  struct EventCount;
+  class EventLog;
 }    // namespace cell_events
 
 class FixCellDivide : public Fix {
@@ -90,8 +90,8 @@ class FixCellDivide : public Fix {
   std::vector<class FixCellDeath *> deaths;    // a dying cell does not divide
   bool noted_particles = false;
   bool takes(int i) const;    // owned atom i is a cell of the group
-  int area0_index;    // d_area0 in atom->dvector, or -1
-  std::string rate_name;    // 'rate d_name': each cell's own rate, a per-atom property
+  int area0_index;            // d_area0 in atom->dvector, or -1
+  std::string rate_name;      // 'rate d_name': each cell's own rate, a per-atom property
   int rate_index = -1;
   double cell_rate(int i) const;
   std::vector<std::string> split_names;    // 'split d_name': halved between the daughters

@@ -121,7 +121,7 @@ class FixCellSignal : public Fix {
   // The solution x1 + xd, a correction, the solver's vectors, the
   // right-hand side and the residual.
   std::vector<double> cg_x, cg_xd, cg_d, cg_r, cg_p, cg_q, cg_b, cg_res;
-  std::vector<double> cg_keep;    // x1 and xd before a correction
+  std::vector<double> cg_keep;          // x1 and xd before a correction
   std::vector<char> warned_implicit;    // per field: the accuracy warning was given
   void implicit_step(double dt);
   void forward_vectors(double *x, double *x2);

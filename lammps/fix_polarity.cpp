@@ -52,11 +52,11 @@ namespace {
 // only on (seed, atom ID, timestep, stream), not on the rank or the order of
 // atoms (runs on other rank counts and restarts then agree to round-off; see
 // the doc).
+using tessera::sincos_small;
 using tessera::rng::gaussian;
 using tessera::rng::gaussian_mixed;
 using tessera::rng::mix;
 using tessera::rng::uniform01;
-using tessera::sincos_small;
 
 // Whether the n rows of a LAMMPS per-atom array (stride values each) are one
 // block, as memory->create allocates them.
@@ -89,8 +89,9 @@ FixPolarity::FixPolarity(LAMMPS *lmp, int narg, char **arg) :
   // f_a: a number, or d_name, a per-atom property giving each cell's own.
   if (strncmp(arg[3], "d_", 2) == 0) {
     if (!arg[3][2])
-      error->all(FLERR, "fix polarity: active force 'd_' names no per-atom property; give a "
-                        "number or d_name (fix property/atom d_name)");
+      error->all(FLERR,
+                 "fix polarity: active force 'd_' names no per-atom property; give a "
+                 "number or d_name (fix property/atom d_name)");
     fa_name = arg[3] + 2;
     f_active = 0.0;
   } else {
@@ -129,7 +130,8 @@ FixPolarity::FixPolarity(LAMMPS *lmp, int narg, char **arg) :
       if (d_rot < 0.0)
         error->all(FLERR, "fix polarity: rotational diffusion D_r must be >= 0, got {}",
                    arg[iarg + 1]);
-      if (seed <= 0) error->all(FLERR, "fix polarity: noise seed must be > 0, got {}", arg[iarg + 2]);
+      if (seed <= 0)
+        error->all(FLERR, "fix polarity: noise seed must be > 0, got {}", arg[iarg + 2]);
       seed_given = 1;
       iarg += 3;
     } else if (strcmp(arg[iarg], "seed") == 0) {
@@ -300,9 +302,13 @@ void FixPolarity::unit_polarities()
   // Rows of one block (LAMMPS's memory->create): index it directly rather
   // than through the row pointers (one memory stream less).
   if (nall > 0 && one_block(mu, nall, 4))
-    pass([m0 = mu[0]](int i) { return m0 + 4 * static_cast<long>(i); });
+    pass([m0 = mu[0]](int i) {
+      return m0 + 4 * static_cast<long>(i);
+    });
   else
-    pass([mu](int i) { return mu[i]; });
+    pass([mu](int i) {
+      return mu[i];
+    });
 }
 
 void FixPolarity::setup(int vflag)
@@ -354,10 +360,21 @@ void FixPolarity::post_force(int /*vflag*/)
     }
   };
   if (nlocal > 0 && one_block(mu, nlocal, 4) && one_block(f, nlocal, 3))
-    pass([m0 = mu[0]](int i) { return m0 + 4 * static_cast<long>(i); },
-         [f0 = f[0]](int i) { return f0 + 3 * static_cast<long>(i); });
+    pass(
+        [m0 = mu[0]](int i) {
+          return m0 + 4 * static_cast<long>(i);
+        },
+        [f0 = f[0]](int i) {
+          return f0 + 3 * static_cast<long>(i);
+        });
   else
-    pass([mu](int i) { return mu[i]; }, [f](int i) { return f[i]; });
+    pass(
+        [mu](int i) {
+          return mu[i];
+        },
+        [f](int i) {
+          return f[i];
+        });
 }
 
 /* The active force of owned atom i from the per-atom property d_name
@@ -421,8 +438,7 @@ void FixPolarity::initial_integrate(int /*vflag*/)
 
   if (params.J_S != 0.0) {
     const tessera::Contacts t = recorded_contacts(update->ntimestep - 1);
-    tessera::polarity_torque_vec(t, unit.data(), 2, params, vhat.data(), has_v.data(),
-                                 tau.data());
+    tessera::polarity_torque_vec(t, unit.data(), 2, params, vhat.data(), has_v.data(), tau.data());
   } else {
     // Without neighbour alignment no tessellation is needed: the torque of
     // each cell depends on its own polarity and velocity only.
@@ -467,7 +483,8 @@ void FixPolarity::initial_integrate(int /*vflag*/)
     tessera::rotate_polarities(nlocal, unit.data(), dth, mu[0], active);
   else
     for (int i = 0; i < nlocal; i++)
-      if (!active || active[i]) tessera::rotate_polarities_reference(1, &unit[2 * i], &dth[i], mu[i], nullptr);
+      if (!active || active[i])
+        tessera::rotate_polarities_reference(1, &unit[2 * i], &dth[i], mu[i], nullptr);
 }
 
 /* Notes which force computation's cells the next step's alignment reads
@@ -574,8 +591,7 @@ void FixPolarity::angle_torques(bigint state_step)
   tau.resize(nlocal);
   if (params.J_S != 0.0) {
     const tessera::Contacts t = recorded_contacts(state_step);
-    tessera::polarity_torque_vec(t, unit.data(), 2, params, vhat.data(), has_v.data(),
-                                 tau.data());
+    tessera::polarity_torque_vec(t, unit.data(), 2, params, vhat.data(), has_v.data(), tau.data());
   } else {
     none.n_owned = nlocal;
     none.cell_offset.assign(nlocal + 1, 0);
@@ -644,8 +660,8 @@ void FixPolarity::coupled_noise(double *w, int stride)
     return;
   }
   for (int i = 0; i < atom->nlocal; i++)
-    w[i * stride] =
-        (d_rot > 0.0 && (mask[i] & groupbit)) ? noise * gaussian(seed, tag[i], step) : 0.0;
+    w[i * stride] = (d_rot > 0.0 && (mask[i] & groupbit)) ? noise * gaussian(seed, tag[i], step)
+                                                          : 0.0;
 }
 
 void FixPolarity::coupled_advance(const double *dq, int stride)

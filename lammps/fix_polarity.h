@@ -68,7 +68,7 @@ class FixPolarity : public Fix {
   int seed;
   class CellSource *pair;
   std::vector<double> tau, vhat, unit;
-  tessera::Tessellation &none;  // an empty tessellation when no neighbours are needed
+  tessera::Tessellation &none;    // an empty tessellation when no neighbours are needed
   std::vector<unsigned char> has_v;
   std::vector<unsigned char> in_group;    // 1 for atoms of the fix group (when it is not all)
   // Cells on a sphere: positions of the owned and ghost atoms at the last

@@ -38,10 +38,10 @@ using namespace LAMMPS_NS;
 
 namespace {
 
+using tessera::sincos_small;
 using tessera::rng::gaussian;
 using tessera::rng::mix;
 using tessera::rng::uniform01;
-using tessera::sincos_small;
 
 }    // namespace
 

@@ -25,10 +25,13 @@ FixStyle(VERTEX_POLYGON,FixVertexPolygon);
 
 #include "fix.h"
 
-#include "tessera/vertex_model.h"
-
 #include <string>
 #include <vector>
+
+namespace tessera {
+struct VertexTissue;
+class EdgeMap;
+}    // namespace tessera
 
 namespace LAMMPS_NS {
 

@@ -1,6 +1,17 @@
 /* ----------------------------------------------------------------------
-   Tessera: active Voronoi vertex model in LAMMPS.
+   TESSERA package for LAMMPS: vertex models of cell tissues
+   LAMMPS: https://www.lammps.org/
+
+   Copyright (2026) the Tessera developers.  This software is distributed
+   under the GNU General Public License, version 2 or (at your option) any
+   later version.
    SPDX-License-Identifier: GPL-2.0-or-later
+
+   See the README file in the package's directory (src/TESSERA).
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the Tessera developers
 
    Division of vertex-model cells for fix cell/divide (doc/model.md,
    "Division and death"): the owner of each mother cuts it on the patch of
@@ -19,6 +30,8 @@
 #include "fix_vertex_polygon.h"
 
 #include "pair_vertex_polygon.h"
+
+#include "tessera/vertex_model.h"
 
 #include "atom.h"
 #include "atom_vec.h"

@@ -48,8 +48,7 @@ int FixVertexSphere::setmask()
       MIN_POST_FORCE;
 }
 
-void FixVertexSphere::project_one(const double *c, double R, double *x, double *mu,
-                                  const double *a)
+void FixVertexSphere::project_one(const double *c, double R, double *x, double *mu, const double *a)
 {
   double u[3] = {x[0] - c[0], x[1] - c[1], x[2] - c[2]};
   const double l = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);

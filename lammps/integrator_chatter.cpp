@@ -182,7 +182,8 @@ void IntegratorChatter::term_forces(std::vector<double> &forces)
     for (int d = 0; d < 3; d++) forces[(i * nterms + nterms - 1) * 3 + d] = f[i][d];
   for (size_t m = 0; m < pairs.size(); m++) {
     if (nall > 0) std::memset(&f[0][0], 0, sizeof(double) * 3 * nall);
-    if (atom->torque_flag && nall > 0) std::memset(&atom->torque[0][0], 0, sizeof(double) * 3 * nall);
+    if (atom->torque_flag && nall > 0)
+      std::memset(&atom->torque[0][0], 0, sizeof(double) * 3 * nall);
     pairs[m]->compute(0, 0);
     if (force->newton_pair) comm->reverse_comm();
     for (int i = 0; i < nlocal; i++)
@@ -267,8 +268,9 @@ bool IntegratorChatter::report()
   const int nrows = static_cast<int>(mine.size()) / width;
   std::vector<int> order(nrows);
   for (int k = 0; k < nrows; k++) order[k] = k;
-  std::sort(order.begin(), order.end(),
-            [&](int a, int b) { return mine[a * width + 1] > mine[b * width + 1]; });
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return mine[a * width + 1] > mine[b * width + 1];
+  });
   std::vector<double> top(static_cast<size_t>(NAMED) * width, 0.0);
   for (int k = 0; k < NAMED; k++) {
     if (k < nrows)
@@ -319,14 +321,14 @@ bool IntegratorChatter::report()
   for (int m = 0; m < nterms; m++)
     shares += fmt::format("{}{} {:.0f} %", m ? ", " : "", terms[m],
                           total > 0.0 ? 100.0 * share[m] / total : 0.0);
-  std::string who = named ? fmt::format(
-                                "The atoms that alternate most (of {} that reverse their move at "
-                                "every one of steps {} to {}; mean move of the group {:.2g}): {}.  "
-                                "The force that alternates on them is from {} (shares of the "
-                                "alternating force: {}).  ",
-                                static_cast<bigint>(gstats[2]), update->ntimestep - PROBE + 1,
-                                update->ntimestep, mean_move, atoms, terms[main_term], shares)
-                          : std::string();
+  std::string who = named
+      ? fmt::format("The atoms that alternate most (of {} that reverse their move at "
+                    "every one of steps {} to {}; mean move of the group {:.2g}): {}.  "
+                    "The force that alternates on them is from {} (shares of the "
+                    "alternating force: {}).  ",
+                    static_cast<bigint>(gstats[2]), update->ntimestep - PROBE + 1,
+                    update->ntimestep, mean_move, atoms, terms[main_term], shares)
+      : std::string();
   error->warning(
       FLERR,
       "fix {} {}: the displacements have reversed direction from step to step over steps {} to "

@@ -201,10 +201,10 @@ void Input::clear()
 {
   using ClearFunction = void (*)(Input *);
   static const char *const symbol = "_ZN9LAMMPS_NS5Input5clearEv";    // LAMMPS_NS::Input::clear()
-  static ClearFunction library_clear =
-      reinterpret_cast<ClearFunction>(dlsym(RTLD_NEXT, symbol));
+  static ClearFunction library_clear = reinterpret_cast<ClearFunction>(dlsym(RTLD_NEXT, symbol));
   if (!library_clear)
-    error->all(FLERR, "tessera-lmp: liblammps.so has no {} (LAMMPS_NS::Input::clear()) to run "
+    error->all(FLERR,
+               "tessera-lmp: liblammps.so has no {} (LAMMPS_NS::Input::clear()) to run "
                "for 'clear'; rebuild tessera-lmp against the LAMMPS it runs with",
                symbol);
   library_clear(this);

@@ -55,7 +55,6 @@
 
 using namespace LAMMPS_NS;
 
-
 struct PairVertexVoronoi::Impl {
   tessera::Model model;
   tessera::SubsetCells subset;
@@ -292,16 +291,18 @@ void PairVertexVoronoi::print_model() const
   std::string msg;
   if (sphere_on)
     msg = fmt::format("pair_style vertex/voronoi: cutoff {:.6g} tension {} surface sphere {:.6g} "
-                      "{:.6g} {:.6g} {} (cells on a sphere)\n", cut_global, tname, sphere_c[0],
-                      sphere_c[1], sphere_c[2],
+                      "{:.6g} {:.6g} {} (cells on a sphere)\n",
+                      cut_global, tname, sphere_c[0], sphere_c[1], sphere_c[2],
                       sphere_var.empty() ? fmt::format("{:.6g}", sphere_R) : "v_" + sphere_var);
   else if (finite)
     msg = fmt::format("pair_style vertex/voronoi: cutoff {:.6g} tension {} radius {:.6g} (finite "
-                      "cells)\n", cut_global, tname, radius);
+                      "cells)\n",
+                      cut_global, tname, radius);
   else if (three)
-    msg = fmt::format("pair_style vertex/voronoi: cutoff {:.6g} tension {} incremental {} grow {} "
-                      "reference {} (3d cells)\n", cut_global, tname, inc_name[incremental],
-                      grow ? "yes" : "no", reference_every);
+    msg =
+        fmt::format("pair_style vertex/voronoi: cutoff {:.6g} tension {} incremental {} grow {} "
+                    "reference {} (3d cells)\n",
+                    cut_global, tname, inc_name[incremental], grow ? "yes" : "no", reference_every);
   else
     msg = fmt::format(
         "pair_style vertex/voronoi: cutoff {:.6g} tension {} incremental {} grow {} reference {}\n",
@@ -321,8 +322,8 @@ void PairVertexVoronoi::print_model() const
     const double lam = model.lambda_of(i - 1, i - 1);
     const double size = three ? std::cbrt(area0[i] * area0[i]) : std::sqrt(area0[i]);
     const double p0 = gamma[i] != 0.0 ? -lam / (c * gamma[i] * size) : 0.0;
-    msg += fmt::format("  {:4d} {:10.4g} {:10.4g} {:10.4g} {:13.4g} {:>10}", i, kappa[i],
-                       area0[i], gamma[i], lam, gamma[i] != 0.0 ? fmt::format("{:.4g}", p0) : "-");
+    msg += fmt::format("  {:4d} {:10.4g} {:10.4g} {:10.4g} {:13.4g} {:>10}", i, kappa[i], area0[i],
+                       gamma[i], lam, gamma[i] != 0.0 ? fmt::format("{:.4g}", p0) : "-");
     if (finite) msg += fmt::format(" {:10.4g}", free_tension[i]);
     msg += "\n";
   }
@@ -358,11 +359,13 @@ void PairVertexVoronoi::reinit()
   for (int i = 1; i <= n; i++) {
     if (!type_set[i]) continue;    // no cells of this type
     if (!(adapt_kappa[i][i] > 0.0) || !std::isfinite(adapt_kappa[i][i]))
-      error->all(FLERR, "pair_style vertex/voronoi (fix adapt): kappa of type {} must be > 0, got {}",
-                 i, adapt_kappa[i][i]);
+      error->all(FLERR,
+                 "pair_style vertex/voronoi (fix adapt): kappa of type {} must be > 0, got {}", i,
+                 adapt_kappa[i][i]);
     if (!(adapt_area0[i][i] > 0.0) || !std::isfinite(adapt_area0[i][i]))
-      error->all(FLERR, "pair_style vertex/voronoi (fix adapt): area0 of type {} must be > 0, got {}",
-                 i, adapt_area0[i][i]);
+      error->all(FLERR,
+                 "pair_style vertex/voronoi (fix adapt): area0 of type {} must be > 0, got {}", i,
+                 adapt_area0[i][i]);
     const bool kappa_changed = adapt_kappa[i][i] != kappa[i];
     kappa[i] = adapt_kappa[i][i];
     if (adapt_area0[i][i] != area0[i] && !warned_area0) {
@@ -466,7 +469,8 @@ void PairVertexVoronoi::grow_ghost_shell(double cut)
   double **f = atom->f;
   for (int i = 0; i < nall; i++) f[i][0] = f[i][1] = f[i][2] = 0.0;
   if (atom->torque_flag)
-    for (int i = 0; i < nall; i++) atom->torque[i][0] = atom->torque[i][1] = atom->torque[i][2] = 0.0;
+    for (int i = 0; i < nall; i++)
+      atom->torque[i][0] = atom->torque[i][1] = atom->torque[i][2] = 0.0;
 }
 
 /* This step's 0-based types of the owned and ghost cells (gather_cells'
@@ -656,10 +660,9 @@ bool PairVertexVoronoi::ghost_shell_complete(double need_local)
                cut_global, domain->dimension == 3 ? "shell" : "ring");
   // On the sphere every rank holds every cell; what it needs within the
   // ghost shell are the owned cells' neighbours, not circumspheres.
-  const char *why = sphere_on ? "a neighbour of a cell of this rank lies past the ghost atoms"
-                    : domain->dimension == 3
-                        ? "a Voronoi vertex's circumsphere reaches past the ghost atoms"
-                        : "a Voronoi vertex's circumcircle reaches past the ghost atoms";
+  const char *why = sphere_on  ? "a neighbour of a cell of this rank lies past the ghost atoms"
+      : domain->dimension == 3 ? "a Voronoi vertex's circumsphere reaches past the ghost atoms"
+                               : "a Voronoi vertex's circumcircle reaches past the ghost atoms";
   error->all(FLERR,
              "pair_style vertex/voronoi: cutoff {:.6g} is too small for this configuration "
              "({}); use 'pair_style vertex/voronoi {:.3g}' or larger",

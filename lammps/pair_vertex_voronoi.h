@@ -151,38 +151,38 @@ class PairVertexVoronoi : public Pair {
   std::unique_ptr<Impl> impl;
   std::unique_ptr<CellSource> source;    // what extract("tessera/cell_source") gives
   tessera::Tension tension;
-  double *kappa, *area0, *gamma;  // per type, 1-based
-  double **lambda;                // per type pair
-  int **lambda_set;               // 1 if pair_coeff I J gave Lambda_IJ explicitly
-  int *type_set;                  // 1 if pair_coeff I I gave the cell parameters
-  int *quad_set;                  // 1 if they came in the quadratic form
-  double *energy0;                // per type: the quadratic form's constant (see build_model)
+  double *kappa, *area0, *gamma;    // per type, 1-based
+  double **lambda;                  // per type pair
+  int **lambda_set;                 // 1 if pair_coeff I J gave Lambda_IJ explicitly
+  int *type_set;                    // 1 if pair_coeff I I gave the cell parameters
+  int *quad_set;                    // 1 if they came in the quadratic form
+  double *energy0;                  // per type: the quadratic form's constant (see build_model)
   tessera::Model &model;
   // Model-parameter plumbing for fix adapt and the quadratic heterotypic
   // tension (see build_model() and reinit()).
-  double **lambda_extra;  // lambda_set == 2: Lambda_IJ = mean + this (pair_coeff I J quadratic)
-  double **adapt_kappa, **adapt_area0, **adapt_gamma;  // type-pair views of the per-type values
-  double **lambda_built;  // lambda as build_model() left it: what fix adapt changed since
-  int warned_area0 = 0;   // fix adapt changed area0 while d_area0 exists (warned once)
-  int warned_percell = 0; // fix adapt changed kappa/gamma while d_ka/d_kp exists (once)
+  double **lambda_extra;    // lambda_set == 2: Lambda_IJ = mean + this (pair_coeff I J quadratic)
+  double **adapt_kappa, **adapt_area0, **adapt_gamma;    // type-pair views of the per-type values
+  double **lambda_built;     // lambda as build_model() left it: what fix adapt changed since
+  int warned_area0 = 0;      // fix adapt changed area0 while d_area0 exists (warned once)
+  int warned_percell = 0;    // fix adapt changed kappa/gamma while d_ka/d_kp exists (once)
   void build_model();
   bool adapted() const;
   int read_restart_settings_version(FILE *);
   void print_model() const;
 
-  std::unique_ptr<VertexModel> unit;  // the model's unit, made in init_style
+  std::unique_ptr<VertexModel> unit;    // the model's unit, made in init_style
   bigint tess_step;
-  int incremental;      // 1: keep the triangulation between steps, 0: rebuild every step, 2: check
-  int reference_every;  // time a from-scratch triangulation every this many steps (0: never)
-  double stats[8];      // pvector: see the doc (times, rebuilds, flips, steps, reference)
+  int incremental;    // 1: keep the triangulation between steps, 0: rebuild every step, 2: check
+  int reference_every;    // time a from-scratch triangulation every this many steps (0: never)
+  double stats[8];        // pvector: see the doc (times, rebuilds, flips, steps, reference)
   std::vector<int> type0;
   std::vector<double> cell_e;
-  std::vector<double> cell_w;  // per-cell virial (2d: xx, yy, xy, yx; 3d: 9) when asked for
+  std::vector<double> cell_w;    // per-cell virial (2d: xx, yy, xy, yx; 3d: 9) when asked for
 
-  double radius;                 // finite Voronoi radius (0: confluent model)
-  double *free_tension;          // per type: tension of free arcs (internal F)
-  int free_set;                  // 1 if some pair_coeff gave 'free'
-  std::vector<double> free_t0;   // free_tension, 0-based
+  double radius;                  // finite Voronoi radius (0: confluent model)
+  double *free_tension;           // per type: tension of free arcs (internal F)
+  int free_set;                   // 1 if some pair_coeff gave 'free'
+  std::vector<double> free_t0;    // free_tension, 0-based
 
   void allocate();
   // The cells among the atoms (pair_vertex_voronoi_cells.cpp).  Every unit
@@ -198,9 +198,9 @@ class PairVertexVoronoi : public Pair {
   int ncell_local = 0, ncell_all = 0;
   std::vector<int> cell_local, cell_scratch;
   std::vector<double> cell_xbuf, cell_fbuf;
-  bigint cell_map_version = 0;  // changes when the list is not the last one
+  bigint cell_map_version = 0;    // changes when the list is not the last one
   tessera::SubsetCells &subset;
-  std::vector<double> cell_e_atom, cell_pc[4];  // per owned atom; compact per-cell values
+  std::vector<double> cell_e_atom, cell_pc[4];    // per owned atom; compact per-cell values
   void check_cell_types();
   void gather_cells();
   const double *cell_x() const;
@@ -225,8 +225,8 @@ class PairVertexVoronoi : public Pair {
   // stop with an error that names the cutoff to use.
   bool ghost_shell_complete(double need_local);
   void grow_ghost_shell(double);
-  int grow;               // widen the ghost shell when a cell needs it (default) or stop
-  double cutghost_saved;  // comm->cutghostuser before this style raised it, or -1
+  int grow;                 // widen the ghost shell when a cell needs it (default) or stop
+  double cutghost_saved;    // comm->cutghostuser before this style raised it, or -1
   // Closest pair of centres among the owned cells' neighbours at the last
   // force computation (atom IDs, distance, step), to name in errors.
   tagint close_i, close_j;
@@ -254,8 +254,8 @@ class PairVertexVoronoi : public Pair {
   bool cells_current();
   bool view_matches_state();
   void refresh_view();
-  bigint nforce = 0;         // force computations (compute()), never reset
-  bigint force_saved = -1;   // nforce whose contacts refresh_view() saved below
+  bigint nforce = 0;          // force computations (compute()), never reset
+  bigint force_saved = -1;    // nforce whose contacts refresh_view() saved below
   std::vector<int> force_offset, force_neighbor;
   std::vector<double> force_size, force_bnd;
   std::string guard_id;
@@ -264,8 +264,8 @@ class PairVertexVoronoi : public Pair {
   // record, the internal fix that keeps the atoms on the sphere)
   int sphere_on = 0;
   double sphere_c[3] = {0.0, 0.0, 0.0};
-  double sphere_R = 0.0;    // the radius, when not a variable
-  std::string sphere_var;   // name of an equal-style variable for R, or empty
+  double sphere_R = 0.0;     // the radius, when not a variable
+  std::string sphere_var;    // name of an equal-style variable for R, or empty
   std::string sphere_fix_id;
   int parse_surface(int iarg, int narg, char **arg);
   void write_sphere_settings(FILE *) const;

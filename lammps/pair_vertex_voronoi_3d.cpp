@@ -82,7 +82,8 @@ static bool spheres_inside(const tessera::Tessellation3 &t, const double lo[3], 
 void Vertex3d::check_against_scratch(const tessera::Points3 &pts, const tessera::Region3 &sub,
                                      double w)
 {
-  const tessera::Tessellation3 ref = tessera::tessellate_local_3d(pts, tess3.n_owned, nullptr, false);
+  const tessera::Tessellation3 ref =
+      tessera::tessellate_local_3d(pts, tess3.n_owned, nullptr, false);
   if (!tessera::check_coverage_3d(ref, sub, w).ok) return;    // the shell grows or the run stops
   auto strong = [](const tessera::Tessellation3 &t, int c) {
     std::vector<int> nb;
@@ -99,8 +100,8 @@ void Vertex3d::check_against_scratch(const tessera::Points3 &pts, const tessera:
       error->one(FLERR,
                  "pair_style vertex/voronoi incremental check: the cell of atom {} differs from a "
                  "from-scratch tetrahedralisation at step {} (volume {} vs {}, surface {} vs {})",
-                 pair->cell_tag(c), update->ntimestep, tess3.volume[c], ref.volume[c], tess3.surface[c],
-                 ref.surface[c]);
+                 pair->cell_tag(c), update->ntimestep, tess3.volume[c], ref.volume[c],
+                 tess3.surface[c], ref.surface[c]);
   }
 }
 
@@ -270,8 +271,8 @@ void Vertex3d::compute(int eflag, int vflag)
   if (cell_virial) pair->cell_w.resize(9 * static_cast<size_t>(nlocal));
   tessera::ForceOutput3 out;
   try {
-    out = tessera::compute_forces_3d(tess3, pts, pair->type0.data(), pair->model, pair->cell_f(),
-                                     3, pair->cell_e.data(),
+    out = tessera::compute_forces_3d(tess3, pts, pair->type0.data(), pair->model, pair->cell_f(), 3,
+                                     pair->cell_e.data(),
                                      cell_virial ? pair->cell_w.data() : nullptr);
   } catch (tessera::Error &e) {
     error->one(FLERR, "pair_style vertex/voronoi at step {}: {}", update->ntimestep, e.what());
@@ -307,7 +308,8 @@ void Vertex3d::compute(int eflag, int vflag)
 
 double Vertex3d::memory_usage() const
 {
-  return (double) tess3.tets.capacity() * (4 * sizeof(int) + sizeof(tessera::Vec3) + sizeof(double)) +
+  return (double) tess3.tets.capacity() *
+      (4 * sizeof(int) + sizeof(tessera::Vec3) + sizeof(double)) +
       (double) tess3.face_vertex.capacity() * sizeof(int) +
       (double) tess3.face_neighbor.capacity() * (sizeof(int) + sizeof(double));
 }

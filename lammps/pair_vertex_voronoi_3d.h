@@ -37,9 +37,9 @@ class Vertex3d : public VertexModel {
 
  private:
   tessera::Tessellation3 tess3;
-  tessera::Mesh3 mesh;          // kept between neighbor-list builds, repaired by flips
-  bigint mesh_ncalls = -1;      // neighbor->ncalls when the mesh was built
-  bigint mesh_cells = -1;       // the pair style's list of cell atoms then
+  tessera::Mesh3 mesh;        // kept between neighbor-list builds, repaired by flips
+  bigint mesh_ncalls = -1;    // neighbor->ncalls when the mesh was built
+  bigint mesh_cells = -1;     // the pair style's list of cell atoms then
   tessera::Cells3 cells_;
   bool tessellate();    // true if the ghost shell had to grow
   tessera::Region3 subdomain() const;

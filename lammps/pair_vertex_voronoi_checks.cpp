@@ -62,8 +62,8 @@ void PairVertexVoronoi::check_cutoff_range() const
   const double lo = 0.01 * smin, hi = 100.0 * smax;
   if (cut_global >= lo && cut_global <= hi) return;
   const bool three = domain->dimension == 3 && !sphere_on;
-  const std::string size =
-      smin == smax ? fmt::format("{:.3g}", smin) : fmt::format("{:.3g} to {:.3g}", smin, smax);
+  const std::string size = smin == smax ? fmt::format("{:.3g}", smin)
+                                        : fmt::format("{:.3g} to {:.3g}", smin, smax);
   const char *why = cut_global < lo
       ? "a cell's neighbours lie about one diameter away, and the ghost shell, which grows "
         "by itself when a cell needs it, cannot grow that far"
@@ -118,10 +118,12 @@ void PairVertexVoronoi::check_integrators() const
 void PairVertexVoronoi::check_sort_bins() const
 {
   if (atom->sortfreq <= 0) return;
-  const double bin = atom->userbinsize > 0.0 ? atom->userbinsize : 0.5 * (cut_global + neighbor->skin);
+  const double bin = atom->userbinsize > 0.0 ? atom->userbinsize
+                                             : 0.5 * (cut_global + neighbor->skin);
   if (!(bin > 0.0)) return;
   const double prd[3] = {domain->xprd, domain->yprd, domain->zprd};
-  const double tilt[3] = {std::fabs(domain->xy) + std::fabs(domain->xz), std::fabs(domain->yz), 0.0};
+  const double tilt[3] = {std::fabs(domain->xy) + std::fabs(domain->xz), std::fabs(domain->yz),
+                          0.0};
   double total = 1.0;
   static const char *axis = "xyz";
   for (int d = 0; d < domain->dimension; d++) {

@@ -55,7 +55,8 @@ void PairVertexVoronoi::note_closest_pair()
     for (int k = c.offset[i]; k < c.offset[i + 1]; k++) {
       const int q = c.neighbor[k];
       double r2 = 0.0;
-      for (int a = 0; a < dim; a++) r2 += (x[3 * q + a] - x[3 * i + a]) * (x[3 * q + a] - x[3 * i + a]);
+      for (int a = 0; a < dim; a++)
+        r2 += (x[3 * q + a] - x[3 * i + a]) * (x[3 * q + a] - x[3 * i + a]);
       if (best < 0.0 || r2 < best) {
         best = r2;
         bi = i;
@@ -107,11 +108,10 @@ void PairVertexVoronoi::check_lost_atoms()
   bigint when = close_step;
   MPI_Bcast(ids, 2, MPI_LMP_TAGINT, best.rank, world);
   MPI_Bcast(&when, 1, MPI_LMP_BIGINT, best.rank, world);
-  const std::string closest =
-      best.d < std::numeric_limits<double>::max()
-          ? fmt::format("; at step {} the closest centres were atoms {} and {}, {:.3g} apart", when,
-                        ids[0], ids[1], best.d)
-          : std::string();
+  const std::string closest = best.d < std::numeric_limits<double>::max()
+      ? fmt::format("; at step {} the closest centres were atoms {} and {}, {:.3g} apart", when,
+                    ids[0], ids[1], best.d)
+      : std::string();
   // The largest move of the last integration step (-1 on every rank: none).
   double moved = -1.0;
   MPI_Allreduce(&step_move_local, &moved, 1, MPI_DOUBLE, MPI_MAX, world);
@@ -123,20 +123,22 @@ void PairVertexVoronoi::check_lost_atoms()
       "neighbouring rank's domain)",
       ntotal, atom->natoms, update->ntimestep);
   if (update->setupflag)
-    error->all(FLERR,
-               "{}, before the first step of this run: a command since the last force computation "
-               "(set, displace_atoms, create_atoms, change_box, read_dump, ...) put them out of the "
-               "box; keep the atoms inside it",
-               head);
+    error->all(
+        FLERR,
+        "{}, before the first step of this run: a command since the last force computation "
+        "(set, displace_atoms, create_atoms, change_box, read_dump, ...) put them out of the "
+        "box; keep the atoms inside it",
+        head);
   if (seen >= 0 && atom->natoms > seen)
-    error->all(FLERR,
-               "{}. {} atoms were added since the last force computation (by fix cell/divide, "
-               "fix deposit, create_atoms, ...), and the lost ones are likely among them: place new atoms "
-               "inside the box and near their neighbours (fix cell/divide's separation d puts the "
-               "daughters d/2 from the mother: keep it below a cell diameter; fix deposit's "
-               "region must lie inside the box, which with shrink-wrapped boundaries 'boundary "
-               "s' is only as large as the atoms)",
-               head, atom->natoms - seen);
+    error->all(
+        FLERR,
+        "{}. {} atoms were added since the last force computation (by fix cell/divide, "
+        "fix deposit, create_atoms, ...), and the lost ones are likely among them: place new atoms "
+        "inside the box and near their neighbours (fix cell/divide's separation d puts the "
+        "daughters d/2 from the mother: keep it below a cell diameter; fix deposit's "
+        "region must lie inside the box, which with shrink-wrapped boundaries 'boundary "
+        "s' is only as large as the atoms)",
+        head, atom->natoms - seen);
   // An atom the integrators moved past a fixed boundary (the latest).
   FixVertexGuard::Left left;
   const int iguard = modify->find_fix(guard_id);

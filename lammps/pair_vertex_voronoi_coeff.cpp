@@ -69,7 +69,8 @@ void PairVertexVoronoi::settings(int narg, char **arg)
   while (iarg < narg) {
     if (strcmp(arg[iarg], "tension") == 0) {
       if (iarg + 2 > narg)
-        error->all(FLERR, "pair_style vertex/voronoi: keyword 'tension' needs a value (edge or cell)");
+        error->all(FLERR,
+                   "pair_style vertex/voronoi: keyword 'tension' needs a value (edge or cell)");
       if (strcmp(arg[iarg + 1], "edge") == 0)
         tension = tessera::Tension::Edge;
       else if (strcmp(arg[iarg + 1], "cell") == 0)
@@ -82,7 +83,8 @@ void PairVertexVoronoi::settings(int narg, char **arg)
       iarg += 2;
     } else if (strcmp(arg[iarg], "incremental") == 0) {
       if (iarg + 2 > narg)
-        error->all(FLERR, "pair_style vertex/voronoi: keyword 'incremental' needs a value (yes or no)");
+        error->all(FLERR,
+                   "pair_style vertex/voronoi: keyword 'incremental' needs a value (yes or no)");
       incremental_given = 1;
       if (strcmp(arg[iarg + 1], "yes") == 0)
         incremental = 1;
@@ -116,8 +118,9 @@ void PairVertexVoronoi::settings(int narg, char **arg)
       iarg += 2;
     } else if (strcmp(arg[iarg], "radius") == 0) {
       if (iarg + 2 > narg)
-        error->all(FLERR, "pair_style vertex/voronoi: keyword 'radius' needs a value r (the "
-                          "radius of the finite Voronoi cells)");
+        error->all(FLERR,
+                   "pair_style vertex/voronoi: keyword 'radius' needs a value r (the "
+                   "radius of the finite Voronoi cells)");
       radius = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
       if (!(radius > 0.0) || !std::isfinite(radius))
         error->all(FLERR, "pair_style vertex/voronoi: radius must be > 0, got {}", arg[iarg + 1]);
@@ -268,8 +271,7 @@ void PairVertexVoronoi::coeff(int narg, char **arg)
   const bool quadratic = strcmp(arg[2], "quadratic") == 0;
   if (quadratic) {
     if (narg != 7)
-      error->all(FLERR, "{}: expected 'pair_coeff I I quadratic KA A0 KP P0 [free Lambda]'",
-                 where);
+      error->all(FLERR, "{}: expected 'pair_coeff I I quadratic KA A0 KP P0 [free Lambda]'", where);
     tessera::QuadraticParams q;
     q.KA = utils::numeric(FLERR, arg[3], false, lmp);
     q.A0 = utils::numeric(FLERR, arg[4], false, lmp);
@@ -319,4 +321,3 @@ void PairVertexVoronoi::coeff(int narg, char **arg)
   }
   if (has_free) free_set = 1;
 }
-

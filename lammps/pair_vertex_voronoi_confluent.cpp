@@ -165,7 +165,7 @@ bool VertexConfluent::tessellate()
   }
   if (nlocal > 0 && !have_cells) mesh.cells(pts, nlocal, tess);
 
-  tessera::Coverage cov;  // ok unless checked below
+  tessera::Coverage cov;    // ok unless checked below
   if (nlocal > 0 && !fresh && !tessera::check_coverage(tess, sub, wi).ok) {
     // A cell reaches past the region where the updated mesh is certified:
     // triangulate from scratch, then check against the full ghost shell.
@@ -203,7 +203,8 @@ void VertexConfluent::check_against_scratch(const tessera::Points &pts, const te
       return nb;
     };
     const double scale = std::sqrt(std::fabs(ref.area[c])) + 1.0;
-    if (strong(tess, c) != strong(ref, c) || std::fabs(tess.area[c] - ref.area[c]) > 1e-9 * scale * scale ||
+    if (strong(tess, c) != strong(ref, c) ||
+        std::fabs(tess.area[c] - ref.area[c]) > 1e-9 * scale * scale ||
         std::fabs(tess.perimeter[c] - ref.perimeter[c]) > 1e-9 * scale)
       error->one(FLERR,
                  "pair_style vertex/voronoi incremental check: the cell of atom {} differs from a "
@@ -244,9 +245,8 @@ void VertexConfluent::compute(int eflag, int vflag)
     // The global virial comes from LAMMPS's f dot r (virial_fdotr_compute),
     // or under 'pair_modify nofdotr' from the cells' virials (accumulate).
     out = tessera::compute_forces(tess, pts, pair->type0.data(), pair->model, pair->cell_f(), 3,
-                                  pair->cell_e.data(),
-                                  cell_virial ? pair->cell_w.data() : nullptr, false,
-                                  &cell_pass);
+                                  pair->cell_e.data(), cell_virial ? pair->cell_w.data() : nullptr,
+                                  false, &cell_pass);
   } catch (tessera::Error &e) {
     // Energy or virial overflow (parameters or lengths far outside the
     // model's reduced units); the core names the local point.

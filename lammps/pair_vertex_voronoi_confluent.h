@@ -40,12 +40,12 @@ class VertexConfluent : public VertexModel {
   tessera::Tessellation tess;
   tessera::ConfluentCells cells_;
   tessera::Mesh mesh;
-  tessera::CellPass cell_pass;   // the forces' per-cell half, run by Mesh::advance
-  bool fuse_cells = false;       // hand cell_pass to the next Mesh::advance
-  bigint mesh_ncalls = -1;       // neighbor->ncalls when the mesh was built
-  bigint mesh_cells = -1;        // the pair style's list of cell atoms then
+  tessera::CellPass cell_pass;    // the forces' per-cell half, run by Mesh::advance
+  bool fuse_cells = false;        // hand cell_pass to the next Mesh::advance
+  bigint mesh_ncalls = -1;        // neighbor->ncalls when the mesh was built
+  bigint mesh_cells = -1;         // the pair style's list of cell atoms then
   void prepare();
-  bool tessellate();             // true if the ghost shell had to grow
+  bool tessellate();    // true if the ghost shell had to grow
   void check_against_scratch(const tessera::Points &, const tessera::Region &, double);
   tessera::Region subdomain() const;
 };

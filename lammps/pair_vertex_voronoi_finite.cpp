@@ -71,8 +71,8 @@ void VertexFinite::compute(int /*eflag*/, int /*vflag*/)
   if (cell_virial) pair->cell_w.resize(4 * static_cast<size_t>(nlocal));
   tessera::ForceOutput out;
   try {
-    out = tessera::finite_forces(ftess, pts, pair->type0.data(), pair->model,
-                                 pair->free_t0.data(), pair->cell_f(), 3, pair->cell_e.data(),
+    out = tessera::finite_forces(ftess, pts, pair->type0.data(), pair->model, pair->free_t0.data(),
+                                 pair->cell_f(), 3, pair->cell_e.data(),
                                  cell_virial ? pair->cell_w.data() : nullptr);
   } catch (tessera::Error &e) {
     error->one(FLERR, "pair_style vertex/voronoi at step {}: {}", update->ntimestep, e.what());

@@ -37,7 +37,7 @@ class VertexFinite : public VertexModel {
 
  private:
   tessera::FiniteTessellation ftess;
-  tessera::Tessellation contacts;  // the contact edges as neighbour lists
+  tessera::Tessellation contacts;    // the contact edges as neighbour lists
   tessera::FiniteCells cells_;
 };
 

@@ -26,7 +26,6 @@
 
 using namespace LAMMPS_NS;
 
-
 // The restart layout: settings, then per type and type pair.  Files of the
 // first layout (cutoff and tension only) store tension as 0 or 1; later ones
 // add RESTART_V2 to it and carry every keyword and the heterotypic sigma;

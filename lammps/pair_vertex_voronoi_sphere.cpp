@@ -269,7 +269,9 @@ void VertexSphere::gather()
   const int n = total / W;
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return all[W * a] < all[W * b]; });
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return all[W * a] < all[W * b];
+  });
   xall.resize(3 * static_cast<size_t>(n));
   for (auto &v : pcall) v.resize(n);
   typeall.resize(n);
@@ -413,8 +415,7 @@ double VertexSphere::memory_usage() const
 {
   double pcs = 0.0;
   for (const auto &v : pcall) pcs += (double) v.capacity();
-  return (pcs + (double) (xall.capacity() + fall.capacity() + eall.capacity())) *
-      sizeof(double) +
+  return (pcs + (double) (xall.capacity() + fall.capacity() + eall.capacity())) * sizeof(double) +
       (double) (typeall.capacity() + owned.capacity() + local.capacity()) * sizeof(int) +
       (double) tess.cell_vertex.capacity() * (2 * sizeof(int) + sizeof(double)) +
       (double) tess.triangles.capacity() * (3 * sizeof(int) + sizeof(tessera::Vec3));

@@ -55,93 +55,92 @@ namespace LAMMPS_NS {
 namespace tessera_compat {
 
 #if TESSERA_COMPAT_STORE_ATOM
-using FixStorePerAtom = FixStoreAtom;
+  using FixStorePerAtom = FixStoreAtom;
 #else
-using FixStorePerAtom = FixStore;
+  using FixStorePerAtom = FixStore;
 #endif
 
-// "<style> <args>" for Modify::add_fix("ID group " + store_peratom(...)):
-// ncols doubles per atom (astore if ncols > 1, vstore if ncols == 1), not
-// communicated to ghosts, written to restart files if restart is true.
-inline std::string store_peratom(int ncols, bool restart)
-{
-  const std::string r = restart ? "1" : "0";
-  if (TESSERA_COMPAT_STORE_ATOM)
-    return "STORE/ATOM " + std::to_string(ncols) + " 0 0 " + r;
-  return "STORE peratom " + r + " " + std::to_string(ncols);
-}
+  // "<style> <args>" for Modify::add_fix("ID group " + store_peratom(...)):
+  // ncols doubles per atom (astore if ncols > 1, vstore if ncols == 1), not
+  // communicated to ghosts, written to restart files if restart is true.
+  inline std::string store_peratom(int ncols, bool restart)
+  {
+    const std::string r = restart ? "1" : "0";
+    if (TESSERA_COMPAT_STORE_ATOM) return "STORE/ATOM " + std::to_string(ncols) + " 0 0 " + r;
+    return "STORE peratom " + r + " " + std::to_string(ncols);
+  }
 
-namespace detail {
+  namespace detail {
 
-// The first overload exists only where the 2021 name does (rank int beats long).
-template <class C, class P>
-auto forward(C *comm, P *p, int) -> decltype(comm->forward_comm_pair(p), void())
-{
-  comm->forward_comm_pair(p);
-}
-template <class C, class F>
-auto forward(C *comm, F *f, int) -> decltype(comm->forward_comm_fix(f), void())
-{
-  comm->forward_comm_fix(f);
-}
-template <class C, class X>
-auto forward(C *comm, X *x, int) -> decltype(comm->forward_comm_compute(x), void())
-{
-  comm->forward_comm_compute(x);
-}
-template <class C, class T> void forward(C *comm, T *t, long)
-{
-  comm->forward_comm(t);
-}
+    // The first overload exists only where the 2021 name does (rank int beats long).
+    template <class C, class P>
+    auto forward(C *comm, P *p, int) -> decltype(comm->forward_comm_pair(p), void())
+    {
+      comm->forward_comm_pair(p);
+    }
+    template <class C, class F>
+    auto forward(C *comm, F *f, int) -> decltype(comm->forward_comm_fix(f), void())
+    {
+      comm->forward_comm_fix(f);
+    }
+    template <class C, class X>
+    auto forward(C *comm, X *x, int) -> decltype(comm->forward_comm_compute(x), void())
+    {
+      comm->forward_comm_compute(x);
+    }
+    template <class C, class T> void forward(C *comm, T *t, long)
+    {
+      comm->forward_comm(t);
+    }
 
-template <class C, class P>
-auto reverse(C *comm, P *p, int) -> decltype(comm->reverse_comm_pair(p), void())
-{
-  comm->reverse_comm_pair(p);
-}
-template <class C, class F>
-auto reverse(C *comm, F *f, int) -> decltype(comm->reverse_comm_fix(f), void())
-{
-  comm->reverse_comm_fix(f);
-}
-template <class C, class X>
-auto reverse(C *comm, X *x, int) -> decltype(comm->reverse_comm_compute(x), void())
-{
-  comm->reverse_comm_compute(x);
-}
-template <class C, class T> void reverse(C *comm, T *t, long)
-{
-  comm->reverse_comm(t);
-}
+    template <class C, class P>
+    auto reverse(C *comm, P *p, int) -> decltype(comm->reverse_comm_pair(p), void())
+    {
+      comm->reverse_comm_pair(p);
+    }
+    template <class C, class F>
+    auto reverse(C *comm, F *f, int) -> decltype(comm->reverse_comm_fix(f), void())
+    {
+      comm->reverse_comm_fix(f);
+    }
+    template <class C, class X>
+    auto reverse(C *comm, X *x, int) -> decltype(comm->reverse_comm_compute(x), void())
+    {
+      comm->reverse_comm_compute(x);
+    }
+    template <class C, class T> void reverse(C *comm, T *t, long)
+    {
+      comm->reverse_comm(t);
+    }
 
-template <class E> auto universe(const E &e, int) -> decltype(e.get_universe())
-{
-  return e.get_universe();
-}
-template <class E> MPI_Comm universe(const E &e, long)
-{
-  return e.universe;
-}
+    template <class E> auto universe(const E &e, int) -> decltype(e.get_universe())
+    {
+      return e.get_universe();
+    }
+    template <class E> MPI_Comm universe(const E &e, long)
+    {
+      return e.universe;
+    }
 
-}    // namespace detail
+  }    // namespace detail
 
-// Forward communication of a style's pack/unpack_forward_comm to ghosts;
-// `self` is a Pair *, Fix * or Compute * (pass `this`).
-template <class T> void forward_comm(Comm *comm, T *self)
-{
-  detail::forward(comm, self, 0);
-}
+  // Forward communication of a style's pack/unpack_forward_comm to ghosts;
+  // `self` is a Pair *, Fix * or Compute * (pass `this`).
+  template <class T> void forward_comm(Comm *comm, T *self)
+  {
+    detail::forward(comm, self, 0);
+  }
 
-// Reverse communication (ghosts to owners) of pack/unpack_reverse_comm.
-template <class T> void reverse_comm(Comm *comm, T *self)
-{
-  detail::reverse(comm, self, 0);
-}
+  // Reverse communication (ghosts to owners) of pack/unpack_reverse_comm.
+  template <class T> void reverse_comm(Comm *comm, T *self)
+  {
+    detail::reverse(comm, self, 0);
+  }
 
-inline MPI_Comm abort_universe(const LAMMPSAbortException &e)
-{
-  return detail::universe(e, 0);
-}
+  inline MPI_Comm abort_universe(const LAMMPSAbortException &e)
+  {
+    return detail::universe(e, 0);
+  }
 
 }    // namespace tessera_compat
 }    // namespace LAMMPS_NS

@@ -238,7 +238,7 @@ std::vector<TesseraStyle> LAMMPS_NS::tessera_register_styles(LAMMPS *lmp)
 ------------------------------------------------------------------------- */
 
 std::vector<TesseraStyle> LAMMPS_NS::tessera_register_plugin(LAMMPS *lmp, void *handle,
-                                                            void *regfunc)
+                                                             void *regfunc)
 {
   auto reg = reinterpret_cast<lammpsplugin_regfunc>(regfunc);
   std::vector<TesseraStyle> results;

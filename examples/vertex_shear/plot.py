@@ -43,7 +43,7 @@ fig.savefig(os.path.join(FIG, "vertex_shear_stress.png"), dpi=120)
 
 pairs = paired_frames(os.path.join(HERE, "dump.vertex_shear"),
                       os.path.join(HERE, "dump.vertex_shear.edges"))
-wanted = [0.0, 1.1, 1.2, 2.0]
+wanted = [0.0, 1.1, 1.2, 1.6]
 chosen = [min(pairs, key=lambda p: abs(p[0].timestep * DT * RATE - s)) for s in wanted]
 fig, axes = plt.subplots(1, len(chosen), figsize=(3.4 * len(chosen), 3.4))
 for ax, (atoms, local) in zip(axes, chosen):

@@ -8,8 +8,6 @@ given as argument), dump.vertex_shear and dump.vertex_shear.edges."""
 import os
 import sys
 
-import numpy as np
-
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "tools"))
 

@@ -143,7 +143,8 @@ def closed_form_minimum(gamma_bar, lambda_bar):
     from scipy.optimize import minimize_scalar
 
     def e(a):
-        return (a - 1) ** 2 / 2 + gamma_bar * C_HEX ** 2 * a / 2 + lambda_bar * C_HEX * math.sqrt(a) / 2
+        return ((a - 1) ** 2 / 2 + gamma_bar * C_HEX ** 2 * a / 2
+                + lambda_bar * C_HEX * math.sqrt(a) / 2)
     res = minimize_scalar(e, bounds=(1e-6, 4.0), method="bounded",
                           options=dict(xatol=1e-13))
     a = res.x

@@ -30,7 +30,9 @@ void PolygonCells::add_cell(int c, const double *xy, int n, const int *neighbor,
     const int k1 = k + 1 == n ? 0 : k + 1;
     neighbor_.push_back(neighbor[k]);
     corners_.insert(corners_.end(), {xy[2 * k], xy[2 * k + 1], xy[2 * k1], xy[2 * k1 + 1]});
-    length_.push_back(std::hypot(xy[2 * k1] - xy[2 * k], xy[2 * k1 + 1] - xy[2 * k + 1]));
+    // (sqrt, not hypot: see polygon_measures)
+    const double dx = xy[2 * k1] - xy[2 * k], dy = xy[2 * k1 + 1] - xy[2 * k + 1];
+    length_.push_back(std::sqrt(dx * dx + dy * dy));
   }
   area_[c] = area;
   perimeter_[c] = perimeter;

@@ -9,6 +9,17 @@
 
 namespace tessera {
 
+namespace {
+
+// A polygon's edge: sqrt of the sum of squares, not std::hypot (several times
+// dearer), since a cell's corners are nowhere near 1e154 apart; non-finite
+// corners give a non-finite length either way.
+inline double edge_length(double dx, double dy) {
+  return std::sqrt(dx * dx + dy * dy);
+}
+
+} // namespace
+
 PolygonMeasures polygon_measures(const double *xy, int n) {
   PolygonMeasures m;
   if (n <= 0)
@@ -26,7 +37,7 @@ PolygonMeasures polygon_measures(const double *xy, int n) {
     cy += (ya + yb) * cr;
     mx += xa;
     my += ya;
-    m.perimeter += std::hypot(xb - xa, yb - ya);
+    m.perimeter += edge_length(xb - xa, yb - ya);
   }
   m.area = 0.5 * a2;
   if (a2 != 0.0) {
@@ -49,7 +60,7 @@ double polygon_energy(const double *xy, int n, const Model &model, int c, int tc
     const double xa = xy[2 * k] - x0, ya = xy[2 * k + 1] - y0;
     const double xb = xy[2 * k1] - x0, yb = xy[2 * k1 + 1] - y0;
     a2 += xa * yb - xb * ya;
-    const double l = std::hypot(xb - xa, yb - ya);
+    const double l = edge_length(xb - xa, yb - ya);
     P += l;
     tension += model.lambda_of(tc, nbr_type ? nbr_type[k] : tc) * l;
   }
@@ -66,7 +77,7 @@ double polygon_energy(const double *xy, int n, const Model &model, int c, int tc
   {
     const int k = n - 1;
     const double dx = xy[0] - xy[2 * k], dy = xy[1] - xy[2 * k + 1];
-    const double l = std::hypot(dx, dy);
+    const double l = edge_length(dx, dy);
     tp = eP + w * model.lambda_of(tc, nbr_type ? nbr_type[k] : tc);
     if (l > 0.0) {
       upx = dx / l;
@@ -77,7 +88,7 @@ double polygon_energy(const double *xy, int n, const Model &model, int c, int tc
     const int k1 = k + 1 == n ? 0 : k + 1;
     const int km = k == 0 ? n - 1 : k - 1;
     const double dx = xy[2 * k1] - xy[2 * k], dy = xy[2 * k1 + 1] - xy[2 * k + 1];
-    const double l = std::hypot(dx, dy);
+    const double l = edge_length(dx, dy);
     const double t = eP + w * model.lambda_of(tc, nbr_type ? nbr_type[k] : tc);
     double ux = 0.0, uy = 0.0;
     if (l > 0.0) {

@@ -156,9 +156,32 @@ bool segments_meet(const double *p, const double *q, const double *r, const doub
   return false;
 }
 
-} // namespace
+// Whether the polygon is convex beyond rounding and winds once: every corner
+// a left turn whose sine exceeds 1e-6 (no rounding of the differences can
+// flip it) and the edges' directions passing the +x direction exactly once
+// (the turns, each in (0, pi), add up to 2 pi).  Such a polygon is simple
+// with positive area, so the pairwise test has nothing to find.  Zero-length
+// edges, straight or reflex corners and windings other than one answer
+// false (the pairwise test decides).
+bool surely_convex(const double *xy, int n) {
+  double ux = xy[0] - xy[2 * n - 2], uy = xy[1] - xy[2 * n - 1];
+  int wraps = 0;
+  for (int k = 0; k < n; ++k) {
+    const int k1 = k + 1 == n ? 0 : k + 1;
+    const double wx = xy[2 * k1] - xy[2 * k], wy = xy[2 * k1 + 1] - xy[2 * k + 1];
+    const double cr = ux * wy - uy * wx;
+    if (!(cr > 0.0) || !(cr * cr > 1e-12 * (ux * ux + uy * uy) * (wx * wx + wy * wy)))
+      return false;
+    // (the sign of a rounded difference is exact)
+    if (uy < 0.0 && wy >= 0.0)
+      ++wraps;
+    ux = wx;
+    uy = wy;
+  }
+  return wraps == 1;
+}
 
-PolygonDefect polygon_defect(const double *xy, int n, const long *ids) {
+PolygonDefect basic_defect(const double *xy, int n, const long *ids) {
   if (n < 3)
     return PolygonDefect::TooFewSides;
   for (int k = 0; k < 2 * n; ++k)
@@ -169,6 +192,22 @@ PolygonDefect polygon_defect(const double *xy, int n, const long *ids) {
       for (int j = i + 1; j < n; ++j)
         if (ids[i] == ids[j])
           return PolygonDefect::RepeatedVertex;
+  return PolygonDefect::None;
+}
+
+} // namespace
+
+PolygonDefect polygon_defect(const double *xy, int n, const long *ids) {
+  const PolygonDefect d = basic_defect(xy, n, ids);
+  if (d != PolygonDefect::None || surely_convex(xy, n))
+    return d;
+  return polygon_defect_pairwise(xy, n, ids);
+}
+
+PolygonDefect polygon_defect_pairwise(const double *xy, int n, const long *ids) {
+  const PolygonDefect d = basic_defect(xy, n, ids);
+  if (d != PolygonDefect::None)
+    return d;
   if (!(polygon_measures(xy, n).area > 0.0))
     return PolygonDefect::NotPositive;
   // Adjacent edges that fold back onto each other (a spike of zero width).

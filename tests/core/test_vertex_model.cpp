@@ -268,6 +268,60 @@ TEST(VertexPolygon, Defects) {
   EXPECT_NE(tessera::polygon_defect(touch, 5), PolygonDefect::None);
 }
 
+// The fast answer (convex polygons skip the pairwise test) against the
+// pairwise test itself on fuzzed polygons: star-shaped ones (convex and not),
+// jittered regular ones, random corners (mostly crossing), clockwise ones,
+// stars that wind twice, and ones with coinciding corners.
+TEST(VertexPolygon, FastDefectAgreesWithPairwise) {
+  testutil::Rng rng(2026);
+  const double pi = std::acos(-1.0);
+  int convex = 0, bad = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const int n = 3 + rng.below(10), kind = rng.below(6);
+    std::vector<double> xy(2 * n);
+    for (int k = 0; k < n; ++k) {
+      double phi = 2 * pi * (k + rng.uniform(0.0, 1.0)) / n, r = rng.uniform(0.2, 1.0);
+      if (kind == 1) { // nearly regular: mostly convex
+        phi = 2 * pi * (k + rng.uniform(-0.2, 0.2)) / n;
+        r = 1.0 + rng.uniform(-0.1, 0.1);
+      } else if (kind == 4) { // winding twice
+        phi = 4 * pi * (k + rng.uniform(0.0, 0.3)) / n;
+        r = 1.0;
+      }
+      xy[2 * k] = r * std::cos(phi) + 3.0;
+      xy[2 * k + 1] = r * std::sin(phi) - 2.0;
+      if (kind == 2) { // random corners
+        xy[2 * k] = rng.uniform(-1.0, 1.0);
+        xy[2 * k + 1] = rng.uniform(-1.0, 1.0);
+      }
+    }
+    if (kind == 3) // clockwise
+      for (int k = 0; k < n; ++k)
+        xy[2 * k + 1] = -xy[2 * k + 1];
+    if (kind == 5 && n > 3) { // a corner on the next one, or on the one before
+      const int k = rng.below(n), k1 = k + 1 == n ? 0 : k + 1;
+      xy[2 * k1] = xy[2 * k];
+      xy[2 * k1 + 1] = xy[2 * k + 1];
+    }
+    const PolygonDefect fast = tessera::polygon_defect(xy.data(), n);
+    const PolygonDefect slow = tessera::polygon_defect_pairwise(xy.data(), n);
+    ASSERT_EQ(fast, slow) << "trial " << trial << " kind " << kind << " n " << n;
+    bad += slow != PolygonDefect::None;
+    // (the convex ones: the fast path's own cases)
+    bool left = true;
+    for (int k = 0; k < n; ++k) {
+      const int k1 = (k + 1) % n, k2 = (k + 2) % n;
+      left = left && (xy[2 * k1] - xy[2 * k]) * (xy[2 * k2 + 1] - xy[2 * k1 + 1]) -
+                             (xy[2 * k1 + 1] - xy[2 * k + 1]) * (xy[2 * k2] - xy[2 * k1]) >
+                         0.0;
+    }
+    convex += left && slow == PolygonDefect::None;
+  }
+  // Both answers were exercised.
+  EXPECT_GT(convex, 2000);
+  EXPECT_GT(bad, 2000);
+}
+
 // The force of a zero-length edge's tension is the mean of its one-sided
 // derivatives: nothing from that edge.
 TEST(VertexPolygon, ZeroLengthEdgeIsFinite) {

@@ -65,7 +65,12 @@ enum class PolygonDefect {
 };
 const char *describe(PolygonDefect d);
 // ids: the corners' vertex IDs (optional) for the repeated-vertex test.
+// A polygon convex beyond rounding is answered without the pairwise test of
+// its edges; polygon_defect_pairwise always makes that test (the slow
+// oracle: the two agree but where rounding decides a corner of a convex
+// polygon, which the fast answer calls valid).
 PolygonDefect polygon_defect(const double *xy, int n, const long *ids = nullptr);
+PolygonDefect polygon_defect_pairwise(const double *xy, int n, const long *ids = nullptr);
 
 // ---- A tissue, or a patch of one ----
 

@@ -60,20 +60,51 @@ PolygonMeasures VertexTissue::measures(int c) const {
 }
 
 void EdgeMap::build(const VertexTissue &t) {
-  map_.clear();
   dup_a = dup_b = -1;
+  // (rings may name vertices beyond pos in a broken tissue: sized to hold them)
+  int nv = t.n_vertices();
+  for (const std::vector<int> &r : t.rings)
+    for (int v : r)
+      nv = std::max(nv, v + 1);
+  first_.assign(static_cast<size_t>(nv) + 1, 0);
+  for (const std::vector<int> &r : t.rings)
+    for (int v : r)
+      if (v >= 0)
+        first_[v + 1]++;
+  for (int v = 0; v < nv; ++v)
+    first_[v + 1] += first_[v];
+  to_.resize(first_[nv]);
+  cell_.resize(first_[nv]);
+  fill_.assign(first_.begin(), first_.end() - 1);
+  // In the order of the cells: the first cell to hold an edge keeps it, and
+  // the first repeated edge is the one reported.
   for (int c = 0; c < t.n_cells(); ++c) {
     const std::vector<int> &r = t.rings[c];
     const int n = static_cast<int>(r.size());
     for (int k = 0; k < n; ++k) {
       const int a = r[k], b = r[k + 1 == n ? 0 : k + 1];
-      const auto ins = map_.emplace(key(a, b), c);
-      if (!ins.second && dup_a < 0) {
-        dup_a = a;
-        dup_b = b;
+      if (a < 0)
+        continue;
+      bool dup = false;
+      for (int e = first_[a]; e < fill_[a] && !dup; ++e)
+        dup = to_[e] == b;
+      if (dup) {
+        if (dup_a < 0) {
+          dup_a = a;
+          dup_b = b;
+        }
+        continue;
       }
+      to_[fill_[a]] = b;
+      cell_[fill_[a]++] = c;
     }
   }
+  // Slots left by repeated edges: an edge to no vertex.
+  for (int v = 0; v < nv; ++v)
+    for (int e = fill_[v]; e < first_[v + 1]; ++e) {
+      to_[e] = -2;
+      cell_[e] = -1;
+    }
 }
 
 int twin_cell(const VertexTissue &t, const EdgeMap &m, int c, int k) {

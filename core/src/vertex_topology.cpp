@@ -79,10 +79,62 @@ bool decidable(const VertexTissue &t, const EdgeMap &m, const TopologyEvent &e) 
   return true;
 }
 
+// The complete cells that may hold a T1 candidate (an edge of a candidate
+// has it as X or Y), with the cells across their edges: an edge shorter than
+// l_T1, a corner sharper than 90 degrees whose far ends come within l_T1 of
+// the other edge's line (fold_length at X's or Y's corners), or, with T2s,
+// an area below the T2 area.  The bounds are loosened by 1e-6 relative so
+// that no rounding difference from find_events' own arithmetic leaves out a
+// cell it would take.
+std::vector<char> t1_cells(const VertexTissue &t, const EdgeMap &m, const TopologyParams &p) {
+  const int nc = t.n_cells();
+  std::vector<char> flag(nc, 0), look(nc, 0);
+  const double l2 = p.t1_length * p.t1_length * (1.0 + 1e-6);
+  std::vector<Vec2> d;
+  std::vector<double> xy;
+  for (int c = 0; c < nc; ++c) {
+    if (!t.complete(c))
+      continue;
+    const std::vector<int> &r = t.rings[c];
+    const int n = static_cast<int>(r.size());
+    if (p.t2_area > 0.0 && n >= 4) {
+      t.polygon(c, xy);
+      if (polygon_measures(xy.data(), n).area < p.t2_area) {
+        flag[c] = 1;
+        continue;
+      }
+    }
+    d.resize(n);
+    for (int k = 0; k < n; ++k)
+      d[k] = t.delta(r[k], ring_next(r, k));
+    for (int k = 0; k < n && !flag[c]; ++k) {
+      // The corner at the end of edge k: u back along edge k, w along k + 1.
+      const Vec2 w = d[k + 1 == n ? 0 : k + 1];
+      const double ux = -d[k].x, uy = -d[k].y;
+      const double lu2 = ux * ux + uy * uy, lw2 = w.x * w.x + w.y * w.y;
+      const double cr = ux * w.y - uy * w.x;
+      if (lu2 < l2 ||
+          (ux * w.x + uy * w.y > -1e-6 * (lu2 + lw2) && (cr * cr < l2 * lw2 || cr * cr < l2 * lu2)))
+        flag[c] = 1;
+    }
+  }
+  for (int c = 0; c < nc; ++c) {
+    if (!flag[c])
+      continue;
+    look[c] = 1;
+    for (int k = 0; k < static_cast<int>(t.rings[c].size()); ++k) {
+      const int o = twin_cell(t, m, c, k);
+      if (o >= 0)
+        look[o] = 1;
+    }
+  }
+  return look;
+}
+
 } // namespace
 
 std::vector<TopologyEvent> find_events(const VertexTissue &t, const EdgeMap &m,
-                                       const TopologyParams &p) {
+                                       const TopologyParams &p, bool every_cell) {
   std::vector<TopologyEvent> events;
   if (p.t2_area > 0.0)
     for (int c = 0; c < t.n_cells(); ++c) {
@@ -102,9 +154,15 @@ std::vector<TopologyEvent> find_events(const VertexTissue &t, const EdgeMap &m,
       events.push_back(e);
     }
   if (p.t1_length > 0.0) {
+    // Only the cells that may hold a candidate, and the cells across their
+    // edges, are looked at (every_cell: all of them, the oracle); in the
+    // order of the whole scan, so the events come in the same order.
+    std::vector<char> look;
+    if (!every_cell)
+      look = t1_cells(t, m, p);
     std::unordered_set<std::uint64_t> seen;
     for (int c = 0; c < t.n_cells(); ++c) {
-      if (!t.complete(c))
+      if ((!every_cell && !look[c]) || !t.complete(c))
         continue;
       const std::vector<int> &r = t.rings[c];
       const int n = static_cast<int>(r.size());

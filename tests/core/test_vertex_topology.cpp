@@ -181,6 +181,67 @@ TEST(VertexTopology, DivisionAlongAnAxis) {
   EXPECT_NEAR(h.measures(9).area, h.measures(d2).area, 1e-12);
 }
 
+// find_events looks only at the cells a cheap test leaves; every_cell (the
+// oracle) looks at all.  The same events in the same order, on fuzzed
+// tissues (short edges, sharp corners from moved vertices, small cells),
+// with and without T2s, whole and as patches with unknown vertices.
+void expect_same_events(const VertexTissue &t, const TopologyParams &p, int *found) {
+  const tessera::EdgeMap m(t);
+  const std::vector<TopologyEvent> fast = tessera::find_events(t, m, p);
+  const std::vector<TopologyEvent> all = tessera::find_events(t, m, p, true);
+  ASSERT_EQ(fast.size(), all.size());
+  for (size_t i = 0; i < all.size(); ++i) {
+    EXPECT_EQ(fast[i].kind, all[i].kind);
+    EXPECT_EQ(fast[i].size, all[i].size);
+    EXPECT_EQ(fast[i].id0, all[i].id0);
+    EXPECT_EQ(fast[i].id1, all[i].id1);
+    EXPECT_EQ(fast[i].a, all[i].a);
+    EXPECT_EQ(fast[i].b, all[i].b);
+    for (int k = 0; k < 4; ++k)
+      EXPECT_EQ(fast[i].cells[k], all[i].cells[k]);
+    EXPECT_EQ(fast[i].decidable, all[i].decidable);
+  }
+  *found += static_cast<int>(all.size());
+}
+
+TEST(VertexTopology, CandidatesOfTheCheapTestAreThoseOfEveryCell) {
+  testutil::Rng rng(77);
+  int found = 0;
+  for (int trial = 0; trial < 30; ++trial) {
+    VertexTissue t = vtest::random_tissue(300 + trial, 40, 6.5, 1, trial % 3 ? 0.0 : 0.9);
+    for (int s = 0; s < 30; ++s) {
+      const int c = rng.below(t.n_cells());
+      VertexTissue u = t;
+      if (s % 3 == 0) { // a vertex moved: sharp corners
+        const int v = u.rings[c][rng.below(static_cast<int>(u.rings[c].size()))];
+        u.pos[v].x += rng.uniform(-0.3, 0.3);
+        u.pos[v].y += rng.uniform(-0.3, 0.3);
+      } else { // a short edge
+        const int k = rng.below(static_cast<int>(t.rings[c].size()));
+        shrink_edge(u, t.rings[c][k], t.rings[c][(k + 1) % t.rings[c].size()],
+                    rng.uniform(0.0, 0.1));
+      }
+      try {
+        tessera::check_tissue(u);
+        t = u;
+      } catch (const tessera::Error &) {
+      }
+    }
+    for (const TopologyParams &p :
+         {TopologyParams{0.05, 0.08, 0.0}, TopologyParams{0.12, 0.15, 0.0},
+          TopologyParams{0.05, 0.08, 0.6}, TopologyParams{0.0, 0.0, 0.6}}) {
+      expect_same_events(t, p, &found);
+      VertexTissue patch = t;
+      patch.vertex_known.assign(t.n_vertices(), 1);
+      for (int v = 0; v < t.n_vertices(); ++v)
+        if (rng.uniform() < 0.1)
+          patch.vertex_known[v] = 0;
+      expect_same_events(patch, p, &found);
+    }
+  }
+  EXPECT_GT(found, 200); // (the fuzz makes candidates)
+}
+
 // Conflicting candidates: several short edges in one neighbourhood.  The
 // events carried out never share a cell, the smallest is always carried
 // out, and a patch (some cells unknown) decides every event it can decide

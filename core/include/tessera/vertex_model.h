@@ -111,7 +111,8 @@ struct VertexTissue {
 };
 
 // The cell holding the directed edge (a, b), for every directed edge of the
-// tissue's cells: twin(c, k) is the cell across edge k of cell c.
+// tissue's cells: twin(c, k) is the cell across edge k of cell c.  Stored as
+// the edges leaving each vertex (about three), in arrays reused by build().
 class EdgeMap {
 public:
   EdgeMap() = default;
@@ -119,18 +120,19 @@ public:
   void build(const VertexTissue &t);
   // -1 if no cell holds (a, b).
   int cell(int a, int b) const {
-    const auto it = map_.find(key(a, b));
-    return it == map_.end() ? -1 : it->second;
+    if (a < 0 || a + 1 >= static_cast<int>(first_.size()))
+      return -1;
+    for (int e = first_[a]; e < first_[a + 1]; ++e)
+      if (to_[e] == b)
+        return cell_[e];
+    return -1;
   }
   // A directed edge held by two cells (a broken map) found by build(), or {-1, -1}.
   int dup_a = -1, dup_b = -1;
 
 private:
-  static std::uint64_t key(int a, int b) {
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) |
-           static_cast<std::uint32_t>(b);
-  }
-  std::unordered_map<std::uint64_t, int> map_;
+  // Edges leaving vertex a: to_[e], cell_[e] for e in [first_[a], first_[a + 1]).
+  std::vector<int> first_, to_, cell_, fill_;
 };
 
 // The cell across edge k (from ring[k] to ring[k+1]) of cell c, or -1.
@@ -205,8 +207,11 @@ struct TopologyEvent {
 // of four or more sides and area below t2_area among those whose other cell
 // has four or more sides (however long: so that a shrinking cell becomes a
 // triangle); complete triangles of area below t2_area.
+// The T1 candidates are sought in the cells that a cheap test of their
+// edges and corners leaves (the same events in the same order as a look at
+// every cell: every_cell = true, the oracle).
 std::vector<TopologyEvent> find_events(const VertexTissue &t, const EdgeMap &m,
-                                       const TopologyParams &p);
+                                       const TopologyParams &p, bool every_cell = false);
 
 // Status of each candidate under the rule: Carry if it is decidable and
 // before every other candidate that shares a cell with it (its cells: for a

@@ -25,6 +25,7 @@ FixStyle(VERTEX_POLYGON,FixVertexPolygon);
 
 #include "fix.h"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -104,6 +105,9 @@ class FixVertexPolygon : public Fix {
   enum Mode { RINGS, CANONICAL, SHARE, COUNT, VELOCITY };
   int mode = RINGS;
   std::vector<double> canon, share, *counts = nullptr;
+  std::vector<int> patch_of;    // build_patch: patch index at the atom map's index of an ID
+  struct Patch;
+  std::shared_ptr<Patch> patch;
   int transfer = 1;    // some fix or pair style may put forces on cell atoms
   void request_steps();
   void cell_velocities();

@@ -37,6 +37,11 @@
 
 using namespace LAMMPS_NS;
 
+struct FixVertexPolygon::Patch {
+  tessera::VertexTissue tissue;
+  tessera::EdgeMap edges;
+};
+
 namespace {
 
 const char *kind_name(const tessera::TopologyEvent &e)
@@ -69,32 +74,56 @@ void FixVertexPolygon::build_patch(tessera::VertexTissue &t, tessera::EdgeMap &m
   mode = CANONICAL;
   tessera_compat::forward_comm(comm, this);
 
-  t = tessera::VertexTissue();
+  // The patch's cells and vertices by ID, each ID at the atom map's index
+  // for it (one per ID, whichever copy), in the order of the local atoms.
+  patch_of.assign(nall, -1);
   t.periodic = true;
   t.box =
       tessera::Box::rect(domain->boxlo[0], domain->boxhi[0], domain->boxlo[1], domain->boxhi[1]);
   t.box.xy = domain->triclinic ? domain->xy : 0.0;
-  std::unordered_map<tagint, int> cell_of, vertex_of;
+  t.pos.clear();
+  t.type.clear();
+  t.vertex_id.clear();
+  t.cell_id.clear();
+  t.vertex_known.clear();
+  t.vertex_removed.clear();
+  std::unordered_map<tagint, int> unknown;
+  int ncell = 0;
   for (int i = 0; i < nall; i++) {
     if (p.role(type[i]) != PairVertexPolygon::CELL || ring[i][0] <= 0) continue;
-    if (!cell_of.emplace(tag[i], t.n_cells()).second) continue;
+    const int ci = atom->map(tag[i]);
+    if (patch_of[ci] >= 0) continue;
+    patch_of[ci] = ncell;
     const int n = p.ring_length(i);
-    std::vector<int> r(n);
+    if (ncell == t.n_cells()) t.rings.emplace_back();
+    std::vector<int> &r = t.rings[ncell++];
+    r.resize(n);
     for (int k = 0; k < n; k++) {
       const tagint v = ring[i][k];
-      const auto ins = vertex_of.emplace(v, t.n_vertices());
-      if (ins.second) {
-        const int j = v > 0 && v <= atom->map_tag_max ? atom->map(v) : -1;
-        t.pos.push_back(j >= 0 ? tessera::Vec2{canon[2 * j], canon[2 * j + 1]} : tessera::Vec2{});
-        t.vertex_known.push_back(j >= 0);
+      const int j = v > 0 && v <= atom->map_tag_max ? atom->map(v) : -1;
+      if (j < 0) {
+        // An ID no atom here has: an unknown vertex, one per ID.
+        const auto ins = unknown.emplace(v, t.n_vertices());
+        if (ins.second) {
+          t.pos.push_back(tessera::Vec2{});
+          t.vertex_known.push_back(0);
+          t.vertex_id.push_back(v);
+        }
+        r[k] = ins.first->second;
+        continue;
+      }
+      if (patch_of[j] < 0) {
+        patch_of[j] = t.n_vertices();
+        t.pos.push_back(tessera::Vec2{canon[2 * j], canon[2 * j + 1]});
+        t.vertex_known.push_back(1);
         t.vertex_id.push_back(v);
       }
-      r[k] = ins.first->second;
+      r[k] = patch_of[j];
     }
-    t.rings.push_back(r);
     t.type.push_back(type[i] - 1);
     t.cell_id.push_back(tag[i]);
   }
+  t.rings.resize(ncell);
   m.build(t);
   std::vector<int> seen(t.n_vertices(), 0);
   for (int c = 0; c < t.n_cells(); c++) {
@@ -107,8 +136,7 @@ void FixVertexPolygon::build_patch(tessera::VertexTissue &t, tessera::EdgeMap &m
   }
   for (int i = 0; i < nlocal; i++)
     if (p.role(type[i]) == PairVertexPolygon::VERTEX && ring[i][0] == 0) {
-      const auto it = vertex_of.find(tag[i]);
-      if (it == vertex_of.end() || seen[it->second] != 3)
+      if (patch_of[i] < 0 || seen[patch_of[i]] != 3)
         thin(fmt::format("the set of cells around vertex {}", tag[i]));
     }
 }
@@ -136,8 +164,10 @@ bigint FixVertexPolygon::run_topology()
   int **ring = atom->iarray[p.ring_index];
   const int width = p.ring_width;
 
-  tessera::VertexTissue t;
-  tessera::EdgeMap m;
+  // (kept between steps: the rings' and the edge map's arrays are reused)
+  if (!patch) patch = std::make_shared<Patch>();
+  tessera::VertexTissue &t = patch->tissue;
+  tessera::EdgeMap &m = patch->edges;
   build_patch(t, m);
   const std::vector<tessera::TopologyEvent> events = tessera::find_events(t, m, p.topo);
   const std::vector<tessera::EventStatus> status = tessera::decide_events(t, m, events);

@@ -38,8 +38,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <functional>
-#include <unordered_map>
 
 using namespace LAMMPS_NS;
 
@@ -294,17 +292,6 @@ bool PairVertexPolygon::surely_inside_ghosts(const double *x, double margin) con
   return true;
 }
 
-namespace {
-
-struct PairHash {
-  size_t operator()(const std::pair<tagint, tagint> &p) const
-  {
-    return std::hash<tagint>()(p.first) * 1000003u ^ std::hash<tagint>()(p.second);
-  }
-};
-
-}    // namespace
-
 /* After every re-neighbouring: the ghosts' rings, each owned cell's ring as
    local copies (closest to the cell atom) and its neighbours across its
    edges, and the tissue's consistency (every edge has a cell on its other
@@ -319,21 +306,45 @@ void PairVertexPolygon::refresh()
   int **ring = atom->iarray[ring_index];
   double **x = atom->x;
 
-  // Directed edges (a, b) of every local cell, owned copies first.
-  std::unordered_map<std::pair<tagint, tagint>, int, PairHash> edge;
-  edge.reserve(static_cast<size_t>(3 * nall));
+  // Directed edges (a, b) of every local cell, owned copies first (the
+  // first copy of an edge keeps it), filed under the atom map's copy of a.
+  // Edges whose ends are not here are left out: an owned cell's are here
+  // (checked below), and only those are looked up.
+  auto vertex_index = [&](tagint id) {
+    return id > 0 && id <= atom->map_tag_max ? atom->map(id) : -1;
+  };
+  edge_first.assign(nall + 1, 0);
   for (int i = 0; i < nall; i++) {
     if (role(type[i]) != CELL) continue;
     const int n = ring_length(i);
     for (int k = 0; k < n; k++) {
-      const std::pair<tagint, tagint> key(ring[i][k], ring[i][k + 1 == n ? 0 : k + 1]);
-      const auto ins = edge.emplace(key, i);
-      if (!ins.second && tag[ins.first->second] != tag[i] && i < nlocal)
+      const int ja = vertex_index(ring[i][k]);
+      if (ja >= 0) edge_first[ja + 1]++;
+    }
+  }
+  for (int j = 0; j < nall; j++) edge_first[j + 1] += edge_first[j];
+  edge_to.resize(edge_first[nall]);
+  edge_cell.resize(edge_first[nall]);
+  edge_fill.assign(edge_first.begin(), edge_first.end() - 1);
+  for (int i = 0; i < nall; i++) {
+    if (role(type[i]) != CELL) continue;
+    const int n = ring_length(i);
+    for (int k = 0; k < n; k++) {
+      const tagint a = ring[i][k], b = ring[i][k + 1 == n ? 0 : k + 1];
+      const int ja = vertex_index(a);
+      if (ja < 0) continue;
+      int e = edge_first[ja];
+      while (e < edge_fill[ja] && edge_to[e] != b) e++;
+      if (e == edge_fill[ja]) {
+        edge_to[e] = static_cast<int>(b);
+        edge_cell[e] = i;
+        edge_fill[ja]++;
+      } else if (tag[edge_cell[e]] != tag[i] && i < nlocal)
         error->one(FLERR,
                    "pair_style vertex/polygon: cells {} and {} both hold the edge from vertex {} "
                    "to vertex {} in the same direction (a ring runs clockwise, or two cells "
                    "overlap)",
-                   tag[i], tag[ins.first->second], key.first, key.second);
+                   tag[i], tag[edge_cell[e]], a, b);
     }
   }
   off.assign(nlocal + 1, 0);
@@ -390,8 +401,11 @@ void PairVertexPolygon::refresh()
     const int n = off[i + 1] - off[i];
     for (int k = 0; k < n; k++) {
       const tagint a = ring[i][k], b = ring[i][k + 1 == n ? 0 : k + 1];
-      const auto it = edge.find(std::make_pair(b, a));
-      if (it == edge.end()) {
+      // The cell holding (b, a); b is here (its copy is in ring_local).
+      const int jb = vertex_index(b);
+      int e = edge_first[jb];
+      while (e < edge_fill[jb] && edge_to[e] != a) e++;
+      if (e == edge_fill[jb]) {
         const double *xa = x[ring_local[off[i] + k]];
         if (surely_inside_ghosts(xa, 2.0 * reach_local + neighbor->skin))
           error->one(FLERR,
@@ -405,7 +419,7 @@ void PairVertexPolygon::refresh()
                    "close, or the cutoff {} is too small (use about 3.5 cell diameters)",
                    a, b, tag[i], cut_global);
       }
-      nbr_local[off[i] + k] = domain->closest_image(i, it->second);
+      nbr_local[off[i] + k] = domain->closest_image(i, edge_cell[e]);
     }
   }
   MPI_Allreduce(&reach_local, &reach, 1, MPI_DOUBLE, MPI_MAX, world);
@@ -707,6 +721,9 @@ double PairVertexPolygon::memory_usage()
 {
   double bytes = Pair::memory_usage();
   bytes += (double) (off.capacity() + ring_local.capacity() + nbr_local.capacity()) * sizeof(int);
+  bytes += (double) (edge_first.capacity() + edge_fill.capacity() + edge_to.capacity() +
+                     edge_cell.capacity()) *
+      sizeof(int);
   return bytes;
 }
 

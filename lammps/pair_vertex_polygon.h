@@ -132,6 +132,9 @@ class PairVertexPolygon : public Pair {
   // offsets off[i] .. off[i+1]; rebuilt after every re-neighbouring
   // (refresh()), valid until the next one.
   std::vector<int> off, ring_local, nbr_local;
+  // refresh(): the directed edges of the local cells, as those leaving each
+  // vertex's atom-map copy (edge_first), each with its end's ID and its cell.
+  std::vector<int> edge_first, edge_fill, edge_to, edge_cell;
   int gather_ring(int i, std::vector<double> &xy, std::vector<int> &nt) const;
   bigint epoch = 0, cache_epoch = -1;    // re-neighbourings seen / the caches'
   void refresh();

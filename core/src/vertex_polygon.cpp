@@ -6,6 +6,7 @@
 #include "tessera/vertex_model.h"
 
 #include <cmath>
+#include <vector>
 
 namespace tessera {
 
@@ -52,6 +53,15 @@ PolygonMeasures polygon_measures(const double *xy, int n) {
 
 double polygon_energy(const double *xy, int n, const Model &model, int c, int tc,
                       const int *nbr_type, double *grad) {
+  // Each edge's vector and length once, for the energy and the gradient.
+  constexpr int kStack = 32;
+  double stack[3 * kStack];
+  std::vector<double> heap;
+  double *edge = stack;
+  if (n > kStack) {
+    heap.resize(3 * static_cast<size_t>(n));
+    edge = heap.data();
+  }
   const double x0 = xy[0], y0 = xy[1];
   double a2 = 0.0, P = 0.0, tension = 0.0;
   const double w = model.tension_weight();
@@ -60,7 +70,11 @@ double polygon_energy(const double *xy, int n, const Model &model, int c, int tc
     const double xa = xy[2 * k] - x0, ya = xy[2 * k + 1] - y0;
     const double xb = xy[2 * k1] - x0, yb = xy[2 * k1 + 1] - y0;
     a2 += xa * yb - xb * ya;
-    const double l = edge_length(xb - xa, yb - ya);
+    const double dx = xy[2 * k1] - xy[2 * k], dy = xy[2 * k1 + 1] - xy[2 * k + 1];
+    const double l = edge_length(dx, dy);
+    edge[3 * k] = dx;
+    edge[3 * k + 1] = dy;
+    edge[3 * k + 2] = l;
     P += l;
     tension += model.lambda_of(tc, nbr_type ? nbr_type[k] : tc) * l;
   }
@@ -71,35 +85,21 @@ double polygon_energy(const double *xy, int n, const Model &model, int c, int tc
   if (!grad)
     return e;
   const double eA = p.K * dA, eP = p.Gamma * P + p.shift;
-  // Edge k's coefficient t_k = dE/dl_k, and its unit vector u_k; corner k
-  // gets t_{k-1} u_{k-1} - t_k u_k from the lengths.
-  double tp = 0.0, upx = 0.0, upy = 0.0; // of edge n-1, the one before corner 0
-  {
-    const int k = n - 1;
-    const double dx = xy[0] - xy[2 * k], dy = xy[1] - xy[2 * k + 1];
-    const double l = edge_length(dx, dy);
-    tp = eP + w * model.lambda_of(tc, nbr_type ? nbr_type[k] : tc);
-    if (l > 0.0) {
-      upx = dx / l;
-      upy = dy / l;
-    }
+  // Edge k's coefficient t_k = dE/dl_k times its unit vector u_k (in place
+  // of the edge vector); corner k gets t_{k-1} u_{k-1} - t_k u_k from the
+  // lengths.  A zero-length edge has no direction: nothing.
+  for (int k = 0; k < n; ++k) {
+    const double l = edge[3 * k + 2];
+    const double t = eP + w * model.lambda_of(tc, nbr_type ? nbr_type[k] : tc);
+    const double s = l > 0.0 ? t / l : 0.0;
+    edge[3 * k] *= s;
+    edge[3 * k + 1] *= s;
   }
   for (int k = 0; k < n; ++k) {
     const int k1 = k + 1 == n ? 0 : k + 1;
     const int km = k == 0 ? n - 1 : k - 1;
-    const double dx = xy[2 * k1] - xy[2 * k], dy = xy[2 * k1 + 1] - xy[2 * k + 1];
-    const double l = edge_length(dx, dy);
-    const double t = eP + w * model.lambda_of(tc, nbr_type ? nbr_type[k] : tc);
-    double ux = 0.0, uy = 0.0;
-    if (l > 0.0) {
-      ux = dx / l;
-      uy = dy / l;
-    }
-    grad[2 * k] = eA * 0.5 * (xy[2 * k1 + 1] - xy[2 * km + 1]) + tp * upx - t * ux;
-    grad[2 * k + 1] = eA * 0.5 * (xy[2 * km] - xy[2 * k1]) + tp * upy - t * uy;
-    tp = t;
-    upx = ux;
-    upy = uy;
+    grad[2 * k] = eA * 0.5 * (xy[2 * k1 + 1] - xy[2 * km + 1]) + edge[3 * km] - edge[3 * k];
+    grad[2 * k + 1] = eA * 0.5 * (xy[2 * km] - xy[2 * k1]) + edge[3 * km + 1] - edge[3 * k + 1];
   }
   return e;
 }

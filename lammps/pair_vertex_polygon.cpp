@@ -492,8 +492,8 @@ void PairVertexPolygon::compute(int eflag, int vflag)
     const int n = gather_ring(i, xy, nt);
     g.resize(2 * n);
     const int tc = type[i] - 1;
-    double e = tessera::polygon_energy(xy.data(), n, model, i, tc, nt.data(), g.data());
-    const tessera::PolygonMeasures m = tessera::polygon_measures(xy.data(), n);
+    tessera::PolygonMeasures m;
+    double e = tessera::polygon_energy(xy.data(), n, model, i, tc, nt.data(), g.data(), &m);
     ids.resize(n);
     for (int k = 0; k < n; k++) ids[k] = ring[i][k];
     const tessera::PolygonDefect d = tessera::polygon_defect(xy.data(), n, ids.data());

@@ -52,7 +52,7 @@ PolygonMeasures polygon_measures(const double *xy, int n) {
 }
 
 double polygon_energy(const double *xy, int n, const Model &model, int c, int tc,
-                      const int *nbr_type, double *grad) {
+                      const int *nbr_type, double *grad, PolygonMeasures *measures) {
   // Each edge's vector and length once, for the energy and the gradient.
   constexpr int kStack = 32;
   double stack[3 * kStack];
@@ -63,13 +63,19 @@ double polygon_energy(const double *xy, int n, const Model &model, int c, int tc
     edge = heap.data();
   }
   const double x0 = xy[0], y0 = xy[1];
-  double a2 = 0.0, P = 0.0, tension = 0.0;
+  double a2 = 0.0, P = 0.0, tension = 0.0, cx = 0.0, cy = 0.0, mx = 0.0, my = 0.0;
   const double w = model.tension_weight();
   for (int k = 0; k < n; ++k) {
     const int k1 = k + 1 == n ? 0 : k + 1;
     const double xa = xy[2 * k] - x0, ya = xy[2 * k + 1] - y0;
     const double xb = xy[2 * k1] - x0, yb = xy[2 * k1 + 1] - y0;
-    a2 += xa * yb - xb * ya;
+    const double cr = xa * yb - xb * ya;
+    a2 += cr;
+    // (polygon_measures' sums, as it makes them)
+    cx += (xa + xb) * cr;
+    cy += (ya + yb) * cr;
+    mx += xa;
+    my += ya;
     const double dx = xy[2 * k1] - xy[2 * k], dy = xy[2 * k1 + 1] - xy[2 * k + 1];
     const double l = edge_length(dx, dy);
     edge[3 * k] = dx;
@@ -79,6 +85,17 @@ double polygon_energy(const double *xy, int n, const Model &model, int c, int tc
     tension += model.lambda_of(tc, nbr_type ? nbr_type[k] : tc) * l;
   }
   const double A = 0.5 * a2;
+  if (measures) {
+    measures->area = A;
+    measures->perimeter = P;
+    if (a2 != 0.0) {
+      measures->centroid.x = x0 + cx / (3.0 * a2);
+      measures->centroid.y = y0 + cy / (3.0 * a2);
+    } else {
+      measures->centroid.x = x0 + mx / n;
+      measures->centroid.y = y0 + my / n;
+    }
+  }
   const Model::CellParams p = model.cell_params(c, tc);
   const double dA = A - p.A0;
   const double e = 0.5 * p.K * dA * dA + 0.5 * p.Gamma * P * P + p.shift * P + w * tension;

@@ -76,7 +76,14 @@ TEST(VertexPolygon, GradientIsCentralDifference) {
       t = rng.below(2);
     const int tc = rng.below(2);
     std::vector<double> g(2 * n);
-    tessera::polygon_energy(xy.data(), n, m, 0, tc, nt.data(), g.data());
+    tessera::PolygonMeasures pm;
+    tessera::polygon_energy(xy.data(), n, m, 0, tc, nt.data(), g.data(), &pm);
+    // The measures made in the same pass are polygon_measures'.
+    const tessera::PolygonMeasures want = tessera::polygon_measures(xy.data(), n);
+    EXPECT_EQ(pm.area, want.area);
+    EXPECT_NEAR(pm.perimeter, want.perimeter, 1e-13 * want.perimeter);
+    EXPECT_EQ(pm.centroid.x, want.centroid.x);
+    EXPECT_EQ(pm.centroid.y, want.centroid.y);
     const double h = 1e-6;
     for (int k = 0; k < 2 * n; ++k) {
       std::vector<double> p = xy, q = xy;

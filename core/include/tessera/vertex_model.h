@@ -48,8 +48,11 @@ PolygonMeasures polygon_measures(const double *xy, int n);
 // values, overwritten) receives dE/dx_k, dE/dy_k; a zero-length edge has no
 // direction and contributes no tension gradient (the mean of the two one-sided
 // derivatives of its length).
+// measures (optional) receives polygon_measures(xy, n), made in the same pass
+// (its perimeter from the edges as the energy sums them: the same but for
+// round-off).
 double polygon_energy(const double *xy, int n, const Model &model, int c, int tc,
-                      const int *nbr_type, double *grad);
+                      const int *nbr_type, double *grad, PolygonMeasures *measures = nullptr);
 
 // What makes a polygon an invalid cell (None: valid).  A valid cell has at
 // least three corners, no corner ID twice, finite corners, positive area and

@@ -45,9 +45,10 @@ CellSource *CellSource::find(LAMMPS *lmp)
 
 namespace {
 
-class VoronoiSource final : public CellSource {
+// What both pair styles answer alike.
+template <class Pair> class Forward : public CellSource {
  public:
-  explicit VoronoiSource(PairVertexVoronoi &pair) : p(pair) {}
+  explicit Forward(Pair &pair) : p(pair) {}
   const tessera::CellView &cells() const override { return p.cells(); }
   bigint cells_step() const override { return p.cells_step(); }
   void require_current_cells(const std::string &who) override { p.require_current_cells(who); }
@@ -56,29 +57,23 @@ class VoronoiSource final : public CellSource {
   bigint force_count() const override { return p.force_count(); }
   bigint compute_count() const override { return p.compute_count(); }
   bool is_cell_type(int type) const override { return p.is_cell_type(type); }
+
+ protected:
+  Pair &p;
+};
+
+class VoronoiSource final : public Forward<PairVertexVoronoi> {
+ public:
+  using Forward::Forward;
   double finite_radius() const override { return p.finite_radius(); }
   bool on_sphere() const override { return p.on_sphere(); }
   const double *sphere_centre() const override { return p.sphere_centre(); }
-
- private:
-  PairVertexVoronoi &p;
 };
 
-class PolygonSource final : public CellSource {
+class PolygonSource final : public Forward<PairVertexPolygon> {
  public:
-  explicit PolygonSource(PairVertexPolygon &pair) : p(pair) {}
-  const tessera::CellView &cells() const override { return p.cells(); }
-  bigint cells_step() const override { return p.cells_step(); }
-  void require_current_cells(const std::string &who) override { p.require_current_cells(who); }
-  tessera::Contacts force_contacts() const override { return p.force_contacts(); }
-  double force_boundary(int c) const override { return p.force_boundary(c); }
-  bigint force_count() const override { return p.force_count(); }
-  bigint compute_count() const override { return p.compute_count(); }
-  bool is_cell_type(int type) const override { return p.is_cell_type(type); }
+  using Forward::Forward;
   bool cells_are_vertices() const override { return true; }
-
- private:
-  PairVertexPolygon &p;
 };
 
 }    // namespace

@@ -16,6 +16,7 @@ import numpy as np
 
 import lmptest
 from lmptest import LammpsTestCase, nprocs
+from vertex_check import parse_data as read_data, polygon
 
 # Cell types 1 and 2 (quadratic form KA A0 KP P0), a heterotypic sigma;
 # type 3 is the vertex type.
@@ -57,52 +58,8 @@ thermo_modify norm no format float %.17g
 """
 
 
-def read_data(text):
-    """Box (xlo, xhi, ylo, yhi, xy), atoms {id: (type, x, y)}, rings {id: [...]}
-    and the per-atom double properties {name: {id: value}} of a write_data file."""
-    lines = text.split("\n")
-    box = [0.0] * 5
-    for line in lines:
-        f = line.split()
-        if line.endswith("xlo xhi"):
-            box[0], box[1] = float(f[0]), float(f[1])
-        elif line.endswith("ylo yhi"):
-            box[2], box[3] = float(f[0]), float(f[1])
-        elif line.endswith("xy xz yz"):
-            box[4] = float(f[0])
-
-    def section(head):
-        i = [k for k, l in enumerate(lines) if l.split("#")[0].strip() == head][0]
-        rows, k = [], i + 2
-        while k < len(lines) and lines[k].strip():
-            rows.append(lines[k].split())
-            k += 1
-        return rows, lines[i]
-
-    atoms = {int(r[0]): (int(r[1]), float(r[2]), float(r[3])) for r in section("Atoms")[0]}
-    # (a ring starting with -1: an atom a T2 removed, deleted at the next step)
-    rings = {int(r[0]): [int(v) for v in r[1:] if int(v) != 0] for r in section("vring")[0]
-             if int(r[1]) > 0}
-    props = {}
-    if any(l.split("#")[0].strip() == "p" for l in lines):
-        rows, head = section("p")
-        names = [n[2:] for n in head.split("#")[1].split()]
-        for k, name in enumerate(names):
-            props[name] = {int(r[0]): float(r[k + 1]) for r in rows}
-    return box, atoms, {c: r for c, r in rings.items() if r}, props
-
-
-def polygon(box, atoms, ring):
-    """The ring's corners unwrapped by the minimum image (tilted boxes too)."""
-    lx, ly, xy = box[1] - box[0], box[3] - box[2], box[4]
-    pts = [np.array(atoms[ring[0]][1:])]
-    for v in ring[1:]:
-        d = np.array(atoms[v][1:]) - pts[-1]
-        j = math.floor(d[1] / ly + 0.5)
-        d -= j * np.array([xy, ly])
-        d[0] -= lx * math.floor(d[0] / lx + 0.5)
-        pts.append(pts[-1] + d)
-    return np.array(pts)
+# read_data() (vertex_check.parse_data) and polygon(): vertex_check.py, shared with
+# the division and death tests
 
 
 def written_energy(text, types=None, sigma=None, percell=False):

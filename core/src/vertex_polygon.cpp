@@ -215,9 +215,16 @@ PolygonDefect basic_defect(const double *xy, int n, const long *ids) {
 } // namespace
 
 PolygonDefect polygon_defect(const double *xy, int n, const long *ids) {
-  const PolygonDefect d = basic_defect(xy, n, ids);
-  if (d != PolygonDefect::None || surely_convex(xy, n))
-    return d;
+  // (a non-finite corner fails surely_convex: its edges' products are
+  // infinite or NaN; so a convex polygon needs only the repeated-ID test)
+  if (n >= 3 && surely_convex(xy, n)) {
+    if (ids)
+      for (int i = 0; i < n; ++i)
+        for (int j = i + 1; j < n; ++j)
+          if (ids[i] == ids[j])
+            return PolygonDefect::RepeatedVertex;
+    return PolygonDefect::None;
+  }
   return polygon_defect_pairwise(xy, n, ids);
 }
 

@@ -278,17 +278,18 @@ TEST(VertexPolygon, Defects) {
 // The fast answer (convex polygons skip the pairwise test) against the
 // pairwise test itself on fuzzed polygons: star-shaped ones (convex and not),
 // jittered regular ones, random corners (mostly crossing), clockwise ones,
-// stars that wind twice, and ones with coinciding corners.
+// stars that wind twice, ones with coinciding corners, with a non-finite or
+// huge coordinate, and with a repeated vertex ID.
 TEST(VertexPolygon, FastDefectAgreesWithPairwise) {
   testutil::Rng rng(2026);
   const double pi = std::acos(-1.0);
   int convex = 0, bad = 0;
   for (int trial = 0; trial < 20000; ++trial) {
-    const int n = 3 + rng.below(10), kind = rng.below(6);
+    const int n = 3 + rng.below(10), kind = rng.below(8);
     std::vector<double> xy(2 * n);
     for (int k = 0; k < n; ++k) {
       double phi = 2 * pi * (k + rng.uniform(0.0, 1.0)) / n, r = rng.uniform(0.2, 1.0);
-      if (kind == 1) { // nearly regular: mostly convex
+      if (kind == 1 || kind >= 6) { // nearly regular: mostly convex
         phi = 2 * pi * (k + rng.uniform(-0.2, 0.2)) / n;
         r = 1.0 + rng.uniform(-0.1, 0.1);
       } else if (kind == 4) { // winding twice
@@ -310,8 +311,18 @@ TEST(VertexPolygon, FastDefectAgreesWithPairwise) {
       xy[2 * k1] = xy[2 * k];
       xy[2 * k1 + 1] = xy[2 * k + 1];
     }
-    const PolygonDefect fast = tessera::polygon_defect(xy.data(), n);
-    const PolygonDefect slow = tessera::polygon_defect_pairwise(xy.data(), n);
+    if (kind == 6) { // a non-finite corner coordinate in a (mostly convex) polygon
+      const double bad[] = {INFINITY, -INFINITY, NAN, 1e308};
+      xy[rng.below(2 * n)] = bad[rng.below(4)];
+    }
+    // Repeated IDs now and then.
+    std::vector<long> ids(n);
+    for (int k = 0; k < n; ++k)
+      ids[k] = 10 + k;
+    if (kind == 7)
+      ids[rng.below(n)] = 10 + rng.below(n);
+    const PolygonDefect fast = tessera::polygon_defect(xy.data(), n, ids.data());
+    const PolygonDefect slow = tessera::polygon_defect_pairwise(xy.data(), n, ids.data());
     ASSERT_EQ(fast, slow) << "trial " << trial << " kind " << kind << " n " << n;
     bad += slow != PolygonDefect::None;
     // (the convex ones: the fast path's own cases)

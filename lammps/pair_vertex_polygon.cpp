@@ -141,7 +141,7 @@ void PairVertexPolygon::init_style()
                "that are no cells (particles) among the vertex model's cells, and other pair "
                "styles beside it, are not implemented");
   // Atoms added during a run would be cells without rings or vertices in no
-  // cell: new cells come from division (not implemented yet for this model).
+  // cell: new cells come from division (fix cell/divide cuts a cell in two).
   for (int k = 0; k < modify->nfix; k++)
     if (utils::strmatch(modify->fix[k]->style, "^deposit") ||
         utils::strmatch(modify->fix[k]->style, "^pour"))

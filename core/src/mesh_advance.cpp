@@ -98,7 +98,17 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
       }
       if (u >= nft0)
         continue;  // a hull edge (the far triangle has the point at infinity)
-      const int j = (NB[3 * u + 1] == m) + 2 * (NB[3 * u + 2] == m);
+      int j = (NB[3 * u + 1] == m) + 2 * (NB[3 * u + 2] == m);
+      if (j == 3 || V[3 * u + (j == 2 ? 0 : j + 1)] != q || V[3 * u + (j == 0 ? 2 : j - 1)] != p) {
+        // u shares two edges with m (a folded pair beside a point of degree
+        // two): the slot across (p, q) by its corners (the formula above
+        // gave 3, and the read past u's corners a wrong or no point).
+        j = detail::slot_across(V, NB, u, m, p, q);
+        if (j < 0) {
+          valid_ = false;
+          return false;
+        }
+      }
       const int s = V[3 * u + j];
       // s inside the circumcircle iff |s - h|^2 < |a - h|^2, i.e.
       // F = |d|^2 - 2 d.u < 0 with d = s - a.

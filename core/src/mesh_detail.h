@@ -257,6 +257,18 @@ inline bool same_centre(const Points &pts, const Tessellation &t, int a, int b) 
 namespace detail {
 // A fresh stamp for each filled Tessellation (see Mesh::stamp_).
 unsigned long next_stamp();
+
+// The slot j of triangle u (corners v, neighbours nb, three per triangle)
+// whose edge is (q, p) and whose neighbour is t, i.e. the corner of u across
+// t's edge (p, q); -1 if none (inconsistent adjacency).  For the rare pair of
+// triangles that share two edges, where the quick formula from the
+// neighbours alone is ambiguous.
+inline int slot_across(const int *v, const int *nb, int u, int t, int p, int q) {
+  for (int j = 0; j < 3; ++j)
+    if (nb[3 * u + j] == t && v[3 * u + (j + 1) % 3] == q && v[3 * u + (j + 2) % 3] == p)
+      return j;
+  return -1;
+}
 }  // namespace detail
 
 // Multifold vertices from the seeds (triangles found at a zero-length edge):

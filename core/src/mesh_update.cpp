@@ -194,7 +194,15 @@ bool Mesh::stack_edges(const Points &pts, int t, double sep2) {
         return false;
       }
     }
-    const int j = (nb_[3 * u + 1] == t) + 2 * (nb_[3 * u + 2] == t);
+    int j = (nb_[3 * u + 1] == t) + 2 * (nb_[3 * u + 2] == t);
+    if (j == 3 || v_[3 * u + (j + 1) % 3] != q || v_[3 * u + (j + 2) % 3] != p) {
+      // u shares two edges with t (a folded pair): the slot by its corners
+      j = detail::slot_across(v_.data(), nb_.data(), u, t, p, q);
+      if (j < 0) {
+        valid_ = false;
+        return false;
+      }
+    }
     if (flip_needed(pts, p, q, r, v_[3 * u + j])) {
       stack_.push_back(t);
       stack_.push_back(k);

@@ -99,10 +99,13 @@ bool Mesh::advance(const Points &pts, int n_owned, const double *roi_lo, const d
       if (u >= nft0)
         continue;  // a hull edge (the far triangle has the point at infinity)
       int j = (NB[3 * u + 1] == m) + 2 * (NB[3 * u + 2] == m);
-      if (j == 3 || V[3 * u + (j == 2 ? 0 : j + 1)] != q || V[3 * u + (j == 0 ? 2 : j - 1)] != p) {
-        // u shares two edges with m (a folded pair beside a point of degree
-        // two): the slot across (p, q) by its corners (the formula above
-        // gave 3, and the read past u's corners a wrong or no point).
+      if (j == 3) {
+        // u shares its other two edges with m (a folded pair beside a point
+        // of degree two): the formula gave 3, and the read past u's corners
+        // a wrong or no point; the slot across (p, q) is found by its corners.
+        // (A pair that shares edges 0 and 1 or 0 and 2 reads one of u's own
+        // corners; u is folded and repaired when the pass reaches it, and
+        // flip_pass() finds the slot by its corners.)
         j = detail::slot_across(V, NB, u, m, p, q);
         if (j < 0) {
           valid_ = false;

@@ -263,7 +263,8 @@ unsigned long next_stamp();
 // t's edge (p, q); -1 if none (inconsistent adjacency).  For the rare pair of
 // triangles that share two edges, where the quick formula from the
 // neighbours alone is ambiguous.
-inline int slot_across(const int *v, const int *nb, int u, int t, int p, int q) {
+[[gnu::noinline, gnu::cold]] inline int slot_across(const int *v, const int *nb, int u, int t,
+                                                    int p, int q) {
   for (int j = 0; j < 3; ++j)
     if (nb[3 * u + j] == t && v[3 * u + (j + 1) % 3] == q && v[3 * u + (j + 2) % 3] == p)
       return j;

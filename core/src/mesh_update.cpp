@@ -195,8 +195,8 @@ bool Mesh::stack_edges(const Points &pts, int t, double sep2) {
       }
     }
     int j = (nb_[3 * u + 1] == t) + 2 * (nb_[3 * u + 2] == t);
-    if (j == 3 || v_[3 * u + (j + 1) % 3] != q || v_[3 * u + (j + 2) % 3] != p) {
-      // u shares two edges with t (a folded pair): the slot by its corners
+    if (j == 3) {
+      // u shares its other two edges with t (a folded pair; see advance())
       j = detail::slot_across(v_.data(), nb_.data(), u, t, p, q);
       if (j < 0) {
         valid_ = false;
@@ -273,6 +273,13 @@ bool Mesh::flip_pass(const Points &pts, double sep2) {
     if (j == 3)
       continue;
     const int r = v_[3 * t + k], p = v_[3 * t + (k + 1) % 3], q = v_[3 * t + (k + 2) % 3];
+    if ((j == 0 && (nb_[3 * u + 1] == t || nb_[3 * u + 2] == t)) ||
+        (j == 1 && nb_[3 * u + 2] == t)) {
+      // u shares two edges with t (a folded pair): the slot by its corners
+      j = detail::slot_across(v_.data(), nb_.data(), u, t, p, q);
+      if (j < 0)
+        continue;
+    }
     if (!flip_needed(pts, p, q, r, v_[3 * u + j]))
       continue;
     if (too_close(r, v_[3 * u + j])) { // the edge the flip would create

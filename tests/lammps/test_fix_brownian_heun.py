@@ -77,6 +77,41 @@ class Order(LammpsTestCase):
                 self.assertLess(value, 1.2, "%s: orders %s" % (name, p))
 
 
+def free_polarities(n_side, d_rot, dt, steps, adapt=""):
+    """Free polarities on a square lattice (no forces: pair zero), rotational
+    noise D_r by fix polarity, fix brownian/heun (with 'adapt' settings if
+    given): dumps a.dump after the setup and b.dump after the steps."""
+    return f"""
+dimension 2
+units lj
+atom_style dipole
+boundary p p p
+lattice sq 1.0
+region box block 0 {n_side} 0 {n_side} -0.5 0.5
+create_box 1 box
+create_atoms 1 box
+mass * 1.0
+pair_style zero 0.5
+pair_coeff * *
+fix p all polarity 0.0 1.0 noise {d_rot} 3301
+fix b all brownian/heun 1.0 1 gamma_t 1.0 rng none{adapt}
+timestep {dt}
+thermo 0
+run 0
+""" + DUMP.format(name="a.dump") + f"run {steps}\n" + DUMP.format(name="b.dump")
+
+
+def check_decorrelation(test, a, b, d_rot, elapsed):
+    """<cos(theta(t) - theta(0))> = exp(-D_r t) within 5 standard errors (the
+    cosine of a Gaussian angle of variance s2 = 2 D_r t has variance
+    (1 - e^-s2)^2 / 2)."""
+    c = a["mux"] * b["mux"] + a["muy"] * b["muy"]
+    expected = math.exp(-d_rot * elapsed)
+    s2 = 2 * d_rot * elapsed
+    sigma = math.sqrt(0.5 * (1 - math.exp(-s2)) ** 2 / len(c))
+    test.assertLess(abs(c.mean() - expected), 5 * sigma, (c.mean(), expected, sigma))
+
+
 def free_particles(n, length=40.0, seed=4328):
     return f"""
 units lj
@@ -141,32 +176,9 @@ class RotationalDiffusion(LammpsTestCase):
 
     def test_decorrelation(self):
         n_side, d_rot, dt, steps = 64, 0.5, 0.05, 20
-        script = f"""
-dimension 2
-units lj
-atom_style dipole
-boundary p p p
-lattice sq 1.0
-region box block 0 {n_side} 0 {n_side} -0.5 0.5
-create_box 1 box
-create_atoms 1 box
-mass * 1.0
-pair_style zero 0.5
-pair_coeff * *
-fix p all polarity 0.0 1.0 noise {d_rot} 3301
-fix b all brownian/heun 1.0 1 gamma_t 1.0 rng none
-timestep {dt}
-thermo 0
-run 0
-""" + DUMP.format(name="a.dump") + f"run {steps}\n" + DUMP.format(name="b.dump")
-        run = self.run_lmp(script)
+        run = self.run_lmp(free_polarities(n_side, d_rot, dt, steps))
         (a,), (b,) = run.dump("a.dump"), run.dump("b.dump")
-        c = a["mux"] * b["mux"] + a["muy"] * b["muy"]
-        expected = math.exp(-d_rot * dt * steps)
-        # cos of a Gaussian angle of variance s2 = 2 D_r t: variance (1 - e^-s2)^2 / 2
-        s2 = 2 * d_rot * dt * steps
-        sigma = math.sqrt(0.5 * (1 - math.exp(-s2)) ** 2 / len(c))
-        self.assertLess(abs(c.mean() - expected), 5 * sigma, (c.mean(), expected, sigma))
+        check_decorrelation(self, a, b, d_rot, dt * steps)
         np.testing.assert_array_equal(b["xu"], a["xu"])
 
 
@@ -555,33 +567,12 @@ print "R $(f_av[1]/f_av[2]:%.17g) $(f_b[3]) $(f_b[4])"
         """Free polarities (fix polarity noise D_r) with adapt: the Wiener
         increments of the queue give <cos(theta(t) - theta(0))> = exp(-D_r t)."""
         n_side, d_rot = 64, 0.5
-        script = f"""
-dimension 2
-units lj
-atom_style dipole
-boundary p p p
-lattice sq 1.0
-region box block 0 {n_side} 0 {n_side} -0.5 0.5
-create_box 1 box
-create_atoms 1 box
-mass * 1.0
-pair_style zero 0.5
-pair_coeff * *
-fix p all polarity 0.0 1.0 noise {d_rot} 3301
-fix b all brownian/heun 1.0 1 gamma_t 1.0 rng none adapt tol 1e-3 dtmax 0.05
-timestep 0.05
-thermo 0
-run 0
-""" + DUMP.format(name="a.dump") + "run 20\n" + DUMP.format(name="b.dump") + \
-            'print "T $(time:%.17g)"\n'
-        run = self.run_lmp(script)
+        run = self.run_lmp(free_polarities(n_side, d_rot, 0.05, 20,
+                                           adapt=" adapt tol 1e-3 dtmax 0.05") +
+                           'print "T $(time:%.17g)"\n')
         (a,), (b,) = run.dump("a.dump"), run.dump("b.dump")
         elapsed = float(run.stdout.split("\nT ")[1].split()[0])
-        c = a["mux"] * b["mux"] + a["muy"] * b["muy"]
-        expected = math.exp(-d_rot * elapsed)
-        s2 = 2 * d_rot * elapsed
-        sigma = math.sqrt(0.5 * (1 - math.exp(-s2)) ** 2 / len(c))
-        self.assertLess(abs(c.mean() - expected), 5 * sigma, (c.mean(), expected, sigma))
+        check_decorrelation(self, a, b, d_rot, elapsed)
 
 
 class ConstrictionExample(LammpsTestCase):

@@ -19,6 +19,16 @@ inline double edge_length(double dx, double dy) {
   return std::sqrt(dx * dx + dy * dy);
 }
 
+// The centroid from the shoelace sums relative to the first corner (x0, y0):
+// a2 twice the area, (cx, cy) the first moments times 6; a polygon of no
+// area gets the mean of its corners ((mx, my) their sum relative to x0, y0).
+inline Vec2 centroid_of(double x0, double y0, double a2, double cx, double cy, double mx,
+                        double my, int n) {
+  if (a2 != 0.0)
+    return {x0 + cx / (3.0 * a2), y0 + cy / (3.0 * a2)};
+  return {x0 + mx / n, y0 + my / n};
+}
+
 } // namespace
 
 PolygonMeasures polygon_measures(const double *xy, int n) {
@@ -41,13 +51,7 @@ PolygonMeasures polygon_measures(const double *xy, int n) {
     m.perimeter += edge_length(xb - xa, yb - ya);
   }
   m.area = 0.5 * a2;
-  if (a2 != 0.0) {
-    m.centroid.x = x0 + cx / (3.0 * a2);
-    m.centroid.y = y0 + cy / (3.0 * a2);
-  } else {
-    m.centroid.x = x0 + mx / n;
-    m.centroid.y = y0 + my / n;
-  }
+  m.centroid = centroid_of(x0, y0, a2, cx, cy, mx, my, n);
   return m;
 }
 
@@ -88,13 +92,7 @@ double polygon_energy(const double *xy, int n, const Model &model, int c, int tc
   if (measures) {
     measures->area = A;
     measures->perimeter = P;
-    if (a2 != 0.0) {
-      measures->centroid.x = x0 + cx / (3.0 * a2);
-      measures->centroid.y = y0 + cy / (3.0 * a2);
-    } else {
-      measures->centroid.x = x0 + mx / n;
-      measures->centroid.y = y0 + my / n;
-    }
+    measures->centroid = centroid_of(x0, y0, a2, cx, cy, mx, my, n);
   }
   const Model::CellParams p = model.cell_params(c, tc);
   const double dA = A - p.A0;

@@ -199,7 +199,9 @@ def launch(args, value, directory, seed=None):
 
 
 def analyse(args, runs):
-    """{observable: [(value, error), ...]} in the order of runs, and the window."""
+    """{observable: [(value, error), ...]} in the order of the values, the
+    window, and with --seeds each run's own {observable: [(value, error), ...]}
+    in the order of runs (else None)."""
     from .dump import iter_dump
     from .logplot import parse_log
 
@@ -238,17 +240,17 @@ def analyse(args, runs):
                                         args.dump_dt)
             row.append((flux, err))
         results[name] = row
+    per_start = None
     if args.seeds:
         # runs are value-major: each value's starts are consecutive
         ns = len(args.seeds)
         per_start = results
         results = {name: [combine_starts(row[k * ns:(k + 1) * ns]) for k in range(len(args.values))]
                    for name, row in per_start.items()}
-        args.per_start = per_start
-    return results, (t0, t1)
+    return results, (t0, t1), per_start
 
 
-def table_text(args, results, window):
+def table_text(args, results, window, per_start=None):
     head = f"{args.var}: " + ", ".join(str(v) for v in args.values)
     if args.seeds:
         errors_from = (f"each value's {len(args.seeds)} starts ({args.seed_var} = "
@@ -273,7 +275,7 @@ def table_text(args, results, window):
                   " | ".join(f"{args.seed_var} = {s}" for s in args.seeds) + " |",
                   "|---" * (len(args.seeds) + 2) + "|"]
         ns = len(args.seeds)
-        for name, row in args.per_start.items():
+        for name, row in per_start.items():
             for k, v in enumerate(args.values):
                 cells = [f"{m:.4g} +- {e:.2g}" for m, e in row[k * ns:(k + 1) * ns]]
                 lines.append(f"| {name} | {v} | " + " | ".join(cells) + " |")
@@ -342,8 +344,8 @@ def cmd_converge(args):
                 if proc.returncode != 0:
                     raise RuntimeError(f"{' '.join(cmd)} failed in {d} (exit {proc.returncode}): "
                                        f"{err.strip()[-500:]}; see {d}/log.lammps")
-    results, window = analyse(args, runs)
-    text = table_text(args, results, window)
+    results, window, per_start = analyse(args, runs)
+    text = table_text(args, results, window, per_start)
     sys.stdout.write(text)
     if args.table:
         os.makedirs(os.path.dirname(os.path.abspath(args.table)), exist_ok=True)

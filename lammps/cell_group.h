@@ -97,8 +97,8 @@ namespace cell_group {
     if (lmp->comm->me == 0)
       utils::logmesg(
           lmp,
-          "{}: group '{}' holds {} atom(s) that are no cells (type {}: no vertex/voronoi "
-          "cell parameters); {}\n",
+          "{}: group '{}' holds {} atom(s) that are no cells (type {}: no cell parameters "
+          "of the pair style); {}\n",
           who, lmp->group->names[igroup], all, types, what);
   }
 

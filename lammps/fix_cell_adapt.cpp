@@ -43,7 +43,7 @@
 #include "input.h"
 #include "memory.h"
 #include "modify.h"
-#include "pair_vertex_voronoi.h"
+#include "cell_source.h"
 #include "update.h"
 #include "variable.h"
 
@@ -121,7 +121,7 @@ void FixCellAdapt::init()
     if (!input->variable->atomstyle(t.ivar))
       error->all(FLERR, "fix cell/adapt {}: variable {} is not atom-style", id, t.var);
   }
-  pair = dynamic_cast<PairVertexVoronoi *>(force->pair_match("vertex/voronoi", 1));
+  pair = CellSource::find(lmp);
   check_growth();
 }
 

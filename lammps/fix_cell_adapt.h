@@ -62,7 +62,7 @@ class FixCellAdapt : public Fix {
   };
   std::vector<Target> targets;
   std::vector<double> values;
-  class PairVertexVoronoi *pair = nullptr;
+  class CellSource *pair = nullptr;    // the cells (nullptr: every atom is one)
   bool noted_particles = false;
   bool warned_growth = false;
   // Per atom and target: the value the property held before this fix last

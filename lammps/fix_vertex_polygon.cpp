@@ -62,7 +62,7 @@ int FixVertexPolygon::setmask()
 
 void FixVertexPolygon::init()
 {
-  if (!pair || force->pair != (Pair *) pair)
+  if (!pair || force->pair_match("vertex/polygon", 1) != (Pair *) pair)
     error->all(FLERR, "Internal fix {} needs pair_style vertex/polygon", style);
   comm_forward = MAX(pair->ring_width, 2);
   pair->check_integrators();

@@ -25,7 +25,7 @@
 #include "error.h"
 #include "force.h"
 #include "pair.h"
-#include "pair_hybrid.h"
+#include "hybrid_access.h"
 #include "update.h"
 
 #include <algorithm>
@@ -44,18 +44,6 @@ using namespace LAMMPS_NS;
    next one comes back, at any dt.  The sums are over the fix's group and
    weighted by the displacements' lengths, so a few chattering cells with
    large moves show even when most cells move smoothly. */
-
-namespace {
-
-// The sub-styles of pair_style hybrid(/overlay/scaled) are protected
-// members; a pointer to member formed in a derived class reaches them.
-struct HybridAccess : PairHybrid {
-  static int count(PairHybrid *h) { return h->*(&HybridAccess::nstyles); }
-  static Pair *style(PairHybrid *h, int m) { return (h->*(&HybridAccess::styles))[m]; }
-  static const char *keyword(PairHybrid *h, int m) { return (h->*(&HybridAccess::keywords))[m]; }
-};
-
-}    // namespace
 
 void IntegratorChatter::begin(int groupbit)
 {

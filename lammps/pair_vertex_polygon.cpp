@@ -135,11 +135,6 @@ void PairVertexPolygon::init_style()
     error->all(FLERR,
                "pair_style vertex/polygon needs an atom map (rings name their vertices by ID): "
                "add 'atom_modify map yes' before the box is created");
-  if (force->pair != this)
-    error->all(FLERR,
-               "pair_style vertex/polygon cannot be a sub-style of pair_style hybrid yet: atoms "
-               "that are no cells (particles) among the vertex model's cells, and other pair "
-               "styles beside it, are not implemented");
   // Atoms added during a run would be cells without rings or vertices in no
   // cell: new cells come from division (fix cell/divide cuts a cell in two).
   for (int k = 0; k < modify->nfix; k++)
@@ -152,18 +147,20 @@ void PairVertexPolygon::init_style()
                  modify->fix[k]->id, modify->fix[k]->style);
   int ncell = 0, nvertex = 0;
   for (int t = 1; t <= atom->ntypes; t++) {
-    if (role(t) == NONE)
+    if (role(t) == NONE && force->pair == this)
       error->all(FLERR,
                  "pair_style vertex/polygon: type {} has no pair_coeff: give it cell parameters "
                  "('pair_coeff {} {} quadratic KA A0 KP P0') or make it a vertex type "
-                 "('pair_coeff {} {} vertex')",
+                 "('pair_coeff {} {} vertex'); for atoms that are neither (particles, "
+                 "obstacles) use 'pair_style hybrid/overlay vertex/polygon ... <style> ...'",
                  t, t, t, t, t);
-    (role(t) == CELL ? ncell : nvertex)++;
+    if (role(t) != NONE) (role(t) == CELL ? ncell : nvertex)++;
   }
   if (ncell == 0 || nvertex == 0)
     error->all(FLERR,
                "pair_style vertex/polygon needs at least one cell type and one vertex type "
                "(pair_coeff I I quadratic ... and pair_coeff J J vertex)");
+  check_hybrid();
   find_rings();
   build_model();
   // Lengths against the cells' size: a T1 moves two vertices by about
@@ -362,6 +359,12 @@ void PairVertexPolygon::refresh()
                    tag[i], type[i]);
       continue;
     }
+    if (t == NONE && ring[i][0] > 0)
+      error->one(FLERR,
+                 "pair_style vertex/polygon: atom {} of type {}, which is no type of this style "
+                 "(a particle), has a ring in i_vring: give type {} cell parameters, or write "
+                 "zeros in its ring (a particle is in no cell and has no polygon)",
+                 tag[i], type[i], type[i]);
     if (t != CELL || ring[i][0] < 0) continue;
     const int n = ring_length(i);
     if (n < 3)

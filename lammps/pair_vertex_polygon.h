@@ -165,6 +165,7 @@ class PairVertexPolygon : public Pair {
   std::string fix_id;
   FixVertexPolygon *fix = nullptr;
   void check_integrators() const;
+  void check_hybrid() const;
   bool box_changed() const;
   void cells_of_changed_box();
   void missing_atom(int i, tagint id, const char *what) const;

@@ -23,6 +23,8 @@
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
+#include "force.h"
+#include "hybrid_access.h"
 #include "memory.h"
 #include "tessera/vertex_model.h"
 
@@ -369,5 +371,47 @@ void PairVertexPolygon::read_restart(FILE *fp)
       MPI_Bcast(&sigma[i][j], 1, MPI_DOUBLE, 0, world);
       if (lambda_set[i][j]) setflag[i][j] = 1;
     }
+  }
+}
+
+/* Under pair_style hybrid/overlay (or hybrid), the types without a
+   pair_coeff of this style are particles: atoms of no cell that other
+   sub-styles move among the vertices.  A cell atom is bookkeeping at its
+   polygon's centroid whose force goes to its vertices shared as an active
+   force is (fix polarity's), which for another style's force would not be
+   the gradient of its energy: other styles act on vertex and particle types
+   only.  A junction tension names two cell types. */
+
+void PairVertexPolygon::check_hybrid() const
+{
+  const int n = atom->ntypes;
+  for (int i = 1; i <= n; i++)
+    for (int j = i + 1; j <= n; j++)
+      if (lambda_set[i][j] && (role(i) != CELL || role(j) != CELL)) {
+        const int t = role(i) != CELL ? i : j;
+        error->all(FLERR,
+                   "pair_coeff {} {} vertex/polygon: a junction tension between types {} and {}, "
+                   "but type {} is {}: tensions are between cell types; remove this pair_coeff",
+                   i, j, i, j, t, role(t) == VERTEX ? "a vertex type" : "no type of this style");
+      }
+  if (force->pair == this) return;
+  auto *hybrid = dynamic_cast<PairHybrid *>(force->pair);
+  if (!hybrid)
+    error->all(FLERR, "pair_style vertex/polygon: the pair style {} is neither it nor a hybrid",
+               force->pair_style);
+  for (int m = 0; m < HybridAccess::count(hybrid); m++) {
+    if (HybridAccess::style(hybrid, m) == this) continue;
+    for (int i = 1; i <= n; i++)
+      for (int j = 1; j <= n; j++)
+        if (role(i) == CELL && HybridAccess::gives(hybrid, MIN(i, j), MAX(i, j), m))
+          error->all(FLERR,
+                     "pair_style {}: pair_coeff gives the type pair {} {} to pair style {}, but "
+                     "type {} is a cell type of vertex/polygon: a cell atom sits at its polygon's "
+                     "centroid and its force is shared among its vertices (as fix polarity's "
+                     "is), which for {}'s force is not the gradient of its energy; let other "
+                     "styles act on the vertex and particle types only (e.g. 'pair_coeff {} {} "
+                     "none' after the pair_coeff that named them)",
+                     force->pair_style, MIN(i, j), MAX(i, j), HybridAccess::keyword(hybrid, m), i,
+                     HybridAccess::keyword(hybrid, m), MIN(i, j), MAX(i, j));
   }
 }

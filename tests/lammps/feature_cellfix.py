@@ -13,12 +13,15 @@ fix says once in the log how many atoms it leaves out."""
 
 import numpy as np
 
-from feature_models import PARTICLE_IDS, model_script, printed
+from feature_models import PARTICLE_IDS, is_polygon, model_script, printed
+from feature_particles_polygon import check_polygon_particles_fixes
 
 NOTE = "holds 3 atom(s) that are no cells (type 3"
 
 
 def check_particles_fixes(self, model):
+    if is_polygon(model):
+        return check_polygon_particles_fixes(self, model)
     start = model_script(model, particles=True)
     ncells = None
     # Signals and adapted parameters over 3 steps of 0.1 (cells at rest).

@@ -67,6 +67,8 @@ def with_particles(model, script):
 # (polygon_groups); the probes of forces are vertices.
 POLYGON_CELLS = 84
 PROBES = {"vertex_polygon": (93, 170), "vertex_polygon_tri": (93, 170)}
+# With particles: a particle and a vertex within its reach (soft's cutoff).
+PARTICLE_PROBES = {"vertex_polygon": (5, 98), "vertex_polygon_tri": (5, 95)}
 
 
 def polygon_script(head, data=None, tilt=False):
@@ -85,7 +87,7 @@ displace_atoms all random 0.1 0.1 0 4821 units box
 set group all dipole/random 3313 1.0
 create_vertices all 3
 """
-    body += "mass * 1.0\ngroup cells type 1 2\ngroup vertices type 3\n"
+    body += "mass * 1.0\ngroup cells type 1 2\ngroup vertices type 3\ngroup movers type 3\n"
     pair = ("pair_style vertex/polygon 4.0 t1 0.04 0.06\n" + COEFFS_2D +
             "pair_coeff 3 3 vertex\n")
     return head + body + pair + "thermo_modify norm no format float %.17g\n"
@@ -93,14 +95,15 @@ create_vertices all 3
 
 def polygon_groups(script):
     """A check's script for the vertex model: polarity and cell fixes on the
-    cells, integrators on the vertices (an integrator on a cell atom is an
-    error: it sits at its polygon's centroid)."""
+    cells, integrators on the vertices and particles (group movers; an
+    integrator on a cell atom is an error: it sits at its polygon's
+    centroid)."""
     out = []
     for line in script.split("\n"):
         w = line.split()
         if len(w) > 3 and w[0] == "fix" and w[2] == "all":
             if w[3] in ("brownian", "brownian/heun"):
-                w[2] = "vertices"
+                w[2] = "movers"
             elif w[3] == "polarity":
                 w[2] = "cells"
             line = " ".join(w)
@@ -109,14 +112,20 @@ def polygon_groups(script):
 
 
 def polygon_particles(script):
-    """Three cells made particles (type 4) under pair_style hybrid/overlay
-    vertex/polygon ... soft: the vertex model with atoms that are no cells."""
+    """Three cell centres made particles (type 4) before the vertices are
+    created, under pair_style hybrid/overlay vertex/polygon ... soft: the
+    vertex model with atoms that are no cells.  Soft acts between the
+    particles and the vertices and among the particles; the cell types
+    take no other style (an error otherwise), so they are given 'none'.
+    The particles move with the vertices (group movers)."""
     ids = " ".join(str(i) for i in PARTICLE_IDS)
     script = script.replace("create_box 3 box", "create_box 4 box")
     if "read_data" not in script:
-        script = script.replace("mass * 1.0\n", f"group p id {ids}\nset group p type 4\n"
-                                "group p delete\nmass * 1.0\n")
-    script = script.replace("mass * 1.0\n", "mass * 1.0\ngroup particles type 4\n")
+        script = script.replace("create_vertices all 3\n", f"group p id {ids}\nset group p type 4\n"
+                                "group p delete\ngroup tissue type 1 2\n"
+                                "create_vertices tissue 3\n")
+    script = script.replace("mass * 1.0\n", "mass * 1.0\ngroup particles type 4\n"
+                            "group movers type 4\n")
     out = []
     for line in script.split("\n"):
         if line.startswith("pair_style vertex/polygon"):
@@ -125,8 +134,8 @@ def polygon_particles(script):
             w = line.split()
             line = " ".join(w[:3] + ["vertex/polygon"] + w[3:])
         out.append(line)
-    return "\n".join(out).replace("thermo_modify norm no", "pair_coeff * 4 soft 2.0 1.0\n"
-                                   "pair_coeff 4 4 vertex/polygon vertex\nthermo_modify norm no", 1)
+    return "\n".join(out).replace("thermo_modify norm no", "pair_coeff 3*4 4 soft 2.0 1.0\n"
+                                   "pair_coeff 1*2 4 none\nthermo_modify norm no", 1)
 
 
 def is_polygon(model):

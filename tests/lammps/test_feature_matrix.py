@@ -22,10 +22,11 @@ from feature_adaptive import AdaptiveChecks
 from feature_outputs import OutputChecks
 from feature_state import StateChecks
 from feature_models import (COEFFS_2D, COEFFS_3D, COEFFS_FINITE, PARTICLE_IDS, POLYGON_CELLS,
-                            PROBES, SPHERE_C, SPHERE_R, dim_of, is_polygon, local_rows,
+                            PARTICLE_PROBES, PROBES, SPHERE_C, SPHERE_R, dim_of, is_polygon, local_rows,
                             model_script, polygon_groups, printed, read_matrix)
 from vertex_check import check_tissue
 from feature_cellfix import check_particles_fixes
+from feature_particles_polygon import check_polygon_particles
 from feature_signal import check_signal
 from lmptest import LammpsTestCase
 
@@ -60,7 +61,8 @@ class FeatureMatrix(AdaptiveChecks, OutputChecks, StateChecks, LammpsTestCase):
             h = 1e-6
         moves = ""
         # (With particles atom 5 is one: the force on it is soft's alone.)
-        for atom in PROBES.get(model, (5, 17)):
+        probes = PARTICLE_PROBES if particles else PROBES
+        for atom in probes.get(model, (5, 17)):
             moves += f"group a{atom} id {atom}\nrun 0\n"
             moves += f'print "F {atom} $(fx[{atom}]:%.17g) $(fy[{atom}]:%.17g) $(fz[{atom}]:%.17g)"\n'
             moves += f'print "X {atom} $(x[{atom}]:%.17g) $(y[{atom}]:%.17g) $(z[{atom}]:%.17g)"\n'
@@ -605,6 +607,8 @@ print "E $(pe:%.17g)"
         the cells' energy and areas are those of the same cells with the
         particles deleted and pair_style vertex/voronoi alone, and the
         particles' rows of compute vertex/atom are zero."""
+        if is_polygon(model):
+            return check_polygon_particles(self, model)
         self.check_forces(model, particles=True)
         d = dim_of(model)
         cols = " ".join(f"c_c[{k}]" for k in range(1, 10))

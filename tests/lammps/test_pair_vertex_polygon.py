@@ -456,6 +456,34 @@ run 0
         script = start().replace("create_vertices all 3", "") + coeffs() + "run 0\n"
         self.assertLammpsError(self.run_lmp(script, ok=False), "no rings")
 
+    # pair_style hybrid/overlay with particles (type 4, none of this style):
+    # (what is wrong, the lines after the tissue, fragments of the error).
+    HYBRID = "pair_style hybrid/overlay vertex/polygon 4.0 soft 1.0\n"
+    HYBRID_CASES = [
+        ("another style on a cell type", "pair_coeff * 4 soft 2.0 1.0\n",
+         ["gives the type pair 1 4 to pair style soft", "type 1 is a cell type",
+          "pair_coeff 1 4 none"]),
+        ("a particle with a ring",
+         "pair_coeff 3*4 4 soft 2.0 1.0\npair_coeff 1*2 4 none\nset atom 1 type 4\n",
+         ["atom 1 of type 4", "has a ring in i_vring"]),
+        ("a tension with a particle type",
+         "pair_coeff 3*4 4 soft 2.0 1.0\npair_coeff 1*2 4 none\n"
+         "pair_coeff 1 4 vertex/polygon 0.05\n",
+         ["junction tension between types 1 and 4", "type 4 is no type of this style"]),
+    ]
+
+    def test_hybrid(self):
+        base = start().replace("create_box 3 box", "create_box 4 box")
+        t1, t2 = TYPES[1], TYPES[2]
+        pair = self.HYBRID + f"""pair_coeff 1 1 vertex/polygon quadratic {t1[0]} {t1[1]} {t1[2]} {t1[3]}
+pair_coeff 2 2 vertex/polygon quadratic {t2[0]} {t2[1]} {t2[2]} {t2[3]}
+pair_coeff 3 3 vertex/polygon vertex
+"""
+        for name, lines, fragments in self.HYBRID_CASES:
+            with self.subTest(name):
+                run = self.run_lmp(base + pair + lines + "run 0\n", ok=False)
+                self.assertLammpsError(run, *fragments)
+
     def test_cutoff_too_small(self):
         run = self.run_lmp(start() + coeffs("pair_style vertex/polygon 0.3") + "run 0\n",
                            ok=False)

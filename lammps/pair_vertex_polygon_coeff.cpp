@@ -263,8 +263,9 @@ void PairVertexPolygon::print_model() const
   msg += fmt::format("; rings: i_vring, up to {} sides\n", ring_width);
   msg += "  type        KA         A0         KP         P0\n";
   for (int i = 1; i <= n; i++) {
-    if (roles[i] == VERTEX) {
-      msg += fmt::format("  {:4d}   vertices\n", i);
+    if (roles[i] != CELL) {
+      msg += fmt::format("  {:4d}   {}\n", i,
+                         roles[i] == VERTEX ? "vertices" : "particles (other pair styles)");
       continue;
     }
     const double lam = model.lambda_of(i - 1, i - 1);

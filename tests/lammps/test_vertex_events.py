@@ -422,6 +422,32 @@ class Example(LammpsTestCase):
         self.assertEqual(len(rings), ncell)
 
 
+    def test_vertex_bead(self):
+        """examples/vertex_bead, shortened (100 + 300 steps): the pull moves
+        the bead along the force; every pair force inside the system cancels
+        (soft's pairs, the vertex model's translation invariance) and no
+        force is lost on a cell atom, so the movers' summed displacement
+        (their centre of mass, masses 1) grows by exactly F t / gamma_t (overdamped Euler without noise); the
+        solid makes no T1, the fluid does; the tissue stays valid."""
+        with open(os.path.join(EXAMPLES, "vertex_bead", "in.vertex_bead")) as f:
+            script = f.read()
+        script = script.replace("fix             pull", """variable s0 equal $(xcm(movers,x)*count(movers):%.17g)
+fix             pull""")
+        script = script.replace("write_data", 'print "B $(v_dx:%.17g) '
+                                '$(xcm(movers,x)*count(movers)-v_s0:%.17g) $(c_topo[1])"\n'
+                                "write_data")
+        for p0, t1s in (("3.7", False), ("3.95", True)):
+            with self.subTest(p0=p0):
+                run = self.run_lmp(script, variables={"relax": "100", "pull": "300", "p0": p0})
+                dx, moved, nt1 = printed(run, "B")[0]
+                self.assertGreater(dx, 0.0)
+                pull_time = 300 * 0.01
+                # (the sum of about 1e4 unwrapped coordinates: round-off 1e-12 of it)
+                self.assertAlmostEqual(moved, 0.3 * pull_time, delta=1e-7)
+                self.assertEqual(nt1 > 0, t1s)
+                check_tissue(self, run.text(f"vertex_bead_{p0}.data"), f"bead p0 {p0}")
+
+
 class BadInput(LammpsTestCase):
 
     def fails(self, script, *fragments):

@@ -14,7 +14,7 @@ fix says once in the log how many atoms it leaves out."""
 import numpy as np
 
 from feature_models import PARTICLE_IDS, is_polygon, model_script, printed
-from feature_particles_polygon import check_polygon_particles_fixes
+from feature_particles import check_polygon_particles_fixes
 
 NOTE = "holds 3 atom(s) that are no cells (type 3"
 

@@ -26,7 +26,7 @@ from feature_models import (COEFFS_2D, COEFFS_3D, COEFFS_FINITE, PARTICLE_IDS, P
                             model_script, polygon_groups, printed, read_matrix)
 from vertex_check import check_tissue
 from feature_cellfix import check_particles_fixes
-from feature_particles_polygon import check_polygon_particles
+from feature_particles import check_polygon_particles, probe_particles
 from feature_signal import check_signal
 from lmptest import LammpsTestCase
 
@@ -611,30 +611,8 @@ print "E $(pe:%.17g)"
             return check_polygon_particles(self, model)
         self.check_forces(model, particles=True)
         d = dim_of(model)
-        cols = " ".join(f"c_c[{k}]" for k in range(1, 10))
-        probe = f"""compute c all vertex/atom
-compute pv all pair vertex/voronoi
-compute ps all pair soft
-compute l all vertex/local
-dump d all custom 1 cells.dump id type {cols}
-dump_modify d format float %.17g sort id
-dump n all local 1 nb.dump c_l[1] c_l[2]
-thermo_style custom step pe c_pv c_ps vol
-run 0
-print "E $(pe:%.17g) $(c_pv:%.17g) $(c_ps:%.17g) $(vol:%.17g)"
-"""
-        run = self.run_lmp(model_script(model, particles=True) + probe)
-        pe, pv, ps, vol = printed(run, "E")[0]
-        self.assertAlmostEqual(pe, pv + ps, delta=1e-10 * abs(pe))
-        self.assertGreater(ps, 0.0)    # the particles touch the cells
-        f = run.dump("cells.dump")[0]
-        part = f["type"] == 3
-        self.assertEqual(sorted(f["id"][part].astype(int)), list(PARTICLE_IDS))
-        for k in range(1, 10):
-            self.assertTrue(np.all(f[f"c_c[{k}]"][part] == 0.0), f"c_c[{k}] of a particle")
+        pv, vol, f, part = probe_particles(self, model, "vertex/voronoi", 3)
         self.assertTrue(np.all(f["c_c[1]"][~part] > 0.0))
-        nb = local_rows(run, "nb.dump")[0]
-        self.assertFalse(set(nb.ravel().astype(int)) & set(PARTICLE_IDS))
         # The same cells without the particles, the pair style alone.
         coeffs = {"3d": COEFFS_3D, "3d_tri": COEFFS_3D, "finite_open": COEFFS_FINITE,
                   "finite_per": COEFFS_FINITE}.get(model, COEFFS_2D)

@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 # Tessera: active Voronoi vertex model in LAMMPS.  SPDX-License-Identifier: GPL-2.0-or-later
-"""The feature matrix's particle checks for the vertex model
-(pair_style hybrid/overlay vertex/polygon ... soft; test_feature_matrix.py):
-three cell centres made particles (type 4) before the vertices are created,
+"""The feature matrix's particle checks (test_feature_matrix.py): the probe
+every model shares, and the vertex model's checks (pair_style hybrid/overlay
+vertex/polygon ... soft): three cell centres made particles (type 4) before the vertices are created,
 soft between the particles and the vertices.  The particles never enter a
 polygon: the cells' energy and areas are those of the same tissue built
 without them, their rows of compute vertex/atom are zero, no junction
@@ -16,11 +16,15 @@ from vertex_check import check_tissue
 PTYPE = 4    # the particles' type in the vertex model (3: the vertices)
 
 
-def check_polygon_particles(self, model):
-    self.check_forces(model, particles=True)
+def probe_particles(self, model, style, ptype):
+    """One run 0 with the particles (either pair style, hybrid/overlay with
+    soft): pe is the two sub-styles' sum, the particles touch something,
+    their rows of compute vertex/atom are zero and no junction of compute
+    vertex/local names them.  Returns (pv, vol, the per-atom dump, the
+    particles' mask)."""
     cols = " ".join(f"c_c[{k}]" for k in range(1, 10))
     probe = f"""compute c all vertex/atom
-compute pv all pair vertex/polygon
+compute pv all pair {style}
 compute ps all pair soft
 compute l all vertex/local
 dump d all custom 1 cells.dump id type {cols}
@@ -33,15 +37,22 @@ print "E $(pe:%.17g) $(c_pv:%.17g) $(c_ps:%.17g) $(vol:%.17g)"
     run = self.run_lmp(model_script(model, particles=True) + probe)
     pe, pv, ps, vol = printed(run, "E")[0]
     self.assertAlmostEqual(pe, pv + ps, delta=1e-10 * abs(pe))
-    self.assertGreater(ps, 0.0)    # the particles touch vertices
+    self.assertGreater(ps, 0.0)    # the particles touch the cells (vertices)
     f = run.dump("cells.dump")[0]
-    part, cell = f["type"] == PTYPE, f["type"] < 3
+    part = f["type"] == ptype
     self.assertEqual(sorted(f["id"][part].astype(int)), list(PARTICLE_IDS))
     for k in range(1, 10):
         self.assertTrue(np.all(f[f"c_c[{k}]"][part] == 0.0), f"c_c[{k}] of a particle")
-    self.assertTrue(np.all(f["c_c[1]"][cell] > 0.0))
     nb = local_rows(run, "nb.dump")[0]
     self.assertFalse(set(nb.ravel().astype(int)) & set(PARTICLE_IDS))
+    return pv, vol, f, part
+
+
+def check_polygon_particles(self, model):
+    self.check_forces(model, particles=True)
+    pv, vol, f, _ = probe_particles(self, model, "vertex/polygon", PTYPE)
+    cell = f["type"] < 3
+    self.assertTrue(np.all(f["c_c[1]"][cell] > 0.0))
     # The cells tile the box whatever lies among them.
     self.assertAlmostEqual(f["c_c[1]"][cell].sum(), vol, delta=1e-9 * vol)
     # The same tissue built without the particles, the pair style alone.

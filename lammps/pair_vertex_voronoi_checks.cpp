@@ -32,6 +32,7 @@
 #include "update.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 
@@ -157,6 +158,9 @@ void PairVertexVoronoi::ghost_shell_failed() const
              "that the cells' sizes match pair_coeff's {}",
              update->ntimestep, cut_global, 3.0 * smax,
              domain->dimension == 3 && !sphere_on ? "V0" : "A0");
+  // Not reached: older LAMMPS (29 Sep 2021) does not declare Error::all
+  // noreturn, which this function is.
+  std::abort();
 }
 
 std::string PairVertexVoronoi::step_advice() const

@@ -55,7 +55,7 @@ class CoupledDof {
  public:
   static constexpr const char *extract_name = "tessera/coupled_dof";
   static constexpr const char *integrator_name = "tessera/coupled_integrator";
-  // fix polarity's side (fix_polarity.cpp), which the fix owns.
+  // fix polarity's side (fix_polarity_coupled.cpp), which the fix owns.
   static std::unique_ptr<CoupledDof> of(FixPolarity &);
   virtual ~CoupledDof() = default;
 

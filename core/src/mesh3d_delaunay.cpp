@@ -3,13 +3,14 @@
 // The 3D Delaunay tetrahedralisation (mesh3d_delaunay.h): Bowyer-Watson
 // insertion on flat arrays.
 //
-// Order.  The points are copied in a biased randomised insertion order
-// (rounds of 1/2, 1/4, ... of the points chosen at random, each round along
-// a Hilbert curve through the bounding box): consecutive points are close,
-// so the walk to the next one is short and the arrays are used in order,
-// while the rounds keep the triangulation well shaped as it grows.  Extra
-// points (Mesh3's far points) go first: the convex hull is then theirs from
-// the start.  The result does not depend on the order (mesh3d_delaunay.h).
+// Order (mesh3d_order.h).  The points are copied in a biased randomised
+// insertion order (rounds of 1/2, 1/4, ... of the points chosen at random,
+// each round along a Hilbert curve through the bounding box): consecutive
+// points are close, so the walk to the next one is short and the arrays are
+// used in order, while the rounds keep the triangulation well shaped as it
+// grows.  Extra points (Mesh3's far points) go first: the convex hull is then
+// theirs from the start.  The result does not depend on the order
+// (mesh3d_delaunay.h).
 //
 // Structure.  Four corners and four neighbours per tetrahedron; the convex
 // hull is closed by tetrahedra with a point at infinity (index m, the
@@ -29,171 +30,18 @@
 
 #include "mesh3d_delaunay.h"
 
-#include "exact_predicates.h"
 #include "mesh3d_detail.h"
+#include "mesh3d_filters.h"
+#include "mesh3d_order.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <numeric>
 
 namespace tessera {
 namespace detail3 {
-
-namespace {
-// Bounds below this may have lost terms to underflow: the exact predicate
-// decides.
-constexpr double kTiny = 1e-250;
-
-// The filters, inlined into the builder's loops (the exported functions
-// below wrap them).
-[[gnu::always_inline]] inline int orient_impl(const double *a, const double *b, const double *c,
-                                              const double *d, long &exact_calls) {
-  const double bx = b[0] - a[0], by = b[1] - a[1], bz = b[2] - a[2];
-  const double cx = c[0] - a[0], cy = c[1] - a[1], cz = c[2] - a[2];
-  const double dx = d[0] - a[0], dy = d[1] - a[1], dz = d[2] - a[2];
-  const double cydz = cy * dz, czdy = cz * dy, czdx = cz * dx, cxdz = cx * dz, cxdy = cx * dy,
-               cydx = cy * dx;
-  const double det = bx * (cydz - czdy) + by * (czdx - cxdz) + bz * (cxdy - cydx);
-  // First a cheaper bound from the largest differences per axis: the
-  // permanent below is at most 6 mx my mz.
-  const double mx = std::max({std::fabs(bx), std::fabs(cx), std::fabs(dx)});
-  const double my = std::max({std::fabs(by), std::fabs(cy), std::fabs(dy)});
-  const double mz = std::max({std::fabs(bz), std::fabs(cz), std::fabs(dz)});
-  const double loose = 6e-14 * (mx * my * mz);
-  if (loose > kTiny) {
-    if (det > loose)
-      return 1;
-    if (det < -loose)
-      return -1;
-  }
-  const double perm = std::fabs(bx) * (std::fabs(cydz) + std::fabs(czdy)) +
-                      std::fabs(by) * (std::fabs(czdx) + std::fabs(cxdz)) +
-                      std::fabs(bz) * (std::fabs(cxdy) + std::fabs(cydx));
-  // About 13 times the classical bound (7 eps) on the rounding error of det,
-  // the subtractions included.
-  const double bound = 1e-14 * perm;
-  if (bound > kTiny) {
-    if (det > bound)
-      return 1;
-    if (det < -bound)
-      return -1;
-  }
-  ++exact_calls;
-  return exact::orient3d(a, b, c, d);
-}
-
-[[gnu::always_inline]] inline int insphere_impl(const double *p0, const double *p1,
-                                                const double *p2, const double *p3,
-                                                const double *e, long &exact_calls) {
-  const double ax = p0[0] - e[0], ay = p0[1] - e[1], az = p0[2] - e[2];
-  const double bx = p1[0] - e[0], by = p1[1] - e[1], bz = p1[2] - e[2];
-  const double cx = p2[0] - e[0], cy = p2[1] - e[1], cz = p2[2] - e[2];
-  const double dx = p3[0] - e[0], dy = p3[1] - e[1], dz = p3[2] - e[2];
-  const double axby = ax * by, bxay = bx * ay, bxcy = bx * cy, cxby = cx * by;
-  const double cxdy = cx * dy, dxcy = dx * cy, dxay = dx * ay, axdy = ax * dy;
-  const double axcy = ax * cy, cxay = cx * ay, bxdy = bx * dy, dxby = dx * by;
-  const double ab = axby - bxay, bc = bxcy - cxby, cd = cxdy - dxcy, da = dxay - axdy;
-  const double ac = axcy - cxay, bd = bxdy - dxby;
-  const double abc = az * bc - bz * ac + cz * ab;
-  const double bcd = bz * cd - cz * bd + dz * bc;
-  const double cda = cz * da + dz * ac + az * cd;
-  const double dab = dz * ab + az * bd + bz * da;
-  const double al = ax * ax + ay * ay + az * az, bl = bx * bx + by * by + bz * bz;
-  const double cl = cx * cx + cy * cy + cz * cz, dl = dx * dx + dy * dy + dz * dz;
-  const double det = (dl * abc - cl * dab) + (bl * cda - al * bcd);
-  // First a cheaper bound from the largest differences per axis: the
-  // permanent below is at most 24 (mx^2 + my^2 + mz^2) mx my mz.
-  {
-    const double mx = std::max({std::fabs(ax), std::fabs(bx), std::fabs(cx), std::fabs(dx)});
-    const double my = std::max({std::fabs(ay), std::fabs(by), std::fabs(cy), std::fabs(dy)});
-    const double mz = std::max({std::fabs(az), std::fabs(bz), std::fabs(cz), std::fabs(dz)});
-    const double loose = 2.4e-12 * ((mx * mx + my * my + mz * mz) * (mx * my * mz));
-    if (loose > kTiny) {
-      if (det > loose)
-        return -1;
-      if (det < -loose)
-        return 1;
-    }
-  }
-  const double pab = std::fabs(axby) + std::fabs(bxay), pbc = std::fabs(bxcy) + std::fabs(cxby);
-  const double pcd = std::fabs(cxdy) + std::fabs(dxcy), pda = std::fabs(dxay) + std::fabs(axdy);
-  const double pac = std::fabs(axcy) + std::fabs(cxay), pbd = std::fabs(bxdy) + std::fabs(dxby);
-  const double pabc = std::fabs(az) * pbc + std::fabs(bz) * pac + std::fabs(cz) * pab;
-  const double pbcd = std::fabs(bz) * pcd + std::fabs(cz) * pbd + std::fabs(dz) * pbc;
-  const double pcda = std::fabs(cz) * pda + std::fabs(dz) * pac + std::fabs(az) * pcd;
-  const double pdab = std::fabs(dz) * pab + std::fabs(az) * pbd + std::fabs(bz) * pda;
-  const double perm = dl * pabc + cl * pdab + bl * pcda + al * pbcd;
-  // About 28 times the classical bound (16 eps), the subtractions included.
-  const double bound = 1e-13 * perm;
-  // det is the determinant in the orientation convention opposite to CGAL's.
-  if (bound > kTiny) {
-    if (det > bound)
-      return -1;
-    if (det < -bound)
-      return 1;
-  }
-  ++exact_calls;
-  return exact::insphere(p0, p1, p2, p3, e);
-}
-
-} // namespace
-
-int orient3d_filtered(const double *a, const double *b, const double *c, const double *d,
-                      long &exact_calls) {
-  return orient_impl(a, b, c, d, exact_calls);
-}
-
-int insphere_filtered(const double *p0, const double *p1, const double *p2, const double *p3,
-                      const double *e, long &exact_calls) {
-  return insphere_impl(p0, p1, p2, p3, e, exact_calls);
-}
-
-namespace {
-
-// The perturbation of an exact tie (see the header).
-[[gnu::noinline]] int perturbed_tie(const double *const t[4], const double *e, long &exact_calls) {
-  // Rank the five points (slot 4 is e); the two highest ranked decide.
-  int slot[5] = {0, 1, 2, 3, 4};
-  auto point = [&](int k) { return k == 4 ? e : t[k]; };
-  std::sort(slot, slot + 5, [&](int x, int y) { return less_xyz(point(x), point(y)); });
-  for (int r = 4; r > 2; --r) {
-    const int k = slot[r];
-    if (k == 4)
-      return -1;
-    const double *q[4] = {t[0], t[1], t[2], t[3]};
-    q[k] = e;
-    const int o = orient3d_filtered(q[0], q[1], q[2], q[3], exact_calls);
-    if (o != 0)
-      return o;
-  }
-  return -1; // (not reached for a non-flat tetrahedron)
-}
-
-[[gnu::always_inline]] inline int insphere_perturbed_impl(const double *const t[4], const double *e,
-                                                          long &exact_calls) {
-  const int s = insphere_impl(t[0], t[1], t[2], t[3], e, exact_calls);
-  return s != 0 ? s : perturbed_tie(t, e, exact_calls);
-}
-
-} // namespace
-
-int insphere_perturbed(const double *const t[4], const double *e, long &exact_calls) {
-  return insphere_perturbed_impl(t, e, exact_calls);
-}
-
-bool collinear3(const double *a, const double *b, const double *c) {
-  // Collinear in space iff collinear in each coordinate plane.
-  for (int k = 0; k < 3; ++k) {
-    const int u = (k + 1) % 3, v = (k + 2) % 3;
-    const double pa[2] = {a[u], a[v]}, pb[2] = {b[u], b[v]}, pc[2] = {c[u], c[v]};
-    if (exact::orient2d(pa, pb, pc) != 0)
-      return false;
-  }
-  return true;
-}
 
 namespace {
 
@@ -251,101 +99,11 @@ bool coplanar_in_circle(const double *a, const double *b, const double *c, const
   return local < 0;
 }
 
-// Hilbert index of a point of [0, 2^bits)^3 (J. Skilling's transpose
-// algorithm, AIP Conf. Proc. 707, 381, 2004: the coordinates become the
-// "transposed" index, whose bits are then interleaved).
-uint64_t hilbert_key(uint32_t x, uint32_t y, uint32_t z, int bits) {
-  uint32_t X[3] = {x, y, z};
-  const uint32_t top = 1u << (bits - 1);
-  for (uint32_t q = top; q > 1; q >>= 1) {
-    const uint32_t mask = q - 1;
-    for (int i = 0; i < 3; ++i) {
-      if (X[i] & q) {
-        X[0] ^= mask;
-      } else {
-        const uint32_t t = (X[0] ^ X[i]) & mask;
-        X[0] ^= t;
-        X[i] ^= t;
-      }
-    }
-  }
-  X[1] ^= X[0];
-  X[2] ^= X[1];
-  uint32_t t = 0;
-  for (uint32_t q = top; q > 1; q >>= 1)
-    if (X[2] & q)
-      t ^= q - 1;
-  for (uint32_t &v : X)
-    v ^= t;
-  uint64_t key = 0;
-  for (int b = bits - 1; b >= 0; --b)
-    for (int i = 0; i < 3; ++i)
-      key = (key << 1) | ((X[i] >> b) & 1u);
-  return key;
-}
-
 // The two slots other than j and k (j != k).
 constexpr int kOther[4][4][2] = {{{-1, -1}, {2, 3}, {1, 3}, {1, 2}},
                                  {{2, 3}, {-1, -1}, {0, 3}, {0, 2}},
                                  {{1, 3}, {0, 3}, {-1, -1}, {0, 1}},
                                  {{1, 2}, {0, 2}, {0, 1}, {-1, -1}}};
-
-uint64_t splitmix64(uint64_t &s) {
-  uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-
-// The insertion order of points 0..n-1 (see the top of the file): each
-// point draws its round (the last with probability 1/2, the one before with
-// 1/4, ...; the first takes what is left, a few dozen points), and one sort
-// by (round, Hilbert index) orders them.
-void insertion_order(const Points3 &pts, std::vector<int> &order) {
-  const int n = pts.n;
-  order.resize(n);
-  std::iota(order.begin(), order.end(), 0);
-  if (n < 2)
-    return;
-  double lo[3], hi[3];
-  for (int k = 0; k < 3; ++k)
-    lo[k] = hi[k] = pts.p(0)[k];
-  for (int i = 1; i < n; ++i)
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], pts.p(i)[k]);
-      hi[k] = std::max(hi[k], pts.p(i)[k]);
-    }
-  const double ext = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-  constexpr int kBits = 19; // 57 bits of Hilbert index, 6 of round above
-  const double top = double((1u << kBits) - 1);
-  const double scale = ext > 0.0 ? top / ext : 0.0;
-  int rounds = 1;
-  while (rounds < 60 && (n >> rounds) > 64)
-    ++rounds;
-  // A fixed seed: the same input is always inserted in the same order.
-  uint64_t seed = 0x5EED3D5EEDull ^ static_cast<uint64_t>(n);
-  struct Rec {
-    uint64_t key;
-    int i;
-  };
-  std::vector<Rec> rec(n);
-  for (int i = 0; i < n; ++i) {
-    uint32_t c[3];
-    for (int k = 0; k < 3; ++k) {
-      const double s = (pts.p(i)[k] - lo[k]) * scale;
-      c[k] = static_cast<uint32_t>(std::min(std::max(s, 0.0), top));
-    }
-    const uint64_t u = splitmix64(seed) | (uint64_t(1) << 63);
-    const int tz = __builtin_ctzll(u);
-    const uint64_t round = static_cast<uint64_t>(rounds - 1 - std::min(tz, rounds - 1));
-    rec[i] = {round << 57 | hilbert_key(c[0], c[1], c[2], kBits), i};
-  }
-  std::sort(rec.begin(), rec.end(), [](const Rec &a, const Rec &b) {
-    return a.key < b.key || (a.key == b.key && a.i < b.i);
-  });
-  for (int i = 0; i < n; ++i)
-    order[i] = rec[i].i;
-}
 
 // Size at least n (the scratch arrays of an insertion never shrink).
 template <class Vec>

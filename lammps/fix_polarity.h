@@ -95,7 +95,7 @@ class FixPolarity : public Fix {
   void unit_polarities();                 // fills unit (owned and ghost atoms)
   void polar_orders(double &polar, double &nematic);
 
-  // dimension 3: a unit vector per cell (end of fix_polarity.cpp)
+  // dimension 3: a unit vector per cell (fix_polarity_3d.cpp)
   void init_angles_3d();
   void post_force_3d();
   void initial_integrate_3d();

@@ -486,6 +486,9 @@ void PairVertexPolygon::compute(int eflag, int vflag)
   nforce++;
   show_shown = false;
   view.clear(nlocal, nlocal + atom->nghost, tessera::Points{&x[0][0], nlocal + atom->nghost, 3});
+  // (the pieces' corners are made from these positions when a consumer reads them)
+  view.set_rings(off.data(), ring_local.data(), nbr_local.data(),
+                 tessera::Points{&x[0][0], nlocal + atom->nghost, 3});
   cell_energy.assign(nlocal, 0.0);
   for (int i = 0; i < nlocal; i++) {
     if (role(type[i]) != CELL || ring[i][0] < 0) continue;
@@ -540,7 +543,7 @@ void PairVertexPolygon::compute(int eflag, int vflag)
         virial[3] -= 0.5 * (rx * g[2 * k + 1] + ry * g[2 * k]);
       }
     }
-    view.add_cell(i, xy.data(), n, &nbr_local[off[i]], m.area, m.perimeter);
+    view.set_measures(i, m.area, m.perimeter);
     x[i][0] = m.centroid.x;
     x[i][1] = m.centroid.y;
     // A topology candidate: ask for a topology step (end_of_step).
@@ -563,7 +566,6 @@ void PairVertexPolygon::compute(int eflag, int vflag)
       }
     }
   }
-  view.finish();
   view.energy = cell_energy.data();
   view_step = update->ntimestep;
   view_natoms = atom->natoms;

@@ -480,3 +480,113 @@ TEST(VertexCells, ViewOfAStretchedHoneycomb) {
 }
 
 } // namespace
+
+namespace {
+
+// The view filled lazily (set_rings: corners by index into a table of
+// points, pieces made at the first read) against add_cell (the oracle):
+// fuzzed tissues in slots with gaps, corners shared by several cells or
+// copied per cell, tables of stride 2 and 3; every accessor the same bits.
+TEST(VertexCells, LazyRingsAreAddCell) {
+  testutil::Rng rng(4711);
+  for (int trial = 0; trial < 40; ++trial) {
+    const VertexTissue t = vtest::random_tissue(100 + trial, 5 + rng.below(30), 6.0,
+                                                1 + rng.below(2), rng.below(2) ? 0.7 : 0.0);
+    // Slots: cells at increasing slots, empty slots between some of them.
+    std::vector<int> slot_cell;
+    for (int c = 0; c < t.n_cells(); ++c) {
+      while (rng.below(3) == 0)
+        slot_cell.push_back(-1);
+      slot_cell.push_back(c);
+    }
+    if (rng.below(2))
+      slot_cell.push_back(-1);
+    const int ns = static_cast<int>(slot_cell.size());
+    const int stride = 2 + rng.below(2);
+    std::vector<double> table; // the points, stride values each
+    std::vector<int> offset(ns + 1, 0), corner, neighbor;
+    std::vector<double> area(ns, 0.0), perimeter(ns, 0.0);
+    std::vector<double> centres(2 * static_cast<size_t>(ns), 0.0);
+    tessera::PolygonCells eager, lazy;
+    std::vector<double> xy;
+    auto add_point = [&](double x, double y) {
+      table.push_back(x);
+      table.push_back(y);
+      if (stride == 3)
+        table.push_back(rng.uniform());
+      return static_cast<int>(table.size()) / stride - 1;
+    };
+    eager.clear(ns, ns, tessera::Points{centres.data(), ns, 2});
+    lazy.clear(ns, ns, tessera::Points{centres.data(), ns, 2});
+    for (int s = 0; s < ns; ++s) {
+      offset[s] = static_cast<int>(corner.size());
+      const int c = slot_cell[s];
+      if (c < 0)
+        continue;
+      t.polygon(c, xy);
+      const int n = static_cast<int>(t.rings[c].size());
+      std::vector<int> nbr(n);
+      for (int k = 0; k < n; ++k) {
+        nbr[k] = rng.below(ns);
+        neighbor.push_back(nbr[k]);
+        // A decoy point now and then: indices need not be in ring order.
+        if (rng.below(4) == 0)
+          add_point(rng.uniform(), rng.uniform());
+        corner.push_back(add_point(xy[2 * k], xy[2 * k + 1]));
+      }
+      const tessera::PolygonMeasures pm = tessera::polygon_measures(xy.data(), n);
+      area[s] = pm.area;
+      perimeter[s] = pm.perimeter;
+      eager.add_cell(s, xy.data(), n, nbr.data(), pm.area, pm.perimeter);
+    }
+    offset[ns] = static_cast<int>(corner.size());
+    eager.finish();
+    const int npts = static_cast<int>(table.size()) / stride;
+    lazy.set_rings(offset.data(), corner.data(), neighbor.data(),
+                   tessera::Points{table.data(), npts, stride});
+    for (int s = 0; s < ns; ++s)
+      lazy.set_measures(s, area[s], perimeter[s]);
+    // The table changes after the force computation: the view keeps its copy.
+    for (double &v : table)
+      v += 1.0;
+    ASSERT_EQ(lazy.n_owned(), eager.n_owned());
+    // Read in an order of its own: sizes first, corners first, or contacts first.
+    const int first = rng.below(3);
+    if (first == 1) {
+      std::vector<double> tmp;
+      if (offset[ns] > 0)
+        lazy.piece_corners(0, tmp);
+    } else if (first == 2) {
+      lazy.contacts();
+    }
+    for (int s = 0; s < ns; ++s) {
+      ASSERT_EQ(lazy.piece_begin(s), eager.piece_begin(s));
+      ASSERT_EQ(lazy.piece_end(s), eager.piece_end(s));
+      EXPECT_EQ(lazy.measure(s), eager.measure(s));
+      EXPECT_EQ(lazy.boundary(s), eager.boundary(s));
+      for (int k = eager.piece_begin(s); k < eager.piece_end(s); ++k) {
+        EXPECT_EQ(lazy.piece_neighbor(k), eager.piece_neighbor(k));
+        EXPECT_EQ(lazy.piece_size(k), eager.piece_size(k));
+        std::vector<double> a, b;
+        EXPECT_EQ(lazy.piece_corners(k, a), eager.piece_corners(k, b));
+        EXPECT_EQ(a, b);
+      }
+      double pa[2], pb[2];
+      if (eager.piece_end(s) > eager.piece_begin(s) && eager.principal_axis(s, true, pb)) {
+        ASSERT_TRUE(lazy.principal_axis(s, true, pa));
+        EXPECT_EQ(pa[0], pb[0]);
+        EXPECT_EQ(pa[1], pb[1]);
+      }
+    }
+    const tessera::Contacts ca = lazy.contacts(), cb = eager.contacts();
+    ASSERT_EQ(ca.n_owned, cb.n_owned);
+    for (int k = 0; k < offset[ns]; ++k) {
+      EXPECT_EQ(ca.neighbor[k], cb.neighbor[k]);
+      EXPECT_EQ(ca.size[k], cb.size[k]);
+    }
+    for (int s = 0; s <= ns; ++s)
+      EXPECT_EQ(ca.offset[s], cb.offset[s]);
+  }
+}
+
+} // namespace

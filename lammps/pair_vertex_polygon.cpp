@@ -347,12 +347,27 @@ void PairVertexPolygon::refresh()
                    tag[i], tag[edge_cell[e]], a, b);
     }
   }
+  // A copy of an atom less than a quarter of the box's shortest period from
+  // atom i is the closest image to i (every other image of it is more than
+  // three quarters away), which closest_image() finds by a search of the
+  // copies; beyond, that search.
+  const double quarter = 0.25 * MIN(domain->xprd, domain->yprd);
+  const double near2 = quarter * quarter;
+  auto closest = [&](int i, int j) {
+    const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
+    return dx * dx + dy * dy + dz * dz < near2 ? j : domain->closest_image(i, j);
+  };
   off.assign(nlocal + 1, 0);
-  ring_local.clear();
-  nbr_local.clear();
-  double reach_local = 0.0;
+  // (sized ahead, grown by doubling: the entries are written, not appended)
+  int nring = 0;
+  if (ring_local.size() < 8) ring_local.resize(8);
+  std::vector<int> ring_map;    // the atom map's index of each entry's vertex
+  ring_map.resize(ring_local.size());
+  double reach2 = 0.0;
+  // (a square below this has its root within the cutoff: no root taken)
+  const double below_cut2 = 0.99 * cut_global * cut_global;
   for (int i = 0; i < nlocal; i++) {
-    off[i] = static_cast<int>(ring_local.size());
+    off[i] = nring;
     const int t = role(type[i]);
     if (t == VERTEX) {
       if (ring[i][0] > 0)
@@ -369,6 +384,10 @@ void PairVertexPolygon::refresh()
                  "pair_style vertex/polygon: cell {} (type {}) has {} vertices in its ring "
                  "(i_vring); a cell needs at least three (a cell atom without a polygon?)",
                  tag[i], type[i], n);
+    if (nring + n > static_cast<int>(ring_local.size())) {
+      ring_local.resize(2 * static_cast<size_t>(nring + n));
+      ring_map.resize(ring_local.size());
+    }
     for (int k = 0; k < n; k++) {
       // (atom->map reads past its array for IDs beyond the largest)
       const tagint id = ring[i][k];
@@ -380,29 +399,34 @@ void PairVertexPolygon::refresh()
                    "vertex (its type {} is {}; vertex and cell types mixed up?)",
                    tag[i], ring[i][k], type[j],
                    role(type[j]) == CELL ? "a cell type" : "no vertex type");
-      j = domain->closest_image(i, j);
-      ring_local.push_back(j);
+      ring_map[nring] = j;
+      j = closest(i, j);
+      ring_local[nring++] = j;
       const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1];
-      const double dist = std::sqrt(dx * dx + dy * dy);
+      const double d2 = dx * dx + dy * dy;
       // Only copies within the ghost shell are sure to be the right image.
-      if (dist > cut_global)
+      if (d2 > below_cut2 && std::sqrt(d2) > cut_global)
         error->one(FLERR,
                    "pair_style vertex/polygon: vertex {} of cell {} is {:.4g} from the cell atom, "
                    "beyond the cutoff {}: use a cutoff of at least 3.5 cell diameters (a cell "
                    "atom far from its polygon, or cells larger than the cutoff)",
-                   ring[i][k], tag[i], dist, cut_global);
-      reach_local = MAX(reach_local, dist);
+                   ring[i][k], tag[i], std::sqrt(d2), cut_global);
+      // (the largest distance is the root of the largest square: one root)
+      reach2 = MAX(reach2, d2);
     }
   }
-  off[nlocal] = static_cast<int>(ring_local.size());
+  off[nlocal] = nring;
+  ring_local.resize(nring);
+  const double reach_local = std::sqrt(reach2);
   // Then, with every ring's vertices known to exist, the cells across edges.
-  nbr_local.resize(ring_local.size());
+  nbr_local.resize(nring);
   for (int i = 0; i < nlocal; i++) {
     const int n = off[i + 1] - off[i];
     for (int k = 0; k < n; k++) {
-      const tagint a = ring[i][k], b = ring[i][k + 1 == n ? 0 : k + 1];
+      const int k1 = k + 1 == n ? 0 : k + 1;
+      const tagint a = ring[i][k], b = ring[i][k1];
       // The cell holding (b, a); b is here (its copy is in ring_local).
-      const int jb = vertex_index(b);
+      const int jb = ring_map[off[i] + k1];
       int e = edge_first[jb];
       while (e < edge_fill[jb] && edge_to[e] != a) e++;
       if (e == edge_fill[jb]) {
@@ -419,7 +443,7 @@ void PairVertexPolygon::refresh()
                    "close, or the cutoff {} is too small (use about 3.5 cell diameters)",
                    a, b, tag[i], cut_global);
       }
-      nbr_local[off[i] + k] = domain->closest_image(i, edge_cell[e]);
+      nbr_local[off[i] + k] = closest(i, edge_cell[e]);
     }
   }
   MPI_Allreduce(&reach_local, &reach, 1, MPI_DOUBLE, MPI_MAX, world);

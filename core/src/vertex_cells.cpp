@@ -14,8 +14,6 @@ void PolygonCells::clear(int n_owned, int n_points, const Points &pts) {
   pts_ = pts;
   filled_ = 0;
   lazy_ = false;
-  corner_.clear();
-  at_.clear();
   offset_.assign(n_owned + 1, 0);
   area_.assign(n_owned, 0.0);
   perimeter_.assign(n_owned, 0.0);

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -587,6 +588,56 @@ TEST(VertexCells, LazyRingsAreAddCell) {
     for (int s = 0; s <= ns; ++s)
       EXPECT_EQ(ca.offset[s], cb.offset[s]);
   }
+}
+
+} // namespace
+
+namespace {
+
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+// image()'s shortcut for differences within a quarter period against the
+// divisions and floors alone (image_reference): the same bits, signed zeros
+// included, on fuzzed boxes (tilted or not, either sign) and differences
+// near the quarter, half and whole periods, zeros and non-finite ones.
+TEST(VertexTissue, ImageShortcutIsReference) {
+  testutil::Rng rng(8128);
+  int shortcut = 0;
+  for (int trial = 0; trial < 200000; ++trial) {
+    VertexTissue t;
+    const double lx = rng.uniform(0.5, 50.0), ly = rng.uniform(0.5, 50.0);
+    t.box = tessera::Box::rect(rng.uniform(-5.0, 5.0), 0.0, rng.uniform(-5.0, 5.0), 0.0);
+    t.box.hi[0] = t.box.lo[0] + lx;
+    t.box.hi[1] = t.box.lo[1] + ly;
+    const int tilt = rng.below(4);
+    t.box.xy = tilt == 0 ? 0.0 : tilt == 1 ? -0.0 : rng.uniform(-0.6, 0.6) * lx;
+    t.periodic = rng.below(8) != 0;
+    double d[2];
+    for (int a = 0; a < 2; ++a) {
+      const double l = a == 0 ? lx : ly;
+      const int kind = rng.below(6);
+      if (kind == 0)
+        d[a] = rng.below(2) ? 0.0 : -0.0;
+      else if (kind == 1) // near a quarter period
+        d[a] = (rng.below(2) ? 1 : -1) * 0.25 * l * (1.0 + rng.uniform(-1e-15, 1e-15));
+      else if (kind == 2)
+        d[a] = rng.uniform(-0.3, 0.3) * l;
+      else if (kind == 3)
+        d[a] = rng.uniform(-3.0, 3.0) * l;
+      else if (kind == 4) // tiny
+        d[a] = rng.uniform(-1e-300, 1e-300);
+      else
+        d[a] = rng.below(3) == 0 ? std::nan("") : (rng.below(2) ? 1 : -1) * HUGE_VAL;
+    }
+    const tessera::Vec2 f = t.image(d[0], d[1]), r = t.image_reference(d[0], d[1]);
+    ASSERT_TRUE(same_bits(f.x, r.x) && same_bits(f.y, r.y))
+        << "dx " << d[0] << " dy " << d[1] << " box " << lx << " x " << ly << " xy " << t.box.xy
+        << ": " << f.x << ", " << f.y << " against " << r.x << ", " << r.y;
+    shortcut += t.periodic && std::fabs(d[0]) < 0.25 * lx && std::fabs(d[1]) < 0.25 * ly;
+  }
+  EXPECT_GT(shortcut, 20000); // the shortcut was taken often
 }
 
 } // namespace

@@ -108,6 +108,8 @@ struct VertexTissue {
     return image(pos[to].x - pos[from].x, pos[to].y - pos[from].y);
   }
   Vec2 image(double dx, double dy) const;
+  // image() by the divisions and floors alone (the oracle of its shortcut).
+  Vec2 image_reference(double dx, double dy) const;
   // Cell c's corners unwrapped from the position of its first vertex (2 per corner).
   void polygon(int c, std::vector<double> &xy) const;
   PolygonMeasures measures(int c) const;

@@ -577,16 +577,22 @@ void PairVertexPolygon::compute(int eflag, int vflag)
         request = 1;
       // An edge shorter than l_T1, or folding onto the next one (the core's
       // size of an edge, from this cell's corners).
+      // (edge k is u, edge k + 1 is w, which becomes the next u: each edge's
+      // difference of corners and square length made once)
+      double ux = xy[2] - xy[0], uy = xy[3] - xy[1];
+      double lu2 = ux * ux + uy * uy;
       for (int k = 0; k < n && topo.t1_length > 0.0 && !request; k++) {
         const int k1 = k + 1 == n ? 0 : k + 1, k2 = k1 + 1 == n ? 0 : k1 + 1;
-        const double ux = xy[2 * k1] - xy[2 * k], uy = xy[2 * k1 + 1] - xy[2 * k + 1];
         const double wx = xy[2 * k2] - xy[2 * k1], wy = xy[2 * k2 + 1] - xy[2 * k1 + 1];
-        const double lu2 = ux * ux + uy * uy, lw2 = wx * wx + wy * wy;
+        const double lw2 = wx * wx + wy * wy;
         if (lu2 < l2) request = 1;
         // The corner at k1 sharper than 90 degrees: the distance of each far
         // end from the other edge's line.
         const double cr = ux * wy - uy * wx;
         if (ux * wx + uy * wy < 0.0 && (cr * cr < l2 * lw2 || cr * cr < l2 * lu2)) request = 1;
+        ux = wx;
+        uy = wy;
+        lu2 = lw2;
       }
     }
   }

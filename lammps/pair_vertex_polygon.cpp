@@ -414,6 +414,15 @@ void PairVertexPolygon::refresh()
       // (the largest distance is the root of the largest square: one root)
       reach2 = MAX(reach2, d2);
     }
+    // A vertex twice in a ring: an invalid cell, found here once per
+    // re-neighbouring (rings change only then), not at each force computation.
+    for (int k = 0; k < n; k++)
+      for (int q = k + 1; q < n; q++)
+        if (ring[i][k] == ring[i][q])
+          error->one(FLERR,
+                     "pair_style vertex/polygon at step {}: cell {} lists vertex {} twice in its "
+                     "ring (i_vring); a cell's polygon visits each of its vertices once",
+                     update->ntimestep, tag[i], ring[i][k]);
   }
   off[nlocal] = nring;
   ring_local.resize(nring);
@@ -498,7 +507,6 @@ void PairVertexPolygon::compute(int eflag, int vflag)
   int **ring = atom->iarray[ring_index];
   std::vector<double> xy, g;
   std::vector<int> nt;
-  std::vector<long> ids;
   double energy = 0.0;
   // The Tessera values held in Impl, bound once per compute (not per cell).
   const tessera::Model &model = this->model;
@@ -521,9 +529,8 @@ void PairVertexPolygon::compute(int eflag, int vflag)
     const int tc = type[i] - 1;
     tessera::PolygonMeasures m;
     double e = tessera::polygon_energy(xy.data(), n, model, i, tc, nt.data(), g.data(), &m);
-    ids.resize(n);
-    for (int k = 0; k < n; k++) ids[k] = ring[i][k];
-    const tessera::PolygonDefect d = tessera::polygon_defect(xy.data(), n, ids.data());
+    // (no vertex twice in a ring: checked by refresh())
+    const tessera::PolygonDefect d = tessera::polygon_defect(xy.data(), n);
     if (d != tessera::PolygonDefect::None || !std::isfinite(e)) {
       std::string vs;
       for (int k = 0; k < n; k++) vs += fmt::format(" {}", ring[i][k]);

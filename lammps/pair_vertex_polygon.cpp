@@ -309,13 +309,16 @@ void PairVertexPolygon::refresh()
   // Directed edges (a, b) of every local cell, owned copies first (the
   // first copy of an edge keeps it), filed under the atom map's copy of a.
   // Edges whose ends are not here are left out: an owned cell's are here
-  // (checked below), and only those are looked up.
+  // (checked below), and only those are looked up.  Each cell once, by its
+  // atom map's copy: its first (the map lists an ID's copies from the
+  // lowest index, an owned one first), which the others' edges would only
+  // repeat.
   auto vertex_index = [&](tagint id) {
     return id > 0 && id <= atom->map_tag_max ? atom->map(id) : -1;
   };
   edge_first.assign(nall + 1, 0);
   for (int i = 0; i < nall; i++) {
-    if (role(type[i]) != CELL) continue;
+    if (role(type[i]) != CELL || (i >= nlocal && atom->map(tag[i]) != i)) continue;
     const int n = ring_length(i);
     for (int k = 0; k < n; k++) {
       const int ja = vertex_index(ring[i][k]);
@@ -327,7 +330,7 @@ void PairVertexPolygon::refresh()
   edge_cell.resize(edge_first[nall]);
   edge_fill.assign(edge_first.begin(), edge_first.end() - 1);
   for (int i = 0; i < nall; i++) {
-    if (role(type[i]) != CELL) continue;
+    if (role(type[i]) != CELL || (i >= nlocal && atom->map(tag[i]) != i)) continue;
     const int n = ring_length(i);
     for (int k = 0; k < n; k++) {
       const tagint a = ring[i][k], b = ring[i][k + 1 == n ? 0 : k + 1];

@@ -105,7 +105,9 @@ class FixVertexPolygon : public Fix {
   enum Mode { RINGS, CANONICAL, SHARE, COUNT, VELOCITY };
   int mode = RINGS;
   std::vector<double> canon, share, *counts = nullptr;
-  std::vector<int> patch_of;    // build_patch: patch index at the atom map's index of an ID
+  std::vector<int> patch_of;     // build_patch: patch index at the atom map's index of an ID
+  std::vector<int> seen;         // build_patch: complete cells at each patch vertex
+  std::vector<char> complete;    // build_patch: per patch cell, every vertex known
   struct Patch;
   std::shared_ptr<Patch> patch;
   int transfer = 1;    // some fix or pair style may put forces on cell atoms

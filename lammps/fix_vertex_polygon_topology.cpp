@@ -88,6 +88,7 @@ void FixVertexPolygon::build_patch(tessera::VertexTissue &t, tessera::EdgeMap &m
   t.vertex_known.clear();
   t.vertex_removed.clear();
   std::unordered_map<tagint, int> unknown;
+  complete.clear();
   int ncell = 0;
   for (int i = 0; i < nall; i++) {
     if (p.role(type[i]) != PairVertexPolygon::CELL || ring[i][0] <= 0) continue;
@@ -98,10 +99,12 @@ void FixVertexPolygon::build_patch(tessera::VertexTissue &t, tessera::EdgeMap &m
     if (ncell == t.n_cells()) t.rings.emplace_back();
     std::vector<int> &r = t.rings[ncell++];
     r.resize(n);
+    char whole = 1;    // t.complete(): every vertex known
     for (int k = 0; k < n; k++) {
       const tagint v = ring[i][k];
       const int j = v > 0 && v <= atom->map_tag_max ? atom->map(v) : -1;
       if (j < 0) {
+        whole = 0;
         // An ID no atom here has: an unknown vertex, one per ID.
         const auto ins = unknown.emplace(v, t.n_vertices());
         if (ins.second) {
@@ -122,17 +125,23 @@ void FixVertexPolygon::build_patch(tessera::VertexTissue &t, tessera::EdgeMap &m
     }
     t.type.push_back(type[i] - 1);
     t.cell_id.push_back(tag[i]);
+    complete.push_back(n > 0 ? whole : 0);
   }
   t.rings.resize(ncell);
   m.build(t);
-  std::vector<int> seen(t.n_vertices(), 0);
-  for (int c = 0; c < t.n_cells(); c++) {
-    if (!t.complete(c)) continue;
-    for (int v : t.rings[c]) seen[v]++;
+  // Each owned cell's neighbours complete, each owned vertex in three
+  // complete cells (complete: the flags of t.complete() made above).
+  seen.assign(t.n_vertices(), 0);
+  for (int c = 0; c < ncell; c++) {
+    if (!complete[c]) continue;
+    const std::vector<int> &r = t.rings[c];
+    const int n = static_cast<int>(r.size());
+    for (int v : r) seen[v]++;
     if (!owned(t.cid(c))) continue;
-    for (int k = 0; k < static_cast<int>(t.rings[c].size()); k++)
-      if (!t.complete(tessera::twin_cell(t, m, c, k)))
-        thin(fmt::format("a neighbour of cell {}", t.cid(c)));
+    for (int k = 0; k < n; k++) {
+      const int o = m.cell(r[k + 1 == n ? 0 : k + 1], r[k]);
+      if (o < 0 || !complete[o]) thin(fmt::format("a neighbour of cell {}", t.cid(c)));
+    }
   }
   for (int i = 0; i < nlocal; i++)
     if (p.role(type[i]) == PairVertexPolygon::VERTEX && ring[i][0] == 0) {

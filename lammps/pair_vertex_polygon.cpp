@@ -306,13 +306,16 @@ void PairVertexPolygon::refresh()
   // Directed edges (a, b) of every local cell, owned copies first (the
   // first copy of an edge keeps it), filed under the atom map's copy of a.
   // Edges whose ends are not here are left out: an owned cell's are here
-  // (checked below), and only those are looked up.
+  // (checked below), and only those are looked up.  Each cell once, by its
+  // atom map's copy: its first (the map lists an ID's copies from the
+  // lowest index, an owned one first), which the others' edges would only
+  // repeat.
   auto vertex_index = [&](tagint id) {
     return id > 0 && id <= atom->map_tag_max ? atom->map(id) : -1;
   };
   edge_first.assign(nall + 1, 0);
   for (int i = 0; i < nall; i++) {
-    if (role(type[i]) != CELL) continue;
+    if (role(type[i]) != CELL || (i >= nlocal && atom->map(tag[i]) != i)) continue;
     const int n = ring_length(i);
     for (int k = 0; k < n; k++) {
       const int ja = vertex_index(ring[i][k]);
@@ -324,7 +327,7 @@ void PairVertexPolygon::refresh()
   edge_cell.resize(edge_first[nall]);
   edge_fill.assign(edge_first.begin(), edge_first.end() - 1);
   for (int i = 0; i < nall; i++) {
-    if (role(type[i]) != CELL) continue;
+    if (role(type[i]) != CELL || (i >= nlocal && atom->map(tag[i]) != i)) continue;
     const int n = ring_length(i);
     for (int k = 0; k < n; k++) {
       const tagint a = ring[i][k], b = ring[i][k + 1 == n ? 0 : k + 1];
@@ -344,12 +347,27 @@ void PairVertexPolygon::refresh()
                    tag[i], tag[edge_cell[e]], a, b);
     }
   }
+  // A copy of an atom less than a quarter of the box's shortest period from
+  // atom i is the closest image to i (every other image of it is more than
+  // three quarters away), which closest_image() finds by a search of the
+  // copies; beyond, that search.
+  const double quarter = 0.25 * MIN(domain->xprd, domain->yprd);
+  const double near2 = quarter * quarter;
+  auto closest = [&](int i, int j) {
+    const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
+    return dx * dx + dy * dy + dz * dz < near2 ? j : domain->closest_image(i, j);
+  };
   off.assign(nlocal + 1, 0);
-  ring_local.clear();
-  nbr_local.clear();
-  double reach_local = 0.0;
+  // (sized ahead, grown by doubling: the entries are written, not appended)
+  int nring = 0;
+  if (ring_local.size() < 8) ring_local.resize(8);
+  std::vector<int> ring_map;    // the atom map's index of each entry's vertex
+  ring_map.resize(ring_local.size());
+  double reach2 = 0.0;
+  // (a square below this has its root within the cutoff: no root taken)
+  const double below_cut2 = 0.99 * cut_global * cut_global;
   for (int i = 0; i < nlocal; i++) {
-    off[i] = static_cast<int>(ring_local.size());
+    off[i] = nring;
     const int t = role(type[i]);
     if (t == VERTEX) {
       if (ring[i][0] > 0)
@@ -372,6 +390,10 @@ void PairVertexPolygon::refresh()
                  "pair_style vertex/polygon: cell {} (type {}) has {} vertices in its ring "
                  "(i_vring); a cell needs at least three (a cell atom without a polygon?)",
                  tag[i], type[i], n);
+    if (nring + n > static_cast<int>(ring_local.size())) {
+      ring_local.resize(2 * static_cast<size_t>(nring + n));
+      ring_map.resize(ring_local.size());
+    }
     for (int k = 0; k < n; k++) {
       // (atom->map reads past its array for IDs beyond the largest)
       const tagint id = ring[i][k];
@@ -383,29 +405,43 @@ void PairVertexPolygon::refresh()
                    "vertex (its type {} is {}; vertex and cell types mixed up?)",
                    tag[i], ring[i][k], type[j],
                    role(type[j]) == CELL ? "a cell type" : "no vertex type");
-      j = domain->closest_image(i, j);
-      ring_local.push_back(j);
+      ring_map[nring] = j;
+      j = closest(i, j);
+      ring_local[nring++] = j;
       const double dx = x[j][0] - x[i][0], dy = x[j][1] - x[i][1];
-      const double dist = std::sqrt(dx * dx + dy * dy);
+      const double d2 = dx * dx + dy * dy;
       // Only copies within the ghost shell are sure to be the right image.
-      if (dist > cut_global)
+      if (d2 > below_cut2 && std::sqrt(d2) > cut_global)
         error->one(FLERR,
                    "pair_style vertex/polygon: vertex {} of cell {} is {:.4g} from the cell atom, "
                    "beyond the cutoff {}: use a cutoff of at least 3.5 cell diameters (a cell "
                    "atom far from its polygon, or cells larger than the cutoff)",
-                   ring[i][k], tag[i], dist, cut_global);
-      reach_local = MAX(reach_local, dist);
+                   ring[i][k], tag[i], std::sqrt(d2), cut_global);
+      // (the largest distance is the root of the largest square: one root)
+      reach2 = MAX(reach2, d2);
     }
+    // A vertex twice in a ring: an invalid cell, found here once per
+    // re-neighbouring (rings change only then), not at each force computation.
+    for (int k = 0; k < n; k++)
+      for (int q = k + 1; q < n; q++)
+        if (ring[i][k] == ring[i][q])
+          error->one(FLERR,
+                     "pair_style vertex/polygon at step {}: cell {} lists vertex {} twice in its "
+                     "ring (i_vring); a cell's polygon visits each of its vertices once",
+                     update->ntimestep, tag[i], ring[i][k]);
   }
-  off[nlocal] = static_cast<int>(ring_local.size());
+  off[nlocal] = nring;
+  ring_local.resize(nring);
+  const double reach_local = std::sqrt(reach2);
   // Then, with every ring's vertices known to exist, the cells across edges.
-  nbr_local.resize(ring_local.size());
+  nbr_local.resize(nring);
   for (int i = 0; i < nlocal; i++) {
     const int n = off[i + 1] - off[i];
     for (int k = 0; k < n; k++) {
-      const tagint a = ring[i][k], b = ring[i][k + 1 == n ? 0 : k + 1];
+      const int k1 = k + 1 == n ? 0 : k + 1;
+      const tagint a = ring[i][k], b = ring[i][k1];
       // The cell holding (b, a); b is here (its copy is in ring_local).
-      const int jb = vertex_index(b);
+      const int jb = ring_map[off[i] + k1];
       int e = edge_first[jb];
       while (e < edge_fill[jb] && edge_to[e] != a) e++;
       if (e == edge_fill[jb]) {
@@ -422,7 +458,7 @@ void PairVertexPolygon::refresh()
                    "close, or the cutoff {} is too small (use about 3.5 cell diameters)",
                    a, b, tag[i], cut_global);
       }
-      nbr_local[off[i] + k] = domain->closest_image(i, edge_cell[e]);
+      nbr_local[off[i] + k] = closest(i, edge_cell[e]);
     }
   }
   MPI_Allreduce(&reach_local, &reach, 1, MPI_DOUBLE, MPI_MAX, world);
@@ -477,7 +513,6 @@ void PairVertexPolygon::compute(int eflag, int vflag)
   int **ring = atom->iarray[ring_index];
   std::vector<double> xy, g;
   std::vector<int> nt;
-  std::vector<long> ids;
   double energy = 0.0;
   // The Tessera values held in Impl, bound once per compute (not per cell).
   const tessera::Model &model = this->model;
@@ -489,6 +524,9 @@ void PairVertexPolygon::compute(int eflag, int vflag)
   nforce++;
   show_shown = false;
   view.clear(nlocal, nlocal + atom->nghost, tessera::Points{&x[0][0], nlocal + atom->nghost, 3});
+  // (the pieces' corners are made from these positions when a consumer reads them)
+  view.set_rings(off.data(), ring_local.data(), nbr_local.data(),
+                 tessera::Points{&x[0][0], nlocal + atom->nghost, 3});
   cell_energy.assign(nlocal, 0.0);
   for (int i = 0; i < nlocal; i++) {
     if (role(type[i]) != CELL || ring[i][0] < 0) continue;
@@ -497,9 +535,8 @@ void PairVertexPolygon::compute(int eflag, int vflag)
     const int tc = type[i] - 1;
     tessera::PolygonMeasures m;
     double e = tessera::polygon_energy(xy.data(), n, model, i, tc, nt.data(), g.data(), &m);
-    ids.resize(n);
-    for (int k = 0; k < n; k++) ids[k] = ring[i][k];
-    const tessera::PolygonDefect d = tessera::polygon_defect(xy.data(), n, ids.data());
+    // (no vertex twice in a ring: checked by refresh())
+    const tessera::PolygonDefect d = tessera::polygon_defect(xy.data(), n);
     if (d != tessera::PolygonDefect::None || !std::isfinite(e)) {
       std::string vs;
       for (int k = 0; k < n; k++) vs += fmt::format(" {}", ring[i][k]);
@@ -543,7 +580,7 @@ void PairVertexPolygon::compute(int eflag, int vflag)
         virial[3] -= 0.5 * (rx * g[2 * k + 1] + ry * g[2 * k]);
       }
     }
-    view.add_cell(i, xy.data(), n, &nbr_local[off[i]], m.area, m.perimeter);
+    view.set_measures(i, m.area, m.perimeter);
     x[i][0] = m.centroid.x;
     x[i][1] = m.centroid.y;
     // A topology candidate: ask for a topology step (end_of_step).
@@ -553,20 +590,25 @@ void PairVertexPolygon::compute(int eflag, int vflag)
         request = 1;
       // An edge shorter than l_T1, or folding onto the next one (the core's
       // size of an edge, from this cell's corners).
+      // (edge k is u, edge k + 1 is w, which becomes the next u: each edge's
+      // difference of corners and square length made once)
+      double ux = xy[2] - xy[0], uy = xy[3] - xy[1];
+      double lu2 = ux * ux + uy * uy;
       for (int k = 0; k < n && topo.t1_length > 0.0 && !request; k++) {
         const int k1 = k + 1 == n ? 0 : k + 1, k2 = k1 + 1 == n ? 0 : k1 + 1;
-        const double ux = xy[2 * k1] - xy[2 * k], uy = xy[2 * k1 + 1] - xy[2 * k + 1];
         const double wx = xy[2 * k2] - xy[2 * k1], wy = xy[2 * k2 + 1] - xy[2 * k1 + 1];
-        const double lu2 = ux * ux + uy * uy, lw2 = wx * wx + wy * wy;
+        const double lw2 = wx * wx + wy * wy;
         if (lu2 < l2) request = 1;
         // The corner at k1 sharper than 90 degrees: the distance of each far
         // end from the other edge's line.
         const double cr = ux * wy - uy * wx;
         if (ux * wx + uy * wy < 0.0 && (cr * cr < l2 * lw2 || cr * cr < l2 * lu2)) request = 1;
+        ux = wx;
+        uy = wy;
+        lu2 = lw2;
       }
     }
   }
-  view.finish();
   view.energy = cell_energy.data();
   view_step = update->ntimestep;
   view_natoms = atom->natoms;

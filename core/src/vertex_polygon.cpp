@@ -57,13 +57,14 @@ PolygonMeasures polygon_measures(const double *xy, int n) {
 
 double polygon_energy(const double *xy, int n, const Model &model, int c, int tc,
                       const int *nbr_type, double *grad, PolygonMeasures *measures) {
-  // Each edge's vector and length once, for the energy and the gradient.
+  // Each edge's vector, length and junction tension once, for the energy
+  // and the gradient.
   constexpr int kStack = 32;
-  double stack[3 * kStack];
+  double stack[4 * kStack];
   std::vector<double> heap;
   double *edge = stack;
   if (n > kStack) {
-    heap.resize(3 * static_cast<size_t>(n));
+    heap.resize(4 * static_cast<size_t>(n));
     edge = heap.data();
   }
   const double x0 = xy[0], y0 = xy[1];
@@ -82,11 +83,13 @@ double polygon_energy(const double *xy, int n, const Model &model, int c, int tc
     my += ya;
     const double dx = xy[2 * k1] - xy[2 * k], dy = xy[2 * k1 + 1] - xy[2 * k + 1];
     const double l = edge_length(dx, dy);
-    edge[3 * k] = dx;
-    edge[3 * k + 1] = dy;
-    edge[3 * k + 2] = l;
+    const double lam = model.lambda_of(tc, nbr_type ? nbr_type[k] : tc);
+    edge[4 * k] = dx;
+    edge[4 * k + 1] = dy;
+    edge[4 * k + 2] = l;
+    edge[4 * k + 3] = lam;
     P += l;
-    tension += model.lambda_of(tc, nbr_type ? nbr_type[k] : tc) * l;
+    tension += lam * l;
   }
   const double A = 0.5 * a2;
   if (measures) {
@@ -104,17 +107,17 @@ double polygon_energy(const double *xy, int n, const Model &model, int c, int tc
   // of the edge vector); corner k gets t_{k-1} u_{k-1} - t_k u_k from the
   // lengths.  A zero-length edge has no direction: nothing.
   for (int k = 0; k < n; ++k) {
-    const double l = edge[3 * k + 2];
-    const double t = eP + w * model.lambda_of(tc, nbr_type ? nbr_type[k] : tc);
+    const double l = edge[4 * k + 2];
+    const double t = eP + w * edge[4 * k + 3];
     const double s = l > 0.0 ? t / l : 0.0;
-    edge[3 * k] *= s;
-    edge[3 * k + 1] *= s;
+    edge[4 * k] *= s;
+    edge[4 * k + 1] *= s;
   }
   for (int k = 0; k < n; ++k) {
     const int k1 = k + 1 == n ? 0 : k + 1;
     const int km = k == 0 ? n - 1 : k - 1;
-    grad[2 * k] = eA * 0.5 * (xy[2 * k1 + 1] - xy[2 * km + 1]) + edge[3 * km] - edge[3 * k];
-    grad[2 * k + 1] = eA * 0.5 * (xy[2 * km] - xy[2 * k1]) + edge[3 * km + 1] - edge[3 * k + 1];
+    grad[2 * k] = eA * 0.5 * (xy[2 * k1 + 1] - xy[2 * km + 1]) + edge[4 * km] - edge[4 * k];
+    grad[2 * k + 1] = eA * 0.5 * (xy[2 * km] - xy[2 * k1]) + edge[4 * km + 1] - edge[4 * k + 1];
   }
   return e;
 }
@@ -180,18 +183,21 @@ bool segments_meet(const double *p, const double *q, const double *r, const doub
 // false (the pairwise test decides).
 bool surely_convex(const double *xy, int n) {
   double ux = xy[0] - xy[2 * n - 2], uy = xy[1] - xy[2 * n - 1];
+  double lu2 = ux * ux + uy * uy; // (each edge's square length once: w's is the next u's)
   int wraps = 0;
   for (int k = 0; k < n; ++k) {
     const int k1 = k + 1 == n ? 0 : k + 1;
     const double wx = xy[2 * k1] - xy[2 * k], wy = xy[2 * k1 + 1] - xy[2 * k + 1];
+    const double lw2 = wx * wx + wy * wy;
     const double cr = ux * wy - uy * wx;
-    if (!(cr > 0.0) || !(cr * cr > 1e-12 * (ux * ux + uy * uy) * (wx * wx + wy * wy)))
+    if (!(cr > 0.0) || !(cr * cr > 1e-12 * lu2 * lw2))
       return false;
     // (the sign of a rounded difference is exact)
     if (uy < 0.0 && wy >= 0.0)
       ++wraps;
     ux = wx;
     uy = wy;
+    lu2 = lw2;
   }
   return wraps == 1;
 }

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -477,6 +478,166 @@ TEST(VertexCells, ViewOfAStretchedHoneycomb) {
       EXPECT_TRUE(back);
     }
   }
+}
+
+} // namespace
+
+namespace {
+
+// The view filled lazily (set_rings: corners by index into a table of
+// points, pieces made at the first read) against add_cell (the oracle):
+// fuzzed tissues in slots with gaps, corners shared by several cells or
+// copied per cell, tables of stride 2 and 3; every accessor the same bits.
+TEST(VertexCells, LazyRingsAreAddCell) {
+  testutil::Rng rng(4711);
+  for (int trial = 0; trial < 40; ++trial) {
+    const VertexTissue t = vtest::random_tissue(100 + trial, 5 + rng.below(30), 6.0,
+                                                1 + rng.below(2), rng.below(2) ? 0.7 : 0.0);
+    // Slots: cells at increasing slots, empty slots between some of them.
+    std::vector<int> slot_cell;
+    for (int c = 0; c < t.n_cells(); ++c) {
+      while (rng.below(3) == 0)
+        slot_cell.push_back(-1);
+      slot_cell.push_back(c);
+    }
+    if (rng.below(2))
+      slot_cell.push_back(-1);
+    const int ns = static_cast<int>(slot_cell.size());
+    const int stride = 2 + rng.below(2);
+    std::vector<double> table; // the points, stride values each
+    std::vector<int> offset(ns + 1, 0), corner, neighbor;
+    std::vector<double> area(ns, 0.0), perimeter(ns, 0.0);
+    std::vector<double> centres(2 * static_cast<size_t>(ns), 0.0);
+    tessera::PolygonCells eager, lazy;
+    std::vector<double> xy;
+    auto add_point = [&](double x, double y) {
+      table.push_back(x);
+      table.push_back(y);
+      if (stride == 3)
+        table.push_back(rng.uniform());
+      return static_cast<int>(table.size()) / stride - 1;
+    };
+    eager.clear(ns, ns, tessera::Points{centres.data(), ns, 2});
+    lazy.clear(ns, ns, tessera::Points{centres.data(), ns, 2});
+    for (int s = 0; s < ns; ++s) {
+      offset[s] = static_cast<int>(corner.size());
+      const int c = slot_cell[s];
+      if (c < 0)
+        continue;
+      t.polygon(c, xy);
+      const int n = static_cast<int>(t.rings[c].size());
+      std::vector<int> nbr(n);
+      for (int k = 0; k < n; ++k) {
+        nbr[k] = rng.below(ns);
+        neighbor.push_back(nbr[k]);
+        // A decoy point now and then: indices need not be in ring order.
+        if (rng.below(4) == 0)
+          add_point(rng.uniform(), rng.uniform());
+        corner.push_back(add_point(xy[2 * k], xy[2 * k + 1]));
+      }
+      const tessera::PolygonMeasures pm = tessera::polygon_measures(xy.data(), n);
+      area[s] = pm.area;
+      perimeter[s] = pm.perimeter;
+      eager.add_cell(s, xy.data(), n, nbr.data(), pm.area, pm.perimeter);
+    }
+    offset[ns] = static_cast<int>(corner.size());
+    eager.finish();
+    const int npts = static_cast<int>(table.size()) / stride;
+    lazy.set_rings(offset.data(), corner.data(), neighbor.data(),
+                   tessera::Points{table.data(), npts, stride});
+    for (int s = 0; s < ns; ++s)
+      lazy.set_measures(s, area[s], perimeter[s]);
+    // The table changes after the force computation: the view keeps its copy.
+    for (double &v : table)
+      v += 1.0;
+    ASSERT_EQ(lazy.n_owned(), eager.n_owned());
+    // Read in an order of its own: sizes first, corners first, or contacts first.
+    const int first = rng.below(3);
+    if (first == 1) {
+      std::vector<double> tmp;
+      if (offset[ns] > 0)
+        lazy.piece_corners(0, tmp);
+    } else if (first == 2) {
+      lazy.contacts();
+    }
+    for (int s = 0; s < ns; ++s) {
+      ASSERT_EQ(lazy.piece_begin(s), eager.piece_begin(s));
+      ASSERT_EQ(lazy.piece_end(s), eager.piece_end(s));
+      EXPECT_EQ(lazy.measure(s), eager.measure(s));
+      EXPECT_EQ(lazy.boundary(s), eager.boundary(s));
+      for (int k = eager.piece_begin(s); k < eager.piece_end(s); ++k) {
+        EXPECT_EQ(lazy.piece_neighbor(k), eager.piece_neighbor(k));
+        EXPECT_EQ(lazy.piece_size(k), eager.piece_size(k));
+        std::vector<double> a, b;
+        EXPECT_EQ(lazy.piece_corners(k, a), eager.piece_corners(k, b));
+        EXPECT_EQ(a, b);
+      }
+      double pa[2], pb[2];
+      if (eager.piece_end(s) > eager.piece_begin(s) && eager.principal_axis(s, true, pb)) {
+        ASSERT_TRUE(lazy.principal_axis(s, true, pa));
+        EXPECT_EQ(pa[0], pb[0]);
+        EXPECT_EQ(pa[1], pb[1]);
+      }
+    }
+    const tessera::Contacts ca = lazy.contacts(), cb = eager.contacts();
+    ASSERT_EQ(ca.n_owned, cb.n_owned);
+    for (int k = 0; k < offset[ns]; ++k) {
+      EXPECT_EQ(ca.neighbor[k], cb.neighbor[k]);
+      EXPECT_EQ(ca.size[k], cb.size[k]);
+    }
+    for (int s = 0; s <= ns; ++s)
+      EXPECT_EQ(ca.offset[s], cb.offset[s]);
+  }
+}
+
+} // namespace
+
+namespace {
+
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+// image()'s shortcut for differences within a quarter period against the
+// divisions and floors alone (image_reference): the same bits, signed zeros
+// included, on fuzzed boxes (tilted or not, either sign) and differences
+// near the quarter, half and whole periods, zeros and non-finite ones.
+TEST(VertexTissue, ImageShortcutIsReference) {
+  testutil::Rng rng(8128);
+  int shortcut = 0;
+  for (int trial = 0; trial < 200000; ++trial) {
+    VertexTissue t;
+    const double lx = rng.uniform(0.5, 50.0), ly = rng.uniform(0.5, 50.0);
+    t.box = tessera::Box::rect(rng.uniform(-5.0, 5.0), 0.0, rng.uniform(-5.0, 5.0), 0.0);
+    t.box.hi[0] = t.box.lo[0] + lx;
+    t.box.hi[1] = t.box.lo[1] + ly;
+    const int tilt = rng.below(4);
+    t.box.xy = tilt == 0 ? 0.0 : tilt == 1 ? -0.0 : rng.uniform(-0.6, 0.6) * lx;
+    t.periodic = rng.below(8) != 0;
+    double d[2];
+    for (int a = 0; a < 2; ++a) {
+      const double l = a == 0 ? lx : ly;
+      const int kind = rng.below(6);
+      if (kind == 0)
+        d[a] = rng.below(2) ? 0.0 : -0.0;
+      else if (kind == 1) // near a quarter period
+        d[a] = (rng.below(2) ? 1 : -1) * 0.25 * l * (1.0 + rng.uniform(-1e-15, 1e-15));
+      else if (kind == 2)
+        d[a] = rng.uniform(-0.3, 0.3) * l;
+      else if (kind == 3)
+        d[a] = rng.uniform(-3.0, 3.0) * l;
+      else if (kind == 4) // tiny
+        d[a] = rng.uniform(-1e-300, 1e-300);
+      else
+        d[a] = rng.below(3) == 0 ? std::nan("") : (rng.below(2) ? 1 : -1) * HUGE_VAL;
+    }
+    const tessera::Vec2 f = t.image(d[0], d[1]), r = t.image_reference(d[0], d[1]);
+    ASSERT_TRUE(same_bits(f.x, r.x) && same_bits(f.y, r.y))
+        << "dx " << d[0] << " dy " << d[1] << " box " << lx << " x " << ly << " xy " << t.box.xy
+        << ": " << f.x << ", " << f.y << " against " << r.x << ", " << r.y;
+    shortcut += t.periodic && std::fabs(d[0]) < 0.25 * lx && std::fabs(d[1]) < 0.25 * ly;
+  }
+  EXPECT_GT(shortcut, 20000); // the shortcut was taken often
 }
 
 } // namespace

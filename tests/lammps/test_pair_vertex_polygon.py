@@ -398,6 +398,7 @@ class Errors(LammpsTestCase):
         ("ring names a cell", "set atom 5 i_vring[2] 7\n",
          ["cell 5 lists atom 7", "not a vertex"]),
         ("ring runs clockwise", "REVERSE", ["both hold the edge", "clockwise"]),
+        ("ring names a vertex twice", "REPEAT", ["cell 5 lists vertex", "twice in its ring"]),
         ("cell crosses itself", "MOVE", ["at step 0: cell", "vertices"]),
         ("cell without a ring", "create_atoms 1 single 0.3 0.3 0 units box\n",
          ["cell 193", "has 0 vertices"]),
@@ -406,13 +407,16 @@ class Errors(LammpsTestCase):
 
     def ring_edit(self, how):
         """'set' lines that write cell 5's ring reversed (REVERSE), or move its
-        first vertex through the cell to the far side (MOVE), read from a
-        first run."""
+        first vertex through the cell to the far side (MOVE), or name its
+        first vertex again in place of its fourth (REPEAT), read from a first
+        run."""
         box, atoms, rings, _ = read_data(
             self.run_lmp(start() + "write_data s.data\n").text("s.data"))
         r = rings[5]
         if how == "REVERSE":
             return "".join(f"set atom 5 i_vring[{k + 1}] {v}\n" for k, v in enumerate(r[::-1]))
+        if how == "REPEAT":
+            return f"set atom 5 i_vring[4] {r[0]}\n"
         pts = polygon(box, atoms, r)
         x, y = pts.mean(axis=0) + 1.5 * (pts.mean(axis=0) - pts[0])
         return f"set atom {r[0]} x {x!r} y {y!r}\n"
@@ -420,7 +424,7 @@ class Errors(LammpsTestCase):
     def test_cases(self):
         for name, lines, fragments in self.CASES:
             with self.subTest(name):
-                if lines in ("REVERSE", "MOVE"):
+                if lines in ("REVERSE", "MOVE", "REPEAT"):
                     lines = self.ring_edit(lines)
                 run = self.run_lmp(start() + lines + coeffs() + "run 0\n", ok=False)
                 self.assertLammpsError(run, *fragments)

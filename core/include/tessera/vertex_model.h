@@ -108,6 +108,8 @@ struct VertexTissue {
     return image(pos[to].x - pos[from].x, pos[to].y - pos[from].y);
   }
   Vec2 image(double dx, double dy) const;
+  // image() by the divisions and floors alone (the oracle of its shortcut).
+  Vec2 image_reference(double dx, double dy) const;
   // Cell c's corners unwrapped from the position of its first vertex (2 per corner).
   void polygon(int c, std::vector<double> &xy) const;
   PolygonMeasures measures(int c) const;
@@ -258,8 +260,11 @@ int divide_cell(VertexTissue &t, int c, Vec2 axis, long new_cell_id = 0, long ne
 // slot c; a slot without a cell (a vertex atom, in LAMMPS) is an empty cell.
 // A cell's pieces are its edges, each with the point (cell) across it and its
 // two corners.  Filled by the model at each force computation: clear(), then
-// add_cell() for the slots that hold cells, in increasing order, then
-// finish().  Points are the cells' positions (LAMMPS: the cell atoms).
+// either add_cell() for the slots that hold cells, in increasing order, then
+// finish(); or set_rings() once and set_measures() per cell, which copy the
+// corners' positions but make the pieces' corners and lengths only when first
+// read (the same values: add_cell is the oracle).  Points are the cells'
+// positions (LAMMPS: the cell atoms).
 class PolygonCells : public CellView {
 public:
   void clear(int n_owned, int n_points, const Points &pts);
@@ -267,6 +272,15 @@ public:
   // each edge k (from corner k to k+1), its area and perimeter.
   void add_cell(int c, const double *xy, int n, const int *neighbor, double area, double perimeter);
   void finish();
+  // Every slot at once (after clear()): slot c's corners are the points
+  // corner[k] of corners for k in [offset[c], offset[c + 1])
+  // (counter-clockwise, each cell's unwrapped), the point across edge k (from
+  // corner k to the next) neighbor[k].  All are copied.
+  void set_rings(const int *offset, const int *corner, const int *neighbor, const Points &corners);
+  void set_measures(int c, double area, double perimeter) {
+    area_[c] = area;
+    perimeter_[c] = perimeter;
+  }
 
   int dimension() const override { return 2; }
   int n_owned() const override { return n_owned_; }
@@ -276,8 +290,14 @@ public:
   int piece_begin(int c) const override { return offset_[c]; }
   int piece_end(int c) const override { return offset_[c + 1]; }
   int piece_neighbor(int k) const override { return neighbor_[k]; }
-  double piece_size(int k) const override { return length_[k]; }
+  double piece_size(int k) const override {
+    if (lazy_)
+      fill();
+    return length_[k];
+  }
   int piece_corners(int k, std::vector<double> &xyz) const override {
+    if (lazy_)
+      fill();
     xyz.insert(xyz.end(), corners_.begin() + 4 * k, corners_.begin() + 4 * k + 4);
     return 2;
   }
@@ -291,7 +311,14 @@ private:
   int n_owned_ = 0, n_points_ = 0, filled_ = 0;
   Points pts_;
   std::vector<int> offset_, neighbor_;
-  std::vector<double> corners_, length_, area_, perimeter_;
+  std::vector<double> area_, perimeter_;
+  // The pieces' corners and lengths; with set_rings, made by fill() from
+  // corner_ (per piece, an index into at_: 2 per point) at the first read.
+  mutable std::vector<double> corners_, length_;
+  mutable bool lazy_ = false;
+  std::vector<int> corner_;
+  std::vector<double> at_;
+  void fill() const;
 };
 
 } // namespace tessera

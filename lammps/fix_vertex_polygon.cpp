@@ -42,6 +42,16 @@ FixVertexPolygon::FixVertexPolygon(LAMMPS *lmp, int narg, char **arg) : Fix(lmp,
   next_reneighbor = -1;
   comm_forward = 2;
   comm_reverse = 2;
+  // An atom another fix adds (fix deposit: particles) takes its local slot
+  // with whatever i_vring held there (a ghost's ring): it starts with none.
+  create_attribute = 1;
+}
+
+void FixVertexPolygon::set_arrays(int i)
+{
+  if (!pair || pair->ring_index < 0) return;
+  int *ring = atom->iarray[pair->ring_index][i];
+  for (int k = 0; k < pair->ring_width; k++) ring[k] = 0;
 }
 
 Fix *FixVertexPolygon::creator(LAMMPS *lmp, int narg, char **arg)

@@ -67,6 +67,7 @@ class FixVertexPolygon : public Fix {
   void min_pre_neighbor() override;
   void post_force(int) override;
   void end_of_step() override;
+  void set_arrays(int) override;
   int pack_forward_comm(int, int *, double *, int, int *) override;
   void unpack_forward_comm(int, int, double *) override;
   int pack_reverse_comm(int, int, double *) override;

@@ -135,16 +135,26 @@ void PairVertexPolygon::init_style()
     error->all(FLERR,
                "pair_style vertex/polygon needs an atom map (rings name their vertices by ID): "
                "add 'atom_modify map yes' before the box is created");
-  // Atoms added during a run would be cells without rings or vertices in no
-  // cell: new cells come from division (fix cell/divide cuts a cell in two).
-  for (int k = 0; k < modify->nfix; k++)
-    if (utils::strmatch(modify->fix[k]->style, "^deposit") ||
-        utils::strmatch(modify->fix[k]->style, "^pour"))
-      error->all(FLERR,
-                 "pair_style vertex/polygon: fix {} ({}) adds atoms during the run, but a cell "
-                 "of the vertex model is a ring of vertex atoms that an added atom does not "
-                 "have; adding cells is not implemented for this model",
-                 modify->fix[k]->id, modify->fix[k]->style);
+  // Fixes that add atoms during a run may add particles (types of other
+  // styles under hybrid/overlay), not cells or vertices (no ring, in no
+  // cell).  Their types are known from extract("radius", type), nonzero for
+  // the types a fix adds (as granular styles ask it).
+  for (int k = 0; k < modify->nfix; k++) {
+    Fix *f = modify->fix[k];
+    if (!utils::strmatch(f->style, "^deposit") && !utils::strmatch(f->style, "^pour")) continue;
+    for (int t = 1; t <= atom->ntypes; t++) {
+      int asked = t;
+      const auto *radius = static_cast<const double *>(f->extract("radius", asked));
+      if (radius && *radius > 0.0 && role(t) != NONE)
+        error->all(FLERR,
+                   "pair_style vertex/polygon: fix {} ({}) adds atoms during the run, but a cell "
+                   "of the vertex model is a ring of vertex atoms that an added atom does not "
+                   "have (new cells come from fix cell/divide, which cuts a cell in two), and an "
+                   "added vertex would be in no cell: type {} is a {} type; add particles only "
+                   "(types without a vertex/polygon pair_coeff, under pair_style hybrid/overlay)",
+                   f->id, f->style, t, role(t) == CELL ? "cell" : "vertex");
+    }
+  }
   int ncell = 0, nvertex = 0;
   for (int t = 1; t <= atom->ntypes; t++) {
     if (role(t) == NONE && force->pair == this)

@@ -488,6 +488,49 @@ pair_coeff 3 3 vertex/polygon vertex
                 run = self.run_lmp(base + pair + lines + "run 0\n", ok=False)
                 self.assertLammpsError(run, *fragments)
 
+    def test_deposit_particles(self):
+        """fix deposit may add particles (type 4, soft with the vertices) to a
+        vertex tissue: the atoms grow by the deposits, the cells stay as they
+        were (their count and total area), and the energy stays finite; a
+        deposit of the cell or the vertex type stops with an error naming
+        the type."""
+        base = start().replace("create_box 3 box", "create_box 4 box")
+        t1, t2 = TYPES[1], TYPES[2]
+        pair = self.HYBRID + f"""pair_coeff 1 1 vertex/polygon quadratic {t1[0]} {t1[1]} {t1[2]} {t1[3]}
+pair_coeff 2 2 vertex/polygon quadratic {t2[0]} {t2[1]} {t2[2]} {t2[3]}
+pair_coeff 3 3 vertex/polygon vertex
+pair_coeff 3*4 4 soft 2.0 1.0
+pair_coeff 1*2 4 none
+"""
+        run_part = """region ins block 1 6 1 3 -0.1 0.1 units box
+fix b vertices brownian 1.0 1 gamma_t 1.0 rng none
+fix dep all deposit 3 {type} 4 4821 region ins near 0.05 attempt 500
+compute c all vertex/atom
+compute a all reduce sum c_c[1]
+variable ncell equal count(cells)
+timestep 0.005
+thermo_style custom step atoms pe c_a
+thermo_modify norm no
+run 0
+print "N0 $(atoms) $(v_ncell) $(c_a:%.17g) $(vol:%.17g)"
+run 13
+print "N1 $(atoms) $(v_ncell) $(c_a:%.17g) $(pe:%.17g)"
+"""
+        script = base + "group cells type 1 2\n" + pair + run_part.format(type=4)
+        run = self.run_lmp(script)
+        n0, c0, a0, vol = printed(run, "N0")[0]
+        n1, c1, a1, pe = printed(run, "N1")[0]
+        self.assertEqual(n1, n0 + 3)
+        self.assertEqual(c1, c0)
+        self.assertAlmostEqual(a0, vol, delta=1e-9 * vol)
+        self.assertAlmostEqual(a1, vol, delta=1e-9 * vol)
+        self.assertTrue(math.isfinite(pe))
+        for t, what in ((1, "type 1 is a cell type"), (3, "type 3 is a vertex type")):
+            with self.subTest(type=t):
+                run = self.run_lmp(base + "group cells type 1 2\n" + pair +
+                                   run_part.format(type=t), ok=False)
+                self.assertLammpsError(run, "fix dep (deposit) adds atoms during the run", what)
+
     def test_cutoff_too_small(self):
         run = self.run_lmp(start() + coeffs("pair_style vertex/polygon 0.3") + "run 0\n",
                            ok=False)

@@ -52,7 +52,14 @@ for _case, _vars in SHORTER.items():
 
 # Examples whose input reads a file that a script of theirs writes (not
 # committed): directory -> (script, its output option, the file).
-GENERATED = {"fibre_network": ("make_network.py", "-o", "fibres.data")}
+# (script, its arguments before the output option, the option, the file); the
+# script runs in the example's directory.
+GENERATED = {
+    "fibre_network": ("make_network.py", [], "-o", "fibres.data"),
+    "vertex_segmented": (os.path.join("..", "..", "tools", "tessera-tools"),
+                         ["segmented", "labels.txt", "--boundary-label", "0", "--pixel",
+                          "0.0645497"], "-o", "tissue.data"),
+}
 
 
 def example_files(directory):
@@ -60,11 +67,11 @@ def example_files(directory):
     its reference logs or outputs; and the files its own scripts generate."""
     files = {}
     if directory in GENERATED:
-        script, option, name = GENERATED[directory]
+        script, before, option, name = GENERATED[directory]
         with tempfile.TemporaryDirectory() as tmp:
             subprocess.run(["/usr/bin/python3", os.path.join(EXAMPLES, directory, script),
-                            option, os.path.join(tmp, name)], check=True,
-                           stdout=subprocess.DEVNULL)
+                            *before, option, os.path.join(tmp, name)], check=True,
+                           stdout=subprocess.DEVNULL, cwd=os.path.join(EXAMPLES, directory))
             with open(os.path.join(tmp, name)) as f:
                 files[name] = f.read()
     path = os.path.join(EXAMPLES, directory)

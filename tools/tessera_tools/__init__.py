@@ -12,6 +12,7 @@ Modules:
   transport     flux through sections, velocity field, drift and MSD of atoms of any type
   holes         loops of free boundary of finite cells, the hole around each particle
   divisions     division events of fix cell/divide's log, latitude/longitude on a sphere
+  segmented     a vertex tissue (rings of pair_style vertex/polygon) from a segmented image's labels
 """
 
 __version__ = "0.1.0"

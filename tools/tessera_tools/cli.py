@@ -53,6 +53,7 @@ def build_parser():
     cli_plot.add_commands(sub)
     cli_analyses.add_commands(sub)
     __import__(__package__ + ".cli_converge", fromlist=["add_commands"]).add_commands(sub)
+    __import__(__package__ + ".cli_segmented", fromlist=["add_commands"]).add_commands(sub)
     return p
 
 

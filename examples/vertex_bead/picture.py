@@ -11,6 +11,8 @@ cutoff of pair soft), and its displacement along the force against time
 
 import argparse
 import math
+import os
+import sys
 
 import matplotlib
 matplotlib.use("Agg")
@@ -18,34 +20,10 @@ import matplotlib.pyplot as plt
 from matplotlib.collections import PolyCollection
 import numpy as np
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from tessera_tools.vertex_data import VertexData  # noqa: E402
+
 REACH = 0.9    # pair soft's cutoff between the bead and the vertices
-
-
-def read_data(path):
-    """Box lengths, positions {id: (type, x, y)} and rings {cell: [vertices]}."""
-    with open(path) as f:
-        lines = f.read().split("\n")
-    box = {}
-    for line in lines:
-        w = line.split()
-        if line.endswith("xlo xhi") or line.endswith("ylo yhi"):
-            box[w[2]] = float(w[1]) - float(w[0])
-
-    def section(name):
-        i = [k for k, l in enumerate(lines) if l.split("#")[0].strip() == name][0] + 2
-        rows = []
-        while i < len(lines) and lines[i].strip():
-            rows.append(lines[i].split())
-            i += 1
-        return rows
-
-    atoms = {int(r[0]): (int(r[1]), float(r[2]), float(r[3])) for r in section("Atoms")}
-    rings = {}
-    for r in section("vring"):
-        ids = [int(v) for v in r[1:] if int(v) > 0]
-        if ids:
-            rings[int(r[0])] = ids
-    return box["xlo"], box["ylo"], atoms, rings
 
 
 def near(p, q, lx, ly):
@@ -83,7 +61,8 @@ def main():
     fig, axes = plt.subplots(1, 3, figsize=(15, 5))
     for ax, data, name in ((axes[0], a.solid_data, "solid, p0 = 3.7"),
                            (axes[1], a.fluid_data, "fluid, p0 = 3.95")):
-        lx, ly, atoms, rings = read_data(data)
+        d = VertexData(data)
+        lx, ly, atoms, rings = d.lx, d.ly, d.atoms, d.rings
         bead = [v[1:] for v in atoms.values() if v[0] == 3][0]
         polys = []
         for cell, ring in rings.items():

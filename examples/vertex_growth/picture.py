@@ -8,7 +8,8 @@ cells.dump), and N(t) from the log against 50 exp(R t).
 """
 
 import argparse
-import math
+import os
+import sys
 
 import matplotlib
 matplotlib.use("Agg")
@@ -16,42 +17,8 @@ import matplotlib.pyplot as plt
 from matplotlib.collections import PolyCollection
 import numpy as np
 
-
-def read_data(path):
-    """Box, positions {id: (x, y)} and rings {cell id: [vertex ids]}."""
-    with open(path) as f:
-        lines = f.read().split("\n")
-    box = {}
-    for line in lines:
-        w = line.split()
-        if line.endswith("xlo xhi") or line.endswith("ylo yhi"):
-            box[w[2]] = (float(w[0]), float(w[1]))
-
-    def section(name):
-        i = [k for k, l in enumerate(lines) if l.split("#")[0].strip() == name][0] + 2
-        rows = []
-        while i < len(lines) and lines[i].strip():
-            rows.append(lines[i].split())
-            i += 1
-        return rows
-
-    pos = {int(r[0]): (float(r[3]), float(r[4])) for r in section("Atoms")}    # dipole
-    rings = {}
-    for r in section("vring"):
-        ids = [int(v) for v in r[1:]]
-        if ids[0] > 0:
-            rings[int(r[0])] = [v for v in ids if v]
-    return box, pos, rings
-
-
-def polygon(pos, ring, lx, ly):
-    pts = [np.array(pos[ring[0]])]
-    for v in ring[1:]:
-        d = np.array(pos[v]) - pts[-1]
-        d[0] -= lx * math.floor(d[0] / lx + 0.5)
-        d[1] -= ly * math.floor(d[1] / ly + 0.5)
-        pts.append(pts[-1] + d)
-    return np.array(pts)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from tessera_tools.vertex_data import VertexData  # noqa: E402
 
 
 def main():
@@ -63,9 +30,10 @@ def main():
     ap.add_argument("--rate", type=float, default=0.1)
     args = ap.parse_args()
 
-    box, pos, rings = read_data(args.data)
-    (xlo, xhi), (ylo, yhi) = box["xlo"], box["ylo"]
-    lx, ly = xhi - xlo, yhi - ylo
+    data = VertexData(args.data)
+    rings = data.rings
+    xlo, ylo, lx, ly = data.xlo, data.ylo, data.lx, data.ly
+    xhi, yhi = xlo + lx, ylo + ly
     with open(args.dump) as f:
         lines = f.read().split("\n")
     cols = lines[8].split()[2:]
@@ -77,7 +45,7 @@ def main():
 
     polys, colours = [], []
     for c, ring in rings.items():
-        p = polygon(pos, ring, lx, ly)
+        p = data.polygon(c)
         # the image whose centroid lies in the box
         shift = np.floor((p.mean(axis=0) - [xlo, ylo]) / [lx, ly]) * [lx, ly]
         for dx in (-lx, 0.0, lx):

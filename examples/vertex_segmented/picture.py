@@ -11,6 +11,8 @@ mean over the cells is printed and shown.
 
 import argparse
 import math
+import os
+import sys
 
 import matplotlib
 matplotlib.use("Agg")
@@ -18,41 +20,13 @@ import matplotlib.pyplot as plt
 from matplotlib.collections import PolyCollection
 import numpy as np
 
-
-def read_data(path):
-    """Box lengths, positions {id: (type, x, y)} and rings {cell: [vertices]}."""
-    with open(path) as f:
-        lines = f.read().split("\n")
-    box = {}
-    for line in lines:
-        w = line.split()
-        if line.endswith("xlo xhi") or line.endswith("ylo yhi"):
-            box[w[2]] = float(w[1]) - float(w[0])
-
-    def section(name):
-        i = [k for k, l in enumerate(lines) if l.split("#")[0].strip() == name][0] + 2
-        rows = []
-        while i < len(lines) and lines[i].strip():
-            rows.append(lines[i].split())
-            i += 1
-        return rows
-
-    atoms = {int(r[0]): (int(r[1]), float(r[2]), float(r[3])) for r in section("Atoms")}
-    rings = {int(r[0]): [int(v) for v in r[1:] if int(v) > 0] for r in section("vring")}
-    return box["xlo"], box["ylo"], atoms, {c: r for c, r in rings.items() if r}
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from tessera_tools.vertex_data import VertexData  # noqa: E402
 
 
 def polygons(path):
-    lx, ly, atoms, rings = read_data(path)
-    out = []
-    for ring in rings.values():
-        pts = [np.array(atoms[ring[0]][1:])]
-        for v in ring[1:]:
-            d = np.array(atoms[v][1:]) - pts[-1]
-            d -= np.array([lx, ly]) * np.round(d / np.array([lx, ly]))
-            pts.append(pts[-1] + d)
-        out.append(np.array(pts))
-    return lx, ly, out
+    d = VertexData(path)
+    return d.lx, d.ly, [d.polygon(c) for c in d.rings]
 
 
 def elongation(p):

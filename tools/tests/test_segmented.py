@@ -15,6 +15,7 @@ import numpy as np
 
 import helpers  # noqa: F401  (import path)
 from tessera_tools import segmented
+from tessera_tools.vertex_data import VertexData
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 EXAMPLE = os.path.join(HERE, "..", "..", "examples", "vertex_segmented")
@@ -145,6 +146,22 @@ class Command(unittest.TestCase):
         self.assertEqual(sorted(set(ids)), list(range(81, 241)))
         self.assertTrue(all(ids.count(v) == 3 for v in set(ids)))
         self.assertTrue(all(set(r.split()[1:]) == {"0"} for r in rows[80:]))
+
+    def test_data_file_reads_back(self):
+        """write_data's file read by VertexData (the example pictures'
+        reader): the same rings and polygons, in both atom styles."""
+        t = segmented.tissue_from_labels(bricks(), pixel=0.5)
+        with tempfile.TemporaryDirectory() as tmp:
+            for style in ("atomic", "dipole"):
+                path = os.path.join(tmp, style + ".data")
+                ids = segmented.write_data(t, path, atom_style=style)
+                d = VertexData(path)
+                self.assertEqual((d.lx, d.ly), t.box)
+                nc = len(t.rings)
+                for label, ring in t.rings.items():
+                    self.assertEqual(d.rings[ids[label]], [nc + 1 + v for v in ring])
+                    p, q = d.polygon(ids[label]), t.polygon(label)
+                    np.testing.assert_allclose(p - p[0], q - q[0], atol=1e-12)
 
     def test_example_labels_are_make_labels_output(self):
         with tempfile.TemporaryDirectory() as tmp:

@@ -10,7 +10,6 @@ cutoff of pair soft), and its displacement along the force against time
 """
 
 import argparse
-import math
 import os
 import sys
 
@@ -21,16 +20,9 @@ from matplotlib.collections import PolyCollection
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
-from tessera_tools.vertex_data import VertexData  # noqa: E402
+from tessera_tools.vertex_data import VertexData, unwrap  # noqa: E402
 
 REACH = 0.9    # pair soft's cutoff between the bead and the vertices
-
-
-def near(p, q, lx, ly):
-    d = np.array(q) - np.array(p)
-    d[0] -= lx * math.floor(d[0] / lx + 0.5)
-    d[1] -= ly * math.floor(d[1] / ly + 0.5)
-    return np.array(p) + d
 
 
 def displacement(log):
@@ -66,10 +58,8 @@ def main():
         bead = [v[1:] for v in atoms.values() if v[0] == 3][0]
         polys = []
         for cell, ring in rings.items():
-            pts = [near(bead, atoms[ring[0]][1:], lx, ly)]
-            for v in ring[1:]:
-                pts.append(near(pts[-1], atoms[v][1:], lx, ly))
-            pts = np.array(pts)
+            # (the bead first: the ring's images nearest it, then dropped)
+            pts = unwrap([bead] + [atoms[v][1:] for v in ring], (lx, ly))[1:]
             if np.linalg.norm(pts.mean(axis=0) - bead) < 4.0:
                 polys.append(pts)
         ax.add_collection(PolyCollection(polys, facecolors="#cfe3f3", edgecolors="k",

@@ -10,7 +10,6 @@ mean over the cells is printed and shown.
 """
 
 import argparse
-import math
 import os
 import sys
 
@@ -22,26 +21,12 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
 from tessera_tools.vertex_data import VertexData  # noqa: E402
+from tessera_tools.voronoi import polygon_elongation  # noqa: E402
 
 
 def polygons(path):
     d = VertexData(path)
     return d.lx, d.ly, [d.polygon(c) for c in d.rings]
-
-
-def elongation(p):
-    """Long over short axis of the polygon's second moments about its centroid."""
-    x, y = p[:, 0], p[:, 1]
-    x1, y1 = np.roll(x, -1), np.roll(y, -1)
-    cr = x * y1 - x1 * y
-    a = cr.sum() / 2
-    cx, cy = ((x + x1) * cr).sum() / (6 * a), ((y + y1) * cr).sum() / (6 * a)
-    x, y, x1, y1 = x - cx, y - cy, x1 - cx, y1 - cy
-    ixx = ((x * x + x * x1 + x1 * x1) * cr).sum() / 12
-    iyy = ((y * y + y * y1 + y1 * y1) * cr).sum() / 12
-    ixy = ((x * y1 + 2 * x * y + 2 * x1 * y1 + x1 * y) * cr).sum() / 24
-    w = np.linalg.eigvalsh([[ixx, ixy], [ixy, iyy]])
-    return math.sqrt(w[1] / w[0])
 
 
 def main():
@@ -60,7 +45,7 @@ def main():
     axes[0].set_axis_off()
     for ax, path in zip(axes[1:], a.data):
         lx, ly, polys = polygons(path)
-        e = np.mean([elongation(p) for p in polys])
+        e = np.mean([polygon_elongation(p) for p in polys])
         print(f"{path}: {len(polys)} cells, mean elongation {e:.3f}")
         ax.add_collection(PolyCollection(polys, facecolors="#cfe3f3", edgecolors="k",
                                          linewidths=0.7))

@@ -6,6 +6,7 @@ vertex/polygon) from the label image of a segmented, periodic patch of cells
 import numpy as np
 
 from . import segmented
+from .voronoi import polygon_area
 
 
 def read_labels(path):
@@ -37,7 +38,7 @@ def cmd_segmented(args):
     segmented.write_data(t, args.output, cell_type=args.cell_type, vertex_type=args.vertex_type,
                          ntypes=max(args.types, args.cell_type, args.vertex_type),
                          width=args.maxsides, atom_style=args.atom_style)
-    areas = [segmented.area_of(t.polygon(c)) for c in t.rings]
+    areas = [polygon_area(t.polygon(c)) for c in t.rings]
     print(f"{args.output}: {len(t.rings)} cells, {len(t.vertices)} vertices, box "
           f"{t.box[0]:.6g} x {t.box[1]:.6g}, mean cell area {np.mean(areas):.6g} "
           f"(rings in section vring, width {args.maxsides}); {joined} pixel(s) given to a "

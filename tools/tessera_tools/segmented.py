@@ -26,6 +26,9 @@ of them a neighbouring cell's label first.
 
 import numpy as np
 
+from .vertex_data import unwrap
+from .voronoi import polygon_area
+
 # The four pixels around corner (i, j) (the lower left corner of pixel
 # (i, j)), counter-clockwise from the upper right: (row offset, column offset).
 AROUND = ((0, 0), (0, -1), (-1, -1), (-1, 0))    # NE, NW, SW, SE
@@ -98,18 +101,7 @@ class Tissue:
 
     def polygon(self, label):
         """The ring's corners unwrapped from its first (minimum image)."""
-        lx, ly = self.box
-        pts = [self.vertices[self.rings[label][0]].copy()]
-        for v in self.rings[label][1:]:
-            d = self.vertices[v] - pts[-1]
-            d -= np.array([lx, ly]) * np.round(d / np.array([lx, ly]))
-            pts.append(pts[-1] + d)
-        return np.array(pts)
-
-
-def area_of(p):
-    x, y = p[:, 0], p[:, 1]
-    return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+        return unwrap(self.vertices[self.rings[label]], self.box)
 
 
 def centroid_of(p):
@@ -204,9 +196,9 @@ def tissue_from_labels(labels, pixel=1.0):
     t = Tissue(vertices, rings, box)
     for c in rings:
         p = t.polygon(c)
-        if not area_of(p) > 0.0:
+        if not polygon_area(p) > 0.0:
             raise ValueError(f"label {c}: its junctions joined by straight lines enclose no "
-                             f"positive area ({area_of(p):.4g})")
+                             f"positive area ({polygon_area(p):.4g})")
         n = len(p)
         for k in range(n):
             for m in range(k + 2, n):

@@ -44,10 +44,15 @@ class VertexData:
 
     def polygon(self, cell):
         """The cell's corners, each the image closest to the one before."""
-        box = np.array([self.lx, self.ly])
-        ring = self.rings[cell]
-        pts = [np.array(self.atoms[ring[0]][1:])]
-        for v in ring[1:]:
-            d = np.array(self.atoms[v][1:]) - pts[-1]
-            pts.append(pts[-1] + d - box * np.round(d / box))
-        return np.array(pts)
+        return unwrap([self.atoms[v][1:] for v in self.rings[cell]], (self.lx, self.ly))
+
+
+def unwrap(points, box):
+    """Points of a ring in an orthogonal periodic box (lx, ly), each moved to
+    its image closest to the one before: the polygon in one piece."""
+    box = np.asarray(box, dtype=float)
+    pts = [np.asarray(points[0], dtype=float)]
+    for q in points[1:]:
+        d = np.asarray(q, dtype=float) - pts[-1]
+        pts.append(pts[-1] + d - box * np.round(d / box))
+    return np.array(pts)

@@ -40,7 +40,7 @@ class Tessellation:
         self.points = points
         self.polygons = polygons
         n = len(points)
-        self.area = np.array([_polygon_area(p) for p in polygons])
+        self.area = np.array([polygon_area(p) for p in polygons])
         self.perimeter = np.array([_polygon_perimeter(p) for p in polygons])
         self.shape_index = self.perimeter / np.sqrt(self.area)
         self.edge_cell = edge_cell
@@ -63,13 +63,7 @@ class Tessellation:
 
     def elongation(self):
         """sqrt(lambda_max / lambda_min) of the second-moment tensor: 1 for regular polygons."""
-        out = np.empty(len(self))
-        for i, poly in enumerate(self.polygons):
-            ixx, iyy, ixy = _central_moments(poly)
-            half_tr, det = 0.5 * (ixx + iyy), ixx * iyy - ixy * ixy
-            root = math.sqrt(max(half_tr * half_tr - det, 0.0))
-            out[i] = math.sqrt((half_tr + root) / max(half_tr - root, 1e-300))
-        return out
+        return np.array([polygon_elongation(poly) for poly in self.polygons])
 
     def neighbour_pairs(self):
         """(i, j) index arrays listing each neighbour relation of every cell once per direction."""
@@ -78,7 +72,8 @@ class Tessellation:
         return i, j.astype(int)
 
 
-def _polygon_area(p):
+def polygon_area(p):
+    """Signed area of a polygon (positive counter-clockwise)."""
     x, y = p[:, 0], p[:, 1]
     return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
 
@@ -99,6 +94,15 @@ def _central_moments(p):
     iyy = ((y * y + y * yn + yn * yn) * cross).sum() / 12.0 - a * cy * cy
     ixy = ((x * yn + 2 * x * y + 2 * xn * yn + xn * y) * cross).sum() / 24.0 - a * cx * cy
     return ixx, iyy, ixy
+
+
+def polygon_elongation(p):
+    """sqrt(lambda_max / lambda_min) of a CCW polygon's second-moment tensor
+    about its centroid (long over short axis): 1 for regular polygons."""
+    ixx, iyy, ixy = _central_moments(p)
+    half_tr, det = 0.5 * (ixx + iyy), ixx * iyy - ixy * ixy
+    root = math.sqrt(max(half_tr * half_tr - det, 0.0))
+    return math.sqrt((half_tr + root) / max(half_tr - root, 1e-300))
 
 
 def _neighbour_lists(n, cell, other):

@@ -238,7 +238,7 @@ class WithHessian(unittest.TestCase):
         modulus equals central differences of the quadratic-form energy of scipy's Voronoi
         cells under x += gamma y.  The types' own values (--quadratic) differ from both sets."""
         from tessera_tools.dump import Box
-        from tessera_tools.voronoi import periodic_voronoi, _polygon_area, _polygon_perimeter
+        from tessera_tools.voronoi import periodic_voronoi, polygon_area, _polygon_perimeter
 
         pts, box, kind, sets, par = self.per_cell_state()
         write_dump(self.path("pc.dump"), [frame_from(pts, box, d_ka=par[:, 0], d_area0=par[:, 1],
@@ -262,7 +262,7 @@ class WithHessian(unittest.TestCase):
             b = Box(box.xlo, box.xhi, box.ylo, box.yhi, xy=gamma * box.ly)
             q = pts + np.column_stack([gamma * (pts[:, 1] - box.ylo), np.zeros(len(pts))])
             t = periodic_voronoi(q, b)
-            A = np.array([_polygon_area(p) for p in t.polygons])
+            A = np.array([polygon_area(p) for p in t.polygons])
             P = np.array([_polygon_perimeter(p) for p in t.polygons])
             return float(np.sum(par[:, 0] * (A - par[:, 1]) ** 2 + par[:, 2] * (P - par[:, 3]) ** 2))
 

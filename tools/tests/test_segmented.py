@@ -15,6 +15,7 @@ import numpy as np
 
 import helpers  # noqa: F401  (import path)
 from tessera_tools import segmented
+from tessera_tools.voronoi import polygon_area
 from tessera_tools.vertex_data import VertexData
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -48,7 +49,7 @@ def check_tissue(tc, t):
     for a, b in edges:
         tc.assertIn((b, a), edges)
         tc.assertNotEqual(edges[(a, b)], edges[(b, a)])
-    areas = {c: segmented.area_of(t.polygon(c)) for c in t.rings}
+    areas = {c: polygon_area(t.polygon(c)) for c in t.rings}
     tc.assertTrue(all(a > 0 for a in areas.values()))
     tc.assertAlmostEqual(sum(areas.values()), t.box[0] * t.box[1], delta=1e-9)
     return areas

@@ -476,16 +476,20 @@ run 0
          ["junction tension between types 1 and 4", "type 4 is no type of this style"]),
     ]
 
-    def test_hybrid(self):
-        base = start().replace("create_box 3 box", "create_box 4 box")
+    def hybrid_start(self):
+        """start() with a fourth (particle) type and the cell and vertex types'
+        pair_coeffs under HYBRID; the particles' coefficients are the test's."""
         t1, t2 = TYPES[1], TYPES[2]
-        pair = self.HYBRID + f"""pair_coeff 1 1 vertex/polygon quadratic {t1[0]} {t1[1]} {t1[2]} {t1[3]}
+        return start().replace("create_box 3 box", "create_box 4 box") + self.HYBRID + f"""\
+pair_coeff 1 1 vertex/polygon quadratic {t1[0]} {t1[1]} {t1[2]} {t1[3]}
 pair_coeff 2 2 vertex/polygon quadratic {t2[0]} {t2[1]} {t2[2]} {t2[3]}
 pair_coeff 3 3 vertex/polygon vertex
 """
+
+    def test_hybrid(self):
         for name, lines, fragments in self.HYBRID_CASES:
             with self.subTest(name):
-                run = self.run_lmp(base + pair + lines + "run 0\n", ok=False)
+                run = self.run_lmp(self.hybrid_start() + lines + "run 0\n", ok=False)
                 self.assertLammpsError(run, *fragments)
 
     def test_deposit_particles(self):
@@ -494,13 +498,9 @@ pair_coeff 3 3 vertex/polygon vertex
         were (their count and total area), and the energy stays finite; a
         deposit of the cell or the vertex type stops with an error naming
         the type."""
-        base = start().replace("create_box 3 box", "create_box 4 box")
-        t1, t2 = TYPES[1], TYPES[2]
-        pair = self.HYBRID + f"""pair_coeff 1 1 vertex/polygon quadratic {t1[0]} {t1[1]} {t1[2]} {t1[3]}
-pair_coeff 2 2 vertex/polygon quadratic {t2[0]} {t2[1]} {t2[2]} {t2[3]}
-pair_coeff 3 3 vertex/polygon vertex
-pair_coeff 3*4 4 soft 2.0 1.0
+        head = self.hybrid_start() + """pair_coeff 3*4 4 soft 2.0 1.0
 pair_coeff 1*2 4 none
+group cells type 1 2
 """
         run_part = """region ins block 1 6 1 3 -0.1 0.1 units box
 fix b vertices brownian 1.0 1 gamma_t 1.0 rng none
@@ -516,7 +516,7 @@ print "N0 $(atoms) $(v_ncell) $(c_a:%.17g) $(vol:%.17g)"
 run 13
 print "N1 $(atoms) $(v_ncell) $(c_a:%.17g) $(pe:%.17g)"
 """
-        script = base + "group cells type 1 2\n" + pair + run_part.format(type=4)
+        script = head + run_part.format(type=4)
         run = self.run_lmp(script)
         n0, c0, a0, vol = printed(run, "N0")[0]
         n1, c1, a1, pe = printed(run, "N1")[0]
@@ -527,8 +527,7 @@ print "N1 $(atoms) $(v_ncell) $(c_a:%.17g) $(pe:%.17g)"
         self.assertTrue(math.isfinite(pe))
         for t, what in ((1, "type 1 is a cell type"), (3, "type 3 is a vertex type")):
             with self.subTest(type=t):
-                run = self.run_lmp(base + "group cells type 1 2\n" + pair +
-                                   run_part.format(type=t), ok=False)
+                run = self.run_lmp(head + run_part.format(type=t), ok=False)
                 self.assertLammpsError(run, "fix dep (deposit) adds atoms during the run", what)
 
     def test_cutoff_too_small(self):

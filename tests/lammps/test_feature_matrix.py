@@ -22,8 +22,8 @@ from feature_adaptive import AdaptiveChecks
 from feature_outputs import OutputChecks
 from feature_state import StateChecks
 from feature_models import (COEFFS_2D, COEFFS_3D, COEFFS_FINITE, PARTICLE_IDS, POLYGON_CELLS,
-                            PARTICLE_PROBES, PROBES, SPHERE_C, SPHERE_R, dim_of, is_polygon, local_rows,
-                            model_script, polygon_groups, printed, read_matrix)
+                            PARTICLE_PROBES, PROBES, SPHERE_C, SPHERE_R, dim_of, is_polygon,
+                            local_rows, model_script, polygon_groups, printed, read_matrix)
 from vertex_check import check_tissue
 from feature_cellfix import check_particles_fixes
 from feature_particles import check_polygon_particles, probe_particles
@@ -610,7 +610,6 @@ print "E $(pe:%.17g)"
         if is_polygon(model):
             return check_polygon_particles(self, model)
         self.check_forces(model, particles=True)
-        d = dim_of(model)
         pv, vol, f, part = probe_particles(self, model, "vertex/voronoi", 3)
         self.assertTrue(np.all(f["c_c[1]"][~part] > 0.0))
         # The same cells without the particles, the pair style alone.

@@ -6,6 +6,7 @@ dipole) and the small readers the checks share."""
 
 import math
 import os
+import re
 
 import numpy as np
 
@@ -136,6 +137,21 @@ def polygon_particles(script):
         out.append(line)
     return "\n".join(out).replace("thermo_modify norm no", "pair_coeff 3*4 4 soft 2.0 1.0\n"
                                    "pair_coeff 1*2 4 none\nthermo_modify norm no", 1)
+
+
+def polygon_death(script, trigger, floor):
+    """A vertex-model script with T2s on and cells that die by fix cell/death
+    (trigger, min floor): each shrinks through its own d_area0 and d_perim0
+    and leaves by T1s and a T2 (integrated at dt 0.002; the run is the
+    caller's)."""
+    script = re.sub(r"( t1 0\.04 0\.06)( |\n)", r"\1 t2 0.05\2", script, count=1)
+    return script + f"""fix pc all property/atom d_area0 d_perim0
+set group cells d_area0 1.0
+set group cells d_perim0 3.7
+fix b all brownian 1.0 1 gamma_t 1.0 rng none
+fix die all cell/death {trigger} seed 77 min {floor}
+timestep 0.002
+"""
 
 
 def is_polygon(model):

@@ -10,7 +10,7 @@ names them; the cell-only fixes on group all take the cells alone."""
 
 import numpy as np
 
-from feature_models import PARTICLE_IDS, local_rows, model_script, printed
+from feature_models import PARTICLE_IDS, local_rows, model_script, polygon_death, printed
 from vertex_check import check_tissue
 
 PTYPE = 4    # the particles' type in the vertex model (3: the vertices)
@@ -135,14 +135,7 @@ write_data end.data
 
     # Cells die (shrink, then T1s and a T2), the particles stay; min counts cells.
     floor = int(ncells) - 3
-    base = start.replace(" t1 0.04 0.06 ", " t1 0.04 0.06 t2 0.05 ")
-    run = self.run_lmp(base + f"""fix pc all property/atom d_area0 d_perim0
-set group cells d_area0 1.0
-set group cells d_perim0 3.7
-fix b all brownian 1.0 1 gamma_t 1.0 rng none
-fix die all cell/death rate 0.5 seed 77 min {floor}
-timestep 0.002
-run 2000
+    run = self.run_lmp(polygon_death(start, "rate 0.5", floor) + """run 2000
 dump d all custom 1 e.dump id type
 run 0
 write_data end.data

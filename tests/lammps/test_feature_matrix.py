@@ -23,7 +23,8 @@ from feature_outputs import OutputChecks
 from feature_state import StateChecks
 from feature_models import (COEFFS_2D, COEFFS_3D, COEFFS_FINITE, PARTICLE_IDS, POLYGON_CELLS,
                             PARTICLE_PROBES, PROBES, SPHERE_C, SPHERE_R, dim_of, is_polygon,
-                            local_rows, model_script, polygon_groups, printed, read_matrix)
+                            local_rows, model_script, polygon_death, polygon_groups, printed,
+                            read_matrix)
 from vertex_check import check_tissue
 from feature_cellfix import check_particles_fixes
 from feature_particles import check_polygon_particles, probe_particles
@@ -397,14 +398,8 @@ print "N1 $(atoms)"
         """A dying vertex-model cell shrinks (through its own d_area0 and
         d_perim0) and leaves by T1s and a T2: fewer atoms, at least min 10
         living cells, and a valid tissue (vertex_check, numpy)."""
-        base = model_script(model).replace(" t1 0.04 0.06\n", " t1 0.04 0.06 t2 0.05\n")
         for trigger in ("rate 0.2", "area 0.97"):
-            script = base + f"""fix pc all property/atom d_area0 d_perim0
-set group cells d_area0 1.0
-set group cells d_perim0 3.7
-fix b all brownian 1.0 1 gamma_t 1.0 rng none
-fix die all cell/death {trigger} seed 77 min 10
-timestep 0.002
+            script = polygon_death(model_script(model), trigger, 10) + """\
 thermo_style custom step atoms pe
 print "N0 $(atoms)"
 run 2000

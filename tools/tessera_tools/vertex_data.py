@@ -54,5 +54,6 @@ def unwrap(points, box):
     pts = [np.asarray(points[0], dtype=float)]
     for q in points[1:]:
         d = np.asarray(q, dtype=float) - pts[-1]
-        pts.append(pts[-1] + d - box * np.round(d / box))
+        d -= box * np.round(d / box)
+        pts.append(pts[-1] + d)
     return np.array(pts)
